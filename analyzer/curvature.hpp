@@ -1,0 +1,47 @@
+// Discrete curvature of a triangle mesh per vertex, after Meyer, Desbrun, Schröder and Barr,
+// "Discrete Differential-Geometry Operators for Triangulated 2-Manifolds" (VisMath 2002).
+//
+//   A  = mixed Voronoi area (Voronoi part for non-obtuse triangles, area/2 at an obtuse corner,
+//        area/4 at the other corners of an obtuse triangle)
+//   K  = (2π − Σθ) / A                                   (angle deficit)
+//   H  = 1/(4A) Σ (cot α + cot β)(xᵢ − xⱼ)·n̂             (cotangent Laplace–Beltrami, signed:
+//        H > 0 on a sphere with outward normals)
+//   k1,2 = H ± sqrt(max(H² − K, 0))
+//   n̂  = angle-weighted vertex normal (Thürmer and Wüthrich 1998)
+//
+// Computed in one pass over the faces (flat arrays, split over the cores), then one pass over
+// the vertices. See curvature.cpp for how degenerate faces, boundaries and non-manifold
+// vertices are handled.
+#pragma once
+
+#include "analyzer/mesh.hpp"
+#include "analyzer/topology.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace toonwater {
+
+enum class CurvatureStatus : std::uint8_t {
+  computed,      // from the vertex's own one-ring
+  extrapolated,  // boundary or non-manifold vertex: mean of its computed neighbours
+  undefined,     // no area and no computed neighbour: all values 0
+};
+
+struct CurvatureField {
+  std::vector<Vec3> normal;  // unit length; zero only where undefined
+  std::vector<double> area;  // mixed Voronoi area
+  std::vector<double> gaussian;
+  std::vector<double> mean;
+  std::vector<double> k1;  // k1 >= k2
+  std::vector<double> k2;
+  std::vector<CurvatureStatus> status;
+  std::size_t degenerate_faces = 0;  // left out of areas and cotangent weights
+  std::size_t undefined_vertices = 0;
+};
+
+// `mesh` should be consistently oriented (orient_consistently) for the signs to mean anything.
+CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& topology);
+
+}  // namespace toonwater

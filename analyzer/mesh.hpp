@@ -1,0 +1,23 @@
+// Plain mesh data shared by every stage: flat arrays of positions and triangles.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace toonwater {
+
+using Vec3 = Eigen::Vector3d;
+using Triangle = std::array<std::int32_t, 3>;
+
+struct TriangleMesh {
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+};
+
+// The input's up axis; POV-Ray and the analyzer's "height" use it.
+enum class Axis : std::uint8_t { x = 0, y = 1, z = 2 };
+
+}  // namespace toonwater

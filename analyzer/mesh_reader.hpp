@@ -1,0 +1,36 @@
+// Strict readers for OBJ, OFF, PLY (ASCII and binary) and STL (ASCII and binary).
+//
+// Why not OpenMesh's readers: they parse OBJ and OFF coordinates in single precision, skip
+// malformed lines silently (which shifts every later vertex index), drop repeated face corners
+// and report no line numbers. The analyzer needs double precision and a clear error naming the
+// file and line, so the readers here are our own; they fill flat arrays directly.
+#pragma once
+
+#include "analyzer/mesh.hpp"
+
+#include <cstddef>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+namespace toonwater {
+
+// A problem with an input file. what() is one line: "FILE:LINE: message" (or "FILE: message").
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct InputMesh {
+  // Vertices in file order (STL: one per facet corner, in file order), polygons triangulated as
+  // fans in file order.
+  TriangleMesh mesh;
+  std::size_t polygon_count = 0;  // faces as the file lists them, before triangulation
+};
+
+// Reads OBJ/OFF/PLY/STL, chosen by the file's extension (case-insensitive).
+// Throws InputError for a missing, unreadable, malformed or truncated file, an index out of
+// range, a face with fewer than three corners, or a coordinate that is NaN or infinite.
+InputMesh read_mesh(const std::filesystem::path& path);
+
+}  // namespace toonwater

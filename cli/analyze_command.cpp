@@ -1,0 +1,112 @@
+// toonwater analyze MESH [--csv FILE] [--ply FILE] [options]
+#include "cli/commands.hpp"
+
+#include "analyzer/analysis.hpp"
+#include "analyzer/curvature_export.hpp"
+#include "analyzer/mesh_reader.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace toonwater::cli {
+namespace {
+
+struct AnalyzeArgs {
+  std::string mesh;
+  std::string csv;
+  std::string ply;
+  Axis up = Axis::y;
+  std::optional<double> k_threshold;
+  double k_threshold_relative = FlowOptions{}.k_threshold_relative;
+  std::optional<double> rest_height;
+  bool no_roi = false;
+  double roi_tolerance = FlowOptions{}.displacement_tolerance;
+  double roi_margin = FlowOptions{}.margin;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void print_summary(const std::string& mesh_path, const Analysis& a, double read_seconds,
+                   double write_seconds) {
+  const auto& t = a.topology;
+  const auto& f = a.flow;
+  std::fprintf(stderr,
+               "%s: %zu vertices (%zu welded), %zu faces\n"
+               "  boundary %zu, non-manifold %zu, isolated %zu, degenerate faces %zu, "
+               "flipped faces %zu, undefined curvature %zu\n"
+               "  flow: T = %.6g (median edge %.6g), rest height %.6g, free surface %zu, "
+               "ridge %zu, valley %zu\n"
+               "  time: read %.3f s, weld %.3f s, topology %.3f s, curvature %.3f s, "
+               "flow %.3f s, write %.3f s\n",
+               mesh_path.c_str(), a.input_vertices, a.merged_vertices, a.surface.triangles.size(),
+               t.boundary_vertices, t.nonmanifold_vertices, t.isolated_vertices,
+               a.curvature.degenerate_faces, a.flipped_faces, a.curvature.undefined_vertices,
+               f.threshold, f.median_edge_length, f.rest_height, f.free_surface_vertices,
+               f.ridge_vertices, f.valley_vertices, read_seconds, a.times.weld, a.times.topology,
+               a.times.curvature, a.times.flow, write_seconds);
+}
+
+void run_analyze(const AnalyzeArgs& args) {
+  auto start = std::chrono::steady_clock::now();
+  const InputMesh input = read_mesh(args.mesh);
+  const double read_seconds = seconds_since(start);
+
+  AnalyzeOptions options;
+  options.flow.up = args.up;
+  options.flow.k_threshold = args.k_threshold;
+  options.flow.k_threshold_relative = args.k_threshold_relative;
+  options.flow.rest_height = args.rest_height;
+  options.flow.region_of_interest = !args.no_roi;
+  options.flow.displacement_tolerance = args.roi_tolerance;
+  options.flow.margin = args.roi_margin;
+  const Analysis analysis = analyze_mesh(input.mesh, options);
+
+  start = std::chrono::steady_clock::now();
+  if (!args.csv.empty()) write_curvature_csv(args.csv, input.mesh, analysis);
+  if (!args.ply.empty()) write_curvature_ply(args.ply, input.mesh, analysis);
+  print_summary(args.mesh, analysis, read_seconds, seconds_since(start));
+}
+
+}  // namespace
+
+void add_analyze_command(CLI::App& app) {
+  auto args = std::make_shared<AnalyzeArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "analyze", "Compute per-vertex curvature and water-flow regions of a surface mesh");
+  cmd->add_option("mesh", args->mesh, "Surface mesh: OBJ, OFF, PLY or STL")->required();
+  cmd->add_option("--csv", args->csv, "Write x,y,z,gaussian,mean,k1,k2,area,label per vertex");
+  cmd->add_option("--ply", args->ply, "Write a binary PLY with the curvature as vertex properties");
+  const std::map<std::string, Axis> axes{{"x", Axis::x}, {"y", Axis::y}, {"z", Axis::z}};
+  cmd->add_option("--up", args->up, "Up axis of the input (Blender writes z)")
+      ->transform(CLI::CheckedTransformer(axes, CLI::ignore_case))
+      ->default_str("y");
+  cmd->add_option("--k-threshold", args->k_threshold,
+                  "Absolute threshold T on |K| (1/length^2); overrides --k-threshold-relative")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--k-threshold-relative", args->k_threshold_relative,
+                  "c in T = c / (median edge length)^2")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--rest-height", args->rest_height,
+                  "Water rest level along the up axis (default: median height of the free surface)");
+  cmd->add_flag("--no-roi", args->no_roi,
+                "Mark flow regions on the whole free surface, not only around displaced water");
+  cmd->add_option("--roi-tolerance", args->roi_tolerance,
+                  "Displacement from the rest level that counts, in median edge lengths")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--roi-margin", args->roi_margin,
+                  "Growth of the displaced vertices' bounding box, in median edge lengths")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->callback([args] { run_analyze(*args); });
+}
+
+}  // namespace toonwater::cli

@@ -1,0 +1,10 @@
+// Each subcommand registers its options and its run function on the application.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace toonwater::cli {
+
+void add_analyze_command(CLI::App& app);
+
+}  // namespace toonwater::cli

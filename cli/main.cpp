@@ -1,0 +1,30 @@
+// toonwater: cartoon-style rendering of fluid-simulation output with POV-Ray.
+#include "cli/commands.hpp"
+
+#include "analyzer/atomic_file.hpp"
+#include "analyzer/mesh_reader.hpp"
+
+#include <exception>
+#include <iostream>
+
+int main(int argc, char** argv) {
+  CLI::App app{"toonwater: cartoon water from fluid-simulation meshes, rendered with POV-Ray"};
+  app.require_subcommand(1);
+  toonwater::cli::add_analyze_command(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const toonwater::InputError& e) {
+    std::cerr << "toonwater: error: " << e.what() << '\n';
+    return 2;
+  } catch (const toonwater::OutputError& e) {
+    std::cerr << "toonwater: error: " << e.what() << '\n';
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "toonwater: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Idempotent set-up: installs the Debian packages toonwater needs (only those missing),
+# then configures and builds the project into ./build (or $TOONWATER_BUILD_DIR).
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build_dir=${TOONWATER_BUILD_DIR:-$root/build}
+
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev libcli11-dev libtomlplusplus-dev
+  libopenimageio-dev openimageio-tools fonts-dejavu-core
+  povray
+  libgtest-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}" >&2
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build_dir" -j "$(nproc)"
