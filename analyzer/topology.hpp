@@ -37,7 +37,7 @@ struct MeshTopology {
   std::size_t isolated_vertices = 0;
   std::size_t boundary_edges = 0;
   std::size_t nonmanifold_edges = 0;
-  std::size_t components = 0;         // edge-connected components of faces
+  std::size_t components = 0;  // connected components (faces sharing a vertex)
 };
 
 // Faces with a repeated corner index are not faces of the surface; they are ignored here.

@@ -1,0 +1,209 @@
+// Vertex–face incidence and vertex classification over flat arrays.
+//
+// A vertex is interior when its incident faces form exactly one closed fan: every edge from it
+// to a neighbour is shared by exactly two of those faces and the ring of neighbours is one
+// cycle. Everything is computed per vertex from its own face list, so the cost is linear in the
+// mesh size (valences are small) and needs no halfedge structure.
+#include "analyzer/topology.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <queue>
+
+namespace toonwater {
+
+bool has_repeated_corner(const Triangle& t) {
+  return t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+}
+
+VertexFaces build_vertex_faces(std::size_t vertex_count, std::span<const Triangle> triangles) {
+  VertexFaces vf;
+  vf.offsets.assign(vertex_count + 1, 0);
+  for (const Triangle& t : triangles)
+    if (!has_repeated_corner(t))
+      for (std::int32_t v : t) ++vf.offsets[v + 1];
+  std::partial_sum(vf.offsets.begin(), vf.offsets.end(), vf.offsets.begin());
+  vf.face_indices.resize(vf.offsets.back());
+  std::vector<std::int32_t> fill(vf.offsets.begin(), vf.offsets.end() - 1);
+  for (std::size_t f = 0; f < triangles.size(); ++f)
+    if (!has_repeated_corner(triangles[f]))
+      for (std::int32_t v : triangles[f]) vf.face_indices[fill[v]++] = static_cast<std::int32_t>(f);
+  return vf;
+}
+
+namespace {
+
+// The two corners of `t` other than `v`.
+std::pair<std::int32_t, std::int32_t> other_corners(const Triangle& t, std::int32_t v) {
+  if (t[0] == v) return {t[1], t[2]};
+  if (t[1] == v) return {t[2], t[0]};
+  return {t[0], t[1]};
+}
+
+struct RingNeighbour {
+  std::int32_t vertex;
+  std::int32_t face_count;  // faces around the centre that contain the edge centre–vertex
+  std::int32_t root;        // union-find over the ring, to test that it is one cycle
+};
+
+std::int32_t find_root(std::vector<RingNeighbour>& ring, std::int32_t i) {
+  while (ring[i].root != i) i = ring[i].root = ring[ring[i].root].root;
+  return i;
+}
+
+std::int32_t ring_slot(std::vector<RingNeighbour>& ring, std::int32_t vertex) {
+  for (std::size_t i = 0; i < ring.size(); ++i)
+    if (ring[i].vertex == vertex) return static_cast<std::int32_t>(i);
+  ring.push_back({vertex, 0, static_cast<std::int32_t>(ring.size())});
+  return static_cast<std::int32_t>(ring.size() - 1);
+}
+
+struct VertexEdges {
+  VertexKind kind;
+  std::size_t boundary_edges;     // edges from this vertex with one face
+  std::size_t nonmanifold_edges;  // edges from this vertex with three or more faces
+};
+
+VertexEdges classify_vertex(const TriangleMesh& mesh, const VertexFaces& vf, std::int32_t v,
+                            std::vector<RingNeighbour>& ring) {
+  const auto faces = vf.of(v);
+  if (faces.empty()) return {VertexKind::isolated, 0, 0};
+  ring.clear();
+  for (std::int32_t f : faces) {
+    const auto [a, b] = other_corners(mesh.triangles[f], v);
+    const std::int32_t sa = ring_slot(ring, a);
+    const std::int32_t sb = ring_slot(ring, b);
+    ++ring[sa].face_count;
+    ++ring[sb].face_count;
+    ring[find_root(ring, sa)].root = find_root(ring, sb);
+  }
+  VertexEdges result{VertexKind::interior, 0, 0};
+  std::int32_t roots = 0;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    if (ring[i].face_count == 1) ++result.boundary_edges;
+    if (ring[i].face_count >= 3) ++result.nonmanifold_edges;
+    if (find_root(ring, static_cast<std::int32_t>(i)) == static_cast<std::int32_t>(i)) ++roots;
+  }
+  if (result.nonmanifold_edges > 0 || roots > 1 || result.boundary_edges > 2)
+    result.kind = VertexKind::nonmanifold;  // fans meeting at a point, or a fin
+  else if (result.boundary_edges > 0)
+    result.kind = VertexKind::boundary;
+  return result;
+}
+
+std::size_t count_components(const TriangleMesh& mesh) {
+  std::vector<std::int32_t> parent(mesh.positions.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](std::int32_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::vector<bool> used(mesh.positions.size(), false);
+  for (const Triangle& t : mesh.triangles) {
+    if (has_repeated_corner(t)) continue;
+    for (std::int32_t v : t) used[v] = true;
+    parent[root(t[0])] = root(t[1]);
+    parent[root(t[1])] = root(t[2]);
+  }
+  std::size_t components = 0;
+  for (std::size_t v = 0; v < parent.size(); ++v)
+    if (used[v] && root(static_cast<std::int32_t>(v)) == static_cast<std::int32_t>(v)) ++components;
+  return components;
+}
+
+}  // namespace
+
+MeshTopology analyze_topology(const TriangleMesh& mesh) {
+  MeshTopology topo;
+  topo.vertex_faces = build_vertex_faces(mesh.positions.size(), mesh.triangles);
+  topo.kind.resize(mesh.positions.size());
+  std::vector<RingNeighbour> ring;
+  std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0;
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const VertexEdges e =
+        classify_vertex(mesh, topo.vertex_faces, static_cast<std::int32_t>(v), ring);
+    topo.kind[v] = e.kind;
+    boundary_edge_ends += e.boundary_edges;
+    nonmanifold_edge_ends += e.nonmanifold_edges;
+    switch (e.kind) {
+      case VertexKind::boundary: ++topo.boundary_vertices; break;
+      case VertexKind::nonmanifold: ++topo.nonmanifold_vertices; break;
+      case VertexKind::isolated: ++topo.isolated_vertices; break;
+      case VertexKind::interior: break;
+    }
+  }
+  topo.boundary_edges = boundary_edge_ends / 2;  // each edge was seen from both of its ends
+  topo.nonmanifold_edges = nonmanifold_edge_ends / 2;
+  topo.components = count_components(mesh);
+  return topo;
+}
+
+namespace {
+
+// Does triangle t traverse the edge a→b in its winding?
+bool has_directed_edge(const Triangle& t, std::int32_t a, std::int32_t b) {
+  return (t[0] == a && t[1] == b) || (t[1] == a && t[2] == b) || (t[2] == a && t[0] == b);
+}
+
+// The single other face sharing edge {a, b} with face f, or -1 on a boundary or non-manifold edge.
+std::int32_t manifold_neighbour(const TriangleMesh& mesh, const VertexFaces& vf, std::int32_t f,
+                                std::int32_t a, std::int32_t b) {
+  std::int32_t found = -1;
+  for (std::int32_t g : vf.of(a)) {
+    if (g == f) continue;
+    const Triangle& t = mesh.triangles[g];
+    if (t[0] == b || t[1] == b || t[2] == b) {
+      if (found >= 0) return -1;
+      found = g;
+    }
+  }
+  return found;
+}
+
+}  // namespace
+
+std::size_t orient_consistently(TriangleMesh& mesh, const VertexFaces& vf) {
+  const std::size_t face_count = mesh.triangles.size();
+  constexpr std::int8_t unvisited = -1;
+  std::vector<std::int8_t> flip(face_count, unvisited);
+  std::vector<std::int32_t> component_faces;
+  std::queue<std::int32_t> queue;
+  std::size_t flipped = 0;
+
+  for (std::size_t seed = 0; seed < face_count; ++seed) {
+    if (flip[seed] != unvisited || has_repeated_corner(mesh.triangles[seed])) continue;
+    component_faces.clear();
+    flip[seed] = 0;
+    queue.push(static_cast<std::int32_t>(seed));
+    std::size_t flipped_in_component = 0;
+    while (!queue.empty()) {
+      const std::int32_t f = queue.front();
+      queue.pop();
+      component_faces.push_back(f);
+      const Triangle& t = mesh.triangles[f];
+      for (int c = 0; c < 3; ++c) {
+        // Edge a→b as face f would traverse it after its own flip.
+        std::int32_t a = t[c], b = t[(c + 1) % 3];
+        if (flip[f]) std::swap(a, b);
+        const std::int32_t g = manifold_neighbour(mesh, vf, f, a, b);
+        if (g < 0 || flip[g] != unvisited) continue;
+        // A consistent neighbour traverses the shared edge the other way, b→a.
+        flip[g] = has_directed_edge(mesh.triangles[g], a, b) ? 1 : 0;
+        flipped_in_component += static_cast<std::size_t>(flip[g]);
+        queue.push(g);
+      }
+    }
+    // Keep the orientation most of the component's faces already have.
+    const bool invert = 2 * flipped_in_component > component_faces.size();
+    for (std::int32_t f : component_faces) {
+      if (invert) flip[f] = static_cast<std::int8_t>(1 - flip[f]);
+      if (flip[f]) {
+        std::swap(mesh.triangles[f][1], mesh.triangles[f][2]);
+        ++flipped;
+      }
+    }
+  }
+  return flipped;
+}
+
+}  // namespace toonwater
