@@ -1,0 +1,47 @@
+#include "analyzer/analysis.hpp"
+
+#include "analyzer/weld.hpp"
+
+#include <chrono>
+
+namespace toonwater {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+}  // namespace
+
+Analysis analyze_mesh(const TriangleMesh& input, const AnalyzeOptions& options) {
+  Analysis a;
+  a.input_vertices = input.positions.size();
+
+  auto start = Clock::now();
+  WeldedMesh welded = weld_coincident_vertices(input);
+  a.surface = std::move(welded.mesh);
+  a.input_to_surface = std::move(welded.input_to_mesh);
+  a.merged_vertices = welded.merged_vertex_count;
+  a.times.weld = seconds_since(start);
+
+  start = Clock::now();
+  a.topology = analyze_topology(a.surface);
+  a.flipped_faces = orient_consistently(a.surface, a.topology.vertex_faces);
+  a.times.topology = seconds_since(start);
+
+  start = Clock::now();
+  a.curvature = compute_curvature(a.surface, a.topology);
+  a.times.curvature = seconds_since(start);
+
+  start = Clock::now();
+  if (options.flow_regions) {
+    a.flow = find_flow_regions(a.surface, a.topology.vertex_faces, a.curvature, options.flow);
+  } else {
+    a.flow.label.assign(a.surface.positions.size(), FlowLabel::none);
+  }
+  a.times.flow = seconds_since(start);
+  return a;
+}
+
+}  // namespace toonwater
