@@ -5,17 +5,17 @@
 //   scaling is exact, so K ∝ 1/s² and H ∝ 1/s hold to the last bit for power-of-two scales, and
 //   coordinates near 1e±300 neither overflow nor underflow in the squared lengths.
 // - Angles come from atan2(|u×v|, u·v), cotangents from (u·v)/|u×v| — never acos.
-// - A face with a zero-length edge contributes nothing. A face whose doubled area is below
-//   1e-12 of its longest squared edge (a collinear or near-collinear "cap" or "needle") still
-//   contributes its corner angles — they stay well defined and are needed for a correct angle
-//   sum around its corners — but no area, no normal and no cotangent weights, whose values would
-//   be dominated by round-off.
-// - Cotangent weights are clamped to the range of angles 3°–177°, as pmp-library does, so one
-//   sliver cannot swamp the Laplacian (MeshLab returns H = 1e7 next to a collinear triangle).
-// - Boundary and non-manifold vertices have no complete one-ring: there the angle deficit
-//   measures geodesic curvature of the boundary (π − Σθ), not a property of the surface. Their K
-//   and H are the mean of their computed neighbours' values (status `extrapolated`), so a map of
-//   an open sheet has no spurious rim.
+// - A face with a zero-length edge contributes nothing. A sliver — a face with an angle below
+//   3° (so also a cap with an angle above 177°), or whose doubled area is below 1e-12 of its
+//   longest squared edge — contributes its corner angles and, if it has an area, its normal,
+//   but no area and no cotangent weights: its cotangents are dominated by round-off and one of
+//   them can swamp a vertex's Laplacian (MeshLab returns H = 1e7 next to a collinear triangle;
+//   pmp clamps cotangents at the same 3°). Its corners then lack part of their one-ring.
+// - Boundary and non-manifold vertices and the corners of slivers have no complete one-ring:
+//   at a boundary the angle deficit measures the geodesic curvature of the boundary (π − Σθ),
+//   not a property of the surface. Their K and H are the mean of their computed neighbours'
+//   values (status `extrapolated`), so a map of an open sheet has no spurious rim and a
+//   marching-cubes sliver does not make a spike.
 // - A vertex with no area or no usable normal, or whose values are not finite, gets zeros
 //   (status `undefined`) and is counted.
 #include "analyzer/curvature.hpp"
@@ -30,9 +30,7 @@ namespace toonwater {
 namespace {
 
 constexpr double degenerate_area_ratio = 1e-12;
-constexpr double max_cotangent = 19.08113668772821;  // cot(3°)
-
-double clamp_cotangent(double cot) { return std::clamp(cot, -max_cotangent, max_cotangent); }
+constexpr double sliver_cotangent = 19.08113668772821;  // cot(3°)
 
 // 2^-e with e the binary exponent of the largest |coordinate|: multiplying by it is exact.
 double power_of_two_scale(const std::vector<Vec3>& positions) {
@@ -48,12 +46,18 @@ struct FaceSums {
   std::vector<double> angle;
   std::vector<Vec3> laplacian;  // Σ (cot α + cot β)(xᵢ − xⱼ)
   std::vector<Vec3> normal;     // Σ θ n_face
+  std::vector<std::uint8_t> at_sliver;  // a corner of a sliver face
 
   explicit FaceSums(std::size_t n)
-      : area(n, 0.0), angle(n, 0.0), laplacian(n, Vec3::Zero()), normal(n, Vec3::Zero()) {}
+      : area(n, 0.0),
+        angle(n, 0.0),
+        laplacian(n, Vec3::Zero()),
+        normal(n, Vec3::Zero()),
+        at_sliver(n, 0) {}
 };
 
-// Adds the contributions of faces [begin, end) to `sums`; returns how many were degenerate.
+// Adds the contributions of faces [begin, end) to `sums`; returns how many were slivers or
+// had a repeated corner or a zero-length edge.
 std::size_t accumulate_faces(const TriangleMesh& mesh, double scale, std::size_t begin,
                              std::size_t end, FaceSums& sums) {
   std::size_t degenerate = 0;
@@ -86,15 +90,23 @@ std::size_t accumulate_faces(const TriangleMesh& mesh, double scale, std::size_t
 
     if (double_area <= degenerate_area_ratio * std::max({ab2, bc2, ca2})) {
       ++degenerate;
+      sums.at_sliver[i] = sums.at_sliver[j] = sums.at_sliver[k] = 1;
       continue;
     }
     const Vec3 unit_normal = cross / double_area;
     sums.normal[i] += angle_i * unit_normal;
     sums.normal[j] += angle_j * unit_normal;
     sums.normal[k] += angle_k * unit_normal;
+    if (std::max({dot_i, dot_j, dot_k}) > sliver_cotangent * double_area) {
+      ++degenerate;
+      sums.at_sliver[i] = sums.at_sliver[j] = sums.at_sliver[k] = 1;
+      continue;
+    }
 
     // Mixed Voronoi area (Meyer et al. 2002, Fig. 4).
     const double area = 0.5 * double_area;
+    const double cot_i = dot_i / double_area, cot_j = dot_j / double_area,
+                 cot_k = dot_k / double_area;
     if (dot_i < 0.0) {
       sums.area[i] += 0.5 * area;
       sums.area[j] += 0.25 * area;
@@ -108,20 +120,15 @@ std::size_t accumulate_faces(const TriangleMesh& mesh, double scale, std::size_t
       sums.area[j] += 0.25 * area;
       sums.area[k] += 0.5 * area;
     } else {
-      const double cot_i = dot_i / double_area, cot_j = dot_j / double_area,
-                   cot_k = dot_k / double_area;
       sums.area[i] += 0.125 * (ab2 * cot_k + ca2 * cot_j);
       sums.area[j] += 0.125 * (bc2 * cot_i + ab2 * cot_k);
       sums.area[k] += 0.125 * (ca2 * cot_j + bc2 * cot_i);
     }
 
     // Cotangent Laplacian: the edge opposite each corner is weighted by that corner's cotangent.
-    const double w_i = clamp_cotangent(dot_i / double_area);  // edge jk
-    const double w_j = clamp_cotangent(dot_j / double_area);  // edge ki
-    const double w_k = clamp_cotangent(dot_k / double_area);  // edge ij
-    sums.laplacian[i] += w_k * (-ab) + w_j * ca;
-    sums.laplacian[j] += w_k * ab + w_i * (-bc);
-    sums.laplacian[k] += w_i * bc + w_j * (-ca);
+    sums.laplacian[i] += cot_k * (-ab) + cot_j * ca;
+    sums.laplacian[j] += cot_k * ab + cot_i * (-bc);
+    sums.laplacian[k] += cot_i * bc + cot_j * (-ca);
   }
   return degenerate;
 }
@@ -187,7 +194,7 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   field.k1.resize(n);
   field.k2.resize(n);
   field.status.resize(n);
-  for (std::size_t d : degenerate) field.degenerate_faces += d;
+  for (std::size_t d : degenerate) field.sliver_faces += d;
 
   const double scale2 = scale * scale;
   FaceSums& total = sums[0];
@@ -198,6 +205,7 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
         total.angle[v] += sums[w].angle[v];
         total.laplacian[v] += sums[w].laplacian[v];
         total.normal[v] += sums[w].normal[v];
+        total.at_sliver[v] |= sums[w].at_sliver[v];
       }
       const double area = total.area[v];
       const double normal_length = total.normal[v].norm();
@@ -206,7 +214,7 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
         set_undefined(field, v);
         continue;
       }
-      if (topology.kind[v] != VertexKind::interior) {
+      if (topology.kind[v] != VertexKind::interior || total.at_sliver[v]) {
         field.status[v] = CurvatureStatus::extrapolated;
         continue;
       }
@@ -229,6 +237,8 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   for (double& a : field.area) a = std::isfinite(a / scale2) ? a / scale2 : 0.0;
   field.undefined_vertices = static_cast<std::size_t>(
       std::count(field.status.begin(), field.status.end(), CurvatureStatus::undefined));
+  field.extrapolated_vertices = static_cast<std::size_t>(
+      std::count(field.status.begin(), field.status.end(), CurvatureStatus::extrapolated));
   return field;
 }
 

@@ -25,7 +25,7 @@ namespace toonwater {
 
 enum class CurvatureStatus : std::uint8_t {
   computed,      // from the vertex's own one-ring
-  extrapolated,  // boundary or non-manifold vertex: mean of its computed neighbours
+  extrapolated,  // boundary, non-manifold or sliver corner: mean of its computed neighbours
   undefined,     // no area and no computed neighbour: all values 0
 };
 
@@ -37,7 +37,10 @@ struct CurvatureField {
   std::vector<double> k1;  // k1 >= k2
   std::vector<double> k2;
   std::vector<CurvatureStatus> status;
-  std::size_t degenerate_faces = 0;  // left out of areas and cotangent weights
+  // Faces left out of areas and cotangent weights: repeated corners, zero-length edges, zero
+  // area, or an angle below 3°.
+  std::size_t sliver_faces = 0;
+  std::size_t extrapolated_vertices = 0;
   std::size_t undefined_vertices = 0;
 };
 
