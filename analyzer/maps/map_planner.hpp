@@ -1,0 +1,60 @@
+// What every map of a frame or a sequence shares: the view (extent and pixel size) and the
+// colour ranges of K and H. Frames are added one at a time and may then be dropped, so a
+// sequence needs two passes over its frames but never holds more than one analysis:
+//
+//   MapPlanner planner(up);
+//   for (frame : frames) planner.add(analyze(frame));             // pass 1
+//   const MapView view = planner.view(options);
+//   const MapRanges ranges = planner.ranges();
+//   for (frame : frames) write_maps(dir, stem, analyze(frame), view, ranges);  // pass 2
+//
+// Extent: the union of the frames' upward-facing faces (n·up > 0) seen from above, unless a
+// box is given. Pixel size: the smallest median edge length of the frames over
+// `pixels_per_edge`, unless a size is given; the longer side is capped at `max_size`.
+// Ranges: the 98th percentile of |K| and |H| over the upward-facing surface of all frames
+// pooled, each vertex weighted by the area it covers in the map (a third of the projected area
+// of its upward faces), i.e. the share of map pixels; see robust_range.hpp for the precision.
+#pragma once
+
+#include "analyzer/analysis.hpp"
+#include "analyzer/maps/robust_range.hpp"
+#include "analyzer/maps/top_down_map.hpp"
+
+#include <optional>
+
+namespace toonwater {
+
+struct MapOptions {
+  std::optional<MapBox> box;   // default: the upward-facing surface's extent
+  std::optional<int> size;     // pixels along the longer side; default from the edge length
+  double pixels_per_edge = 2.0;
+  int max_size = 4096;
+  double percentile = 0.98;    // of |value|, for the colour ranges
+};
+
+// Colour maps of K and H span [−gaussian, +gaussian] and [−mean, +mean].
+struct MapRanges {
+  double gaussian = 0;
+  double mean = 0;
+};
+
+class MapPlanner {
+ public:
+  explicit MapPlanner(Axis up) : up_(up) {}
+  void add(const Analysis& analysis);
+  void add(const TriangleMesh& surface, const CurvatureField& curvature, double median_edge);
+  std::size_t frames() const { return frames_; }
+  // Throws std::runtime_error when there is nothing to map (no upward face and no box).
+  MapView view(const MapOptions& options) const;
+  MapRanges ranges(double percentile = MapOptions{}.percentile) const;
+
+ private:
+  Axis up_;
+  std::size_t frames_ = 0;
+  MapBox extent_{};
+  bool has_extent_ = false;
+  double median_edge_ = 0;  // smallest over frames
+  AbsQuantileHistogram gaussian_, mean_;
+};
+
+}  // namespace toonwater

@@ -1,0 +1,37 @@
+// Writes the curvature maps of one frame into a directory:
+//   STEM.exr        float OpenEXR, channels height, K, H, k1, k2, label, A (alpha), ZIP-free
+//                   fast compression (see map_writer.cpp); EXR sorts channels by name, so read
+//                   them by name
+//   STEM_K.png      Gaussian curvature preview (diverging colours over ±range)
+//   STEM_H.png      mean curvature preview
+//   STEM_label.png  flow labels: valley, none, ridge
+// Metadata in every file: toonwater:K_range, toonwater:H_range (the colour ranges), the up
+// axis and the map's box and pixel size. Each file is encoded in memory and written atomically
+// (atomic_file.hpp): a failure leaves no partial file and keeps an older file intact.
+#pragma once
+
+#include "analyzer/analysis.hpp"
+#include "analyzer/maps/map_planner.hpp"
+#include "analyzer/maps/top_down_map.hpp"
+
+#include <filesystem>
+#include <string>
+
+namespace toonwater {
+
+struct MapFiles {
+  std::filesystem::path exr, gaussian_png, mean_png, label_png;
+};
+
+// Rasterises `analysis.surface` over `view` and writes the four files. Creates `dir`.
+MapFiles write_maps(const std::filesystem::path& dir, const std::string& stem,
+                    const Analysis& analysis, const MapView& view, const MapRanges& ranges);
+MapFiles write_maps(const std::filesystem::path& dir, const std::string& stem,
+                    const TopDownMap& map, const MapRanges& ranges);
+
+// The single-frame case: plan from this analysis alone, then write. Returns the ranges used.
+MapRanges write_frame_maps(const std::filesystem::path& dir, const std::string& stem,
+                           const Analysis& analysis, Axis up, const MapOptions& options,
+                           MapFiles* files = nullptr);
+
+}  // namespace toonwater
