@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace toonwater {
@@ -40,97 +41,90 @@ double power_of_two_scale(const std::vector<Vec3>& positions) {
   return std::ldexp(1.0, -std::ilogb(largest));
 }
 
-// Per-vertex sums over incident faces, one set per worker thread.
-struct FaceSums {
-  std::vector<double> area;
-  std::vector<double> angle;
-  std::vector<Vec3> laplacian;  // Σ (cot α + cot β)(xᵢ − xⱼ)
-  std::vector<Vec3> normal;     // Σ θ n_face
-  std::vector<std::uint8_t> at_sliver;  // a corner of a sliver face
+// Polynomial atan2 for y >= 0, absolute error below 1e-5 rad: only the normals' angle weights
+// use it, where that error is invisible; the angle deficit is computed exactly (see below).
+double approximate_angle(double y, double x) {
+  const double ax = std::abs(x);
+  const double ratio = std::min(ax, y) / std::max({ax, y, std::numeric_limits<double>::min()});
+  const double r2 = ratio * ratio;
+  double angle = ratio * (0.99997726 + r2 * (-0.33262347 + r2 * (0.19354346 +
+                          r2 * (-0.11643287 + r2 * (0.05265332 - r2 * 0.01172120)))));
+  if (y > ax) angle = std::numbers::pi / 2 - angle;
+  return x < 0.0 ? std::numbers::pi - angle : angle;
+}
 
-  explicit FaceSums(std::size_t n)
-      : area(n, 0.0),
-        angle(n, 0.0),
-        laplacian(n, Vec3::Zero()),
-        normal(n, Vec3::Zero()),
-        at_sliver(n, 0) {}
+// What one vertex gathers from its incident faces.
+struct OneRing {
+  double area = 0.0;
+  double angle_deficit = 0.0;   // 2π − Σθ
+  Vec3 laplacian = Vec3::Zero();  // Σ (cot α + cot β)(xᵢ − xⱼ)
+  Vec3 normal = Vec3::Zero();     // Σ θ n_face
+  bool at_sliver = false;        // a corner of a sliver face
+  std::size_t slivers = 0;       // faces counted here: those whose first corner this vertex is
 };
 
-// Adds the contributions of faces [begin, end) to `sums`; returns how many were slivers or
-// had a repeated corner or a zero-length edge.
-std::size_t accumulate_faces(const TriangleMesh& mesh, double scale, std::size_t begin,
-                             std::size_t end, FaceSums& sums) {
-  std::size_t degenerate = 0;
-  for (std::size_t f = begin; f < end; ++f) {
+// The angle sum Σθ is accumulated as the argument of the product of the unit complex numbers
+// (cos θ + i sin θ) = (u·v + i|u×v|)/(|u||v|), counting the turns as the product crosses the
+// negative real axis (each θ ≤ π, so a crossing shows as Im going from ≥ 0 to < 0). The deficit
+// of a nearly flat vertex is then the small argument itself, not the difference of two numbers
+// near 2π, and it costs one atan2 per vertex instead of one per corner.
+OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double scale,
+                        std::int32_t v) {
+  OneRing ring;
+  double turn_re = 1.0, turn_im = 0.0;  // the running product, kept at unit length
+  int turns = 0;
+  const Vec3 x = mesh.positions[v] * scale;
+  for (std::int32_t f : vf.of(v)) {
     const Triangle& t = mesh.triangles[f];
-    if (has_repeated_corner(t)) {
-      ++degenerate;
+    const int corner = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+    const Vec3 a = mesh.positions[t[(corner + 1) % 3]] * scale;
+    const Vec3 b = mesh.positions[t[(corner + 2) % 3]] * scale;
+    const Vec3 xa = a - x, xb = b - x, ab = b - a;
+    const double xa2 = xa.squaredNorm(), xb2 = xb.squaredNorm(), ab2 = ab.squaredNorm();
+    const bool counts_here = corner == 0;
+    if (xa2 == 0.0 || xb2 == 0.0 || ab2 == 0.0) {  // a face with a zero-length edge: no shape
+      ring.slivers += counts_here;
       continue;
     }
-    const std::int32_t i = t[0], j = t[1], k = t[2];
-    const Vec3 a = mesh.positions[i] * scale;
-    const Vec3 b = mesh.positions[j] * scale;
-    const Vec3 c = mesh.positions[k] * scale;
-    const Vec3 ab = b - a, bc = c - b, ca = a - c;
-    const double ab2 = ab.squaredNorm(), bc2 = bc.squaredNorm(), ca2 = ca.squaredNorm();
-    if (ab2 == 0.0 || bc2 == 0.0 || ca2 == 0.0) {
-      ++degenerate;
-      continue;
-    }
-    const Vec3 cross = ab.cross(-ca);
+    const Vec3 cross = xa.cross(xb);
     const double double_area = cross.norm();
-    // Corner dot products: at i between ab and ac, at j between bc and ba, at k between ca and cb.
-    const double dot_i = -ab.dot(ca), dot_j = -bc.dot(ab), dot_k = -ca.dot(bc);
-    const double angle_i = std::atan2(double_area, dot_i);
-    const double angle_j = std::atan2(double_area, dot_j);
-    const double angle_k = std::atan2(double_area, dot_k);
-    sums.angle[i] += angle_i;
-    sums.angle[j] += angle_j;
-    sums.angle[k] += angle_k;
+    const double dot_x = xa.dot(xb);     // at this vertex
+    const double dot_a = -xa.dot(ab);    // at a: between a→x and a→b
+    const double dot_b = xb.dot(ab);     // at b: between b→x and b→a
 
-    if (double_area <= degenerate_area_ratio * std::max({ab2, bc2, ca2})) {
-      ++degenerate;
-      sums.at_sliver[i] = sums.at_sliver[j] = sums.at_sliver[k] = 1;
-      continue;
-    }
-    const Vec3 unit_normal = cross / double_area;
-    sums.normal[i] += angle_i * unit_normal;
-    sums.normal[j] += angle_j * unit_normal;
-    sums.normal[k] += angle_k * unit_normal;
-    if (std::max({dot_i, dot_j, dot_k}) > sliver_cotangent * double_area) {
-      ++degenerate;
-      sums.at_sliver[i] = sums.at_sliver[j] = sums.at_sliver[k] = 1;
+    // Written out: std::complex's operator* and abs guard against inf/NaN at several times the cost.
+    const double inverse_length = 1.0 / std::sqrt(dot_x * dot_x + double_area * double_area);
+    const double c = dot_x * inverse_length, s = double_area * inverse_length;
+    const double next_re = turn_re * c - turn_im * s, next_im = turn_re * s + turn_im * c;
+    turns += turn_im >= 0.0 && next_im < 0.0;
+    turn_re = next_re;
+    turn_im = next_im;
+
+    const bool sliver = double_area <= degenerate_area_ratio * std::max({xa2, xb2, ab2}) ||
+                        std::max({dot_x, dot_a, dot_b}) > sliver_cotangent * double_area;
+    if (double_area > degenerate_area_ratio * std::max({xa2, xb2, ab2}))
+      ring.normal += approximate_angle(double_area, dot_x) / double_area * cross;
+    if (sliver) {
+      ring.at_sliver = true;
+      ring.slivers += counts_here;
       continue;
     }
 
     // Mixed Voronoi area (Meyer et al. 2002, Fig. 4).
-    const double area = 0.5 * double_area;
-    const double cot_i = dot_i / double_area, cot_j = dot_j / double_area,
-                 cot_k = dot_k / double_area;
-    if (dot_i < 0.0) {
-      sums.area[i] += 0.5 * area;
-      sums.area[j] += 0.25 * area;
-      sums.area[k] += 0.25 * area;
-    } else if (dot_j < 0.0) {
-      sums.area[i] += 0.25 * area;
-      sums.area[j] += 0.5 * area;
-      sums.area[k] += 0.25 * area;
-    } else if (dot_k < 0.0) {
-      sums.area[i] += 0.25 * area;
-      sums.area[j] += 0.25 * area;
-      sums.area[k] += 0.5 * area;
-    } else {
-      sums.area[i] += 0.125 * (ab2 * cot_k + ca2 * cot_j);
-      sums.area[j] += 0.125 * (bc2 * cot_i + ab2 * cot_k);
-      sums.area[k] += 0.125 * (ca2 * cot_j + bc2 * cot_i);
-    }
+    const double face_area = 0.5 * double_area;
+    const double cot_a = dot_a / double_area, cot_b = dot_b / double_area;
+    if (dot_x < 0.0)
+      ring.area += 0.5 * face_area;
+    else if (dot_a < 0.0 || dot_b < 0.0)
+      ring.area += 0.25 * face_area;
+    else
+      ring.area += 0.125 * (xa2 * cot_b + xb2 * cot_a);
 
-    // Cotangent Laplacian: the edge opposite each corner is weighted by that corner's cotangent.
-    sums.laplacian[i] += cot_k * (-ab) + cot_j * ca;
-    sums.laplacian[j] += cot_k * ab + cot_i * (-bc);
-    sums.laplacian[k] += cot_i * bc + cot_j * (-ca);
+    // Cotangent Laplacian: edge x–a is weighted by the cotangent at b, edge x–b by that at a.
+    ring.laplacian -= cot_b * xa + cot_a * xb;
   }
-  return degenerate;
+  ring.angle_deficit = -(std::atan2(turn_im, turn_re) + 2.0 * std::numbers::pi * (turns - 1));
+  return ring;
 }
 
 void set_principal(CurvatureField& field, std::size_t v) {
@@ -175,52 +169,41 @@ void extrapolate(const TriangleMesh& mesh, const VertexFaces& vf, CurvatureField
 CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& topology) {
   const std::size_t n = mesh.positions.size();
   const double scale = power_of_two_scale(mesh.positions);
-
-  // One pass over the faces; each worker sums into its own arrays, merged afterwards.
-  const std::size_t workers = worker_count(mesh.triangles.size());
-  std::vector<FaceSums> sums;
-  sums.reserve(workers);
-  for (std::size_t w = 0; w < workers; ++w) sums.emplace_back(n);
-  std::vector<std::size_t> degenerate(workers, 0);
-  parallel_chunks(mesh.triangles.size(), workers,
-                  [&](std::size_t w, std::size_t begin, std::size_t end) {
-                    degenerate[w] = accumulate_faces(mesh, scale, begin, end, sums[w]);
-                  });
+  const double scale2 = scale * scale;
 
   CurvatureField field;
   field.normal.resize(n);
+  field.area.resize(n);
   field.gaussian.resize(n);
   field.mean.resize(n);
   field.k1.resize(n);
   field.k2.resize(n);
   field.status.resize(n);
-  for (std::size_t d : degenerate) field.sliver_faces += d;
 
-  const double scale2 = scale * scale;
-  FaceSums& total = sums[0];
-  parallel_chunks(n, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
+  // Each vertex gathers from its own faces (compressed rows, no halfedges), so the vertices
+  // split over the cores with no shared writes.
+  const std::size_t workers = worker_count(n);
+  std::vector<std::size_t> slivers(workers, 0);
+  parallel_chunks(n, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
-      for (std::size_t w = 1; w < workers; ++w) {
-        total.area[v] += sums[w].area[v];
-        total.angle[v] += sums[w].angle[v];
-        total.laplacian[v] += sums[w].laplacian[v];
-        total.normal[v] += sums[w].normal[v];
-        total.at_sliver[v] |= sums[w].at_sliver[v];
-      }
-      const double area = total.area[v];
-      const double normal_length = total.normal[v].norm();
-      field.normal[v] = normal_length > 0.0 ? Vec3(total.normal[v] / normal_length) : Vec3::Zero();
-      if (area <= 0.0 || normal_length == 0.0 || topology.kind[v] == VertexKind::isolated) {
+      const OneRing ring =
+          gather_one_ring(mesh, topology.vertex_faces, scale, static_cast<std::int32_t>(v));
+      slivers[worker] += ring.slivers;
+      const double normal_length = ring.normal.norm();
+      field.normal[v] = normal_length > 0.0 ? Vec3(ring.normal / normal_length) : Vec3::Zero();
+      const double area = ring.area / scale2;
+      field.area[v] = std::isfinite(area) ? area : 0.0;
+      if (ring.area <= 0.0 || normal_length == 0.0 || topology.kind[v] == VertexKind::isolated) {
         set_undefined(field, v);
         continue;
       }
-      if (topology.kind[v] != VertexKind::interior || total.at_sliver[v]) {
+      if (topology.kind[v] != VertexKind::interior || ring.at_sliver) {
         field.status[v] = CurvatureStatus::extrapolated;
         continue;
       }
       // In scaled units, then back: K ∝ 1/s², H ∝ 1/s.
-      const double gaussian = (2.0 * std::numbers::pi - total.angle[v]) / area * scale2;
-      const double mean = total.laplacian[v].dot(field.normal[v]) / (4.0 * area) * scale;
+      const double gaussian = ring.angle_deficit / ring.area * scale2;
+      const double mean = ring.laplacian.dot(field.normal[v]) / (4.0 * ring.area) * scale;
       if (!std::isfinite(gaussian) || !std::isfinite(mean)) {
         set_undefined(field, v);
         continue;
@@ -231,10 +214,9 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
       set_principal(field, v);
     }
   });
+  for (std::size_t count : slivers) field.sliver_faces += count;
+  for (const Triangle& t : mesh.triangles) field.sliver_faces += has_repeated_corner(t);
   extrapolate(mesh, topology.vertex_faces, field);
-
-  field.area = std::move(total.area);
-  for (double& a : field.area) a = std::isfinite(a / scale2) ? a / scale2 : 0.0;
   field.undefined_vertices = static_cast<std::size_t>(
       std::count(field.status.begin(), field.status.end(), CurvatureStatus::undefined));
   field.extrapolated_vertices = static_cast<std::size_t>(

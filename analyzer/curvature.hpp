@@ -9,9 +9,10 @@
 //   k1,2 = H ± sqrt(max(H² − K, 0))
 //   n̂  = angle-weighted vertex normal (Thürmer and Wüthrich 1998)
 //
-// Computed in one pass over the faces (flat arrays, split over the cores), then one pass over
-// the vertices. See curvature.cpp for how degenerate faces, boundaries and non-manifold
-// vertices are handled.
+// Each vertex gathers its sums from its incident faces, read from compressed rows over the flat
+// position and triangle arrays (no halfedge circulators); the vertices split over the cores
+// with no shared writes. See curvature.cpp for how the angle sum is kept exact, and how
+// slivers, boundaries and non-manifold vertices are handled.
 #pragma once
 
 #include "analyzer/mesh.hpp"
