@@ -1,0 +1,174 @@
+// Analyzer benchmarks on generated height fields z = A sin(kx) cos(ky) of about 55k and 1M
+// vertices (the paper's frame had 55,091). Stages are timed separately:
+//   ReadObj          read_mesh of an OBJ file written once to the temp directory
+//   Prepare          weld + topology + orientation
+//   Curvature        compute_curvature
+//   FlowRegions      find_flow_regions
+//   CurvatureAndLabels  the two together — the figure the targets are stated for
+//   AnalyzeCommand   `toonwater analyze MESH --csv FILE` end to end as a child process, with
+//                    its peak resident memory per vertex (counter bytes_per_vertex)
+#include "analyzer/analysis.hpp"
+#include "analyzer/analytic_surfaces.hpp"
+#include "analyzer/mesh_reader.hpp"
+#include "analyzer/weld.hpp"
+
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <charconv>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+
+namespace toonwater {
+namespace {
+
+namespace fs = std::filesystem;
+
+// n×n grid: 235² ≈ 55k vertices, 1000² = 1M.
+int grid_size(std::int64_t vertices) { return vertices == 55 ? 235 : 1000; }
+
+const TriangleMesh& wave_mesh(std::int64_t vertices) {
+  static std::map<std::int64_t, TriangleMesh> cache;
+  auto it = cache.find(vertices);
+  if (it == cache.end())
+    it = cache.emplace(vertices, make_wave_field(grid_size(vertices), 0.1, 6.0, 1.0).mesh).first;
+  return it->second;
+}
+
+fs::path obj_file(std::int64_t vertices) {
+  const fs::path path = fs::temp_directory_path() /
+                        ("toonwater-bench-wave-" + std::to_string(grid_size(vertices)) + ".obj");
+  if (fs::exists(path)) return path;
+  const TriangleMesh& m = wave_mesh(vertices);
+  std::string text;
+  char number[32];
+  auto append = [&](double value) {
+    text += ' ';
+    text.append(number, std::to_chars(number, number + sizeof number, value).ptr);
+  };
+  for (const Vec3& p : m.positions) {
+    text += 'v';
+    append(p.x());
+    append(p.y());
+    append(p.z());
+    text += '\n';
+  }
+  for (const Triangle& t : m.triangles)
+    text += "f " + std::to_string(t[0] + 1) + ' ' + std::to_string(t[1] + 1) + ' ' +
+            std::to_string(t[2] + 1) + '\n';
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+void set_vertex_rate(benchmark::State& state, std::size_t vertices) {
+  state.counters["vertices"] = static_cast<double>(vertices);
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * vertices));
+}
+
+void ReadObj(benchmark::State& state) {
+  const fs::path path = obj_file(state.range(0));
+  std::size_t n = 0;
+  for (auto _ : state) {
+    InputMesh mesh = read_mesh(path);
+    n = mesh.mesh.positions.size();
+    benchmark::DoNotOptimize(mesh);
+  }
+  set_vertex_rate(state, n);
+}
+
+void Prepare(benchmark::State& state) {
+  const TriangleMesh& input = wave_mesh(state.range(0));
+  for (auto _ : state) {
+    WeldedMesh welded = weld_coincident_vertices(input);
+    MeshTopology topology = analyze_topology(welded.mesh);
+    benchmark::DoNotOptimize(orient_consistently(welded.mesh, topology.vertex_faces));
+  }
+  set_vertex_rate(state, input.positions.size());
+}
+
+struct Prepared {
+  TriangleMesh mesh;
+  MeshTopology topology;
+};
+
+Prepared prepared(std::int64_t vertices) {
+  Prepared p{wave_mesh(vertices), {}};
+  p.topology = analyze_topology(p.mesh);
+  return p;
+}
+
+FlowOptions wave_flow_options() {
+  FlowOptions options;
+  options.up = Axis::z;
+  return options;
+}
+
+void Curvature(benchmark::State& state) {
+  const Prepared p = prepared(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(compute_curvature(p.mesh, p.topology));
+  set_vertex_rate(state, p.mesh.positions.size());
+}
+
+void FlowRegions(benchmark::State& state) {
+  const Prepared p = prepared(state.range(0));
+  const CurvatureField field = compute_curvature(p.mesh, p.topology);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        find_flow_regions(p.mesh, p.topology.vertex_faces, field, wave_flow_options()));
+  set_vertex_rate(state, p.mesh.positions.size());
+}
+
+void CurvatureAndLabels(benchmark::State& state) {
+  const Prepared p = prepared(state.range(0));
+  for (auto _ : state) {
+    const CurvatureField field = compute_curvature(p.mesh, p.topology);
+    benchmark::DoNotOptimize(
+        find_flow_regions(p.mesh, p.topology.vertex_faces, field, wave_flow_options()));
+  }
+  set_vertex_rate(state, p.mesh.positions.size());
+}
+
+void AnalyzeCommand(benchmark::State& state) {
+  const fs::path mesh = obj_file(state.range(0));
+  const fs::path csv = fs::temp_directory_path() / "toonwater-bench-analyze.csv";
+  long peak_kib = 0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      ::freopen("/dev/null", "w", stderr);
+      ::execl(TOONWATER_EXECUTABLE, "toonwater", "analyze", mesh.c_str(), "--up", "z", "--csv",
+              csv.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    int status = 0;
+    rusage usage{};
+    ::wait4(pid, &status, 0, &usage);
+    state.SetIterationTime(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) state.SkipWithError("toonwater analyze failed");
+    peak_kib = std::max(peak_kib, usage.ru_maxrss);
+  }
+  const auto n = static_cast<double>(wave_mesh(state.range(0)).positions.size());
+  state.counters["vertices"] = n;
+  state.counters["bytes_per_vertex"] = static_cast<double>(peak_kib) * 1024.0 / n;
+  fs::remove(csv);
+}
+
+// Arguments: 55 → 55k vertices, 1000 → 1M vertices.
+BENCHMARK(ReadObj)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(Prepare)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(Curvature)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(FlowRegions)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(CurvatureAndLabels)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(AnalyzeCommand)->Arg(1000)->UseManualTime()->Iterations(3)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace toonwater
+
+BENCHMARK_MAIN();
