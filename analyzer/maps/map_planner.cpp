@@ -81,7 +81,10 @@ MapView MapPlanner::view(const MapOptions& options) const {
 }
 
 MapRanges MapPlanner::ranges(double percentile) const {
-  return {gaussian_.quantile(percentile), mean_.quantile(percentile)};
+  constexpr double flat_radius_in_edges = 1e4;
+  const double min_mean = median_edge_ > 0.0 ? 1.0 / (flat_radius_in_edges * median_edge_) : 0.0;
+  return {std::max(gaussian_.quantile(percentile), min_mean * min_mean),
+          std::max(mean_.quantile(percentile), min_mean)};
 }
 
 }  // namespace toonwater

@@ -14,6 +14,9 @@
 // Ranges: the 98th percentile of |K| and |H| over the upward-facing surface of all frames
 // pooled, each vertex weighted by the area it covers in the map (a third of the projected area
 // of its upward faces), i.e. the share of map pixels; see robust_range.hpp for the precision.
+// A range is never below the curvature of a radius of 10⁴ median edge lengths ℓ
+// (|H| = 10⁻⁴/ℓ, |K| = 10⁻⁸/ℓ²): flatter than that is flat, and a plane's round-off shows as
+// the zero colour instead of being stretched over the whole colour map.
 #pragma once
 
 #include "analyzer/analysis.hpp"
@@ -53,7 +56,7 @@ class MapPlanner {
   std::size_t frames_ = 0;
   MapBox extent_{};
   bool has_extent_ = false;
-  double median_edge_ = 0;  // smallest over frames
+  double median_edge_ = 0;  // smallest over frames; 0 when unknown
   AbsQuantileHistogram gaussian_, mean_;
 };
 

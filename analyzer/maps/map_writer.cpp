@@ -34,17 +34,22 @@ std::string axis_direction(const Vec3& d) {
   return name;
 }
 
+std::string text(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
+}
+
+// All metadata is text: PNG keeps only text chunks, and the same reader code serves both.
 void add_metadata(OIIO::ImageSpec& spec, const MapView& view, const MapRanges& ranges) {
-  spec.attribute("toonwater:K_range", static_cast<float>(ranges.gaussian));
-  spec.attribute("toonwater:H_range", static_cast<float>(ranges.mean));
+  spec.attribute("toonwater:K_range", text(ranges.gaussian));
+  spec.attribute("toonwater:H_range", text(ranges.mean));
   spec.attribute("toonwater:up", axis_name(view.up));
   spec.attribute("toonwater:columns", axis_direction(map_u_axis(view.up)));
   spec.attribute("toonwater:rows_down", axis_direction(-map_v_axis(view.up)));
-  char box[160];
-  std::snprintf(box, sizeof box, "%.17g %.17g %.17g %.17g", view.box.u_min, view.box.v_min,
-                view.box.u_max, view.box.v_max);
-  spec.attribute("toonwater:box_uv", box);
-  spec.attribute("toonwater:pixel_size", static_cast<float>(view.pixel_size));
+  spec.attribute("toonwater:box_uv", text(view.box.u_min) + " " + text(view.box.v_min) + " " +
+                                         text(view.box.u_max) + " " + text(view.box.v_max));
+  spec.attribute("toonwater:pixel_size", text(view.pixel_size));
 }
 
 std::vector<unsigned char> encode(const char* format, const OIIO::ImageSpec& spec,

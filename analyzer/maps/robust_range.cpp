@@ -22,8 +22,9 @@ std::size_t bin_of(double magnitude) {
 }
 
 double upper_edge(std::size_t bin) {
-  if (bin + 1 >= bin_count) return std::numeric_limits<float>::max();
-  return std::bit_cast<float>(static_cast<std::uint32_t>((bin + 1) << dropped_bits));
+  const auto bits = static_cast<std::uint32_t>((bin + 1) << dropped_bits);
+  const float edge = std::bit_cast<float>(bits);
+  return std::isfinite(edge) ? edge : std::numeric_limits<float>::max();
 }
 
 }  // namespace

@@ -1,9 +1,10 @@
 // A robust colour range: the q-quantile (e.g. 98th percentile) of |value| under weights,
 // accumulated over any number of samples and frames in constant memory.
 //
-// The histogram bins are the float values sharing their exponent and top 6 mantissa bits, so
-// bins are 2^(1/64) apart (1.1 %) over float's whole range; a quantile is reported as its
-// bin's upper edge: never below the exact weighted quantile and at most 1.1 % above it.
+// The histogram bins are the float values sharing their exponent and top 6 mantissa bits:
+// 64 bins per octave over float's whole range, each at most 1/64 (1.6 %) of its lower edge
+// wide. A quantile is reported as its bin's upper edge: never below the exact weighted
+// quantile and at most 1.6 % above it.
 #pragma once
 
 #include <cstdint>
