@@ -6,5 +6,7 @@
 namespace toonwater::cli {
 
 void add_analyze_command(CLI::App& app);
+void add_povgen_command(CLI::App& app);
+void add_render_command(CLI::App& app);
 
 }  // namespace toonwater::cli

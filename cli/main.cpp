@@ -10,7 +10,13 @@
 int main(int argc, char** argv) {
   CLI::App app{"toonwater: cartoon water from fluid-simulation meshes, rendered with POV-Ray"};
   app.require_subcommand(1);
+  // Parse errors in one line, like every other error (CLI11 adds a second by default).
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "toonwater: error: " + std::string(e.what()) + " (see --help)\n";
+  });
   toonwater::cli::add_analyze_command(app);
+  toonwater::cli::add_povgen_command(app);
+  toonwater::cli::add_render_command(app);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,54 @@
+// toonwater render DIR [--jobs N] [--frames A-B]
+#include "cli/commands.hpp"
+
+#include "povgen/render.hpp"
+
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+namespace toonwater::cli {
+namespace {
+
+struct RenderArgs {
+  std::string dir;
+  int jobs = 0;
+  std::string frames;
+};
+
+void run_render(const RenderArgs& args) {
+  povgen::RenderRequest request;
+  request.scene_dir = args.dir;
+  request.jobs = args.jobs > 0 ? args.jobs
+                               : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (!args.frames.empty()) request.frames = povgen::parse_frame_range(args.frames, "--frames");
+  auto progress = [](std::size_t done, std::size_t total, double elapsed) {
+    const double left = elapsed / static_cast<double>(done) * static_cast<double>(total - done);
+    std::fprintf(stderr, "\rrender: frame %zu/%zu, %.1f s, about %.1f s left   ", done, total,
+                 elapsed, left);
+    if (done == total) std::fputc('\n', stderr);
+  };
+  const povgen::RenderReport r = povgen::render_frames(request, progress);
+  for (const auto& f : r.failures)
+    std::fprintf(stderr, "render: frame %ld failed: %s\n", f.frame, f.message.c_str());
+  std::fprintf(stderr, "render: %zu frame(s) rendered, %zu failed, %.2f s\n", r.rendered,
+               r.failures.size(), r.seconds);
+  if (!r.failures.empty())
+    throw std::runtime_error(std::to_string(r.failures.size()) + " frame(s) failed to render");
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand("render", "Render a povgen scene directory with POV-Ray");
+  cmd->add_option("dir", args->dir, "Scene directory written by toonwater povgen")->required();
+  cmd->add_option("--jobs", args->jobs, "Frames rendered at the same time (default: cores)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--frames", args->frames, "Frame range A-B (default: all)");
+  cmd->callback([args] { run_render(*args); });
+}
+
+}  // namespace toonwater::cli

@@ -1,0 +1,128 @@
+// Scene configuration: every key of scene.toml, with the paper's choices as defaults.
+//
+// Loaded from TOML (toml++); `--set key=value` overrides any key before validation. Unknown keys
+// and values of the wrong type or out of range are errors naming the key (ConfigError). Only
+// validated values leave this module: finite numbers, colours in [0, 1], known keywords and
+// object names reduced to POV-Ray identifiers.
+//
+// Positions and directions are in the input's axes (the meshes' own coordinates); the scene
+// writer maps them to POV-Ray's frame.
+#pragma once
+
+#include "analyzer/mesh.hpp"
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace toonwater::povgen {
+
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+using Color = std::array<double, 3>;  // linear rgb in [0, 1]
+
+struct CameraConfig {
+  std::optional<Vec3> location;  // default: framed on the water's bounding box
+  std::optional<Vec3> look_at;   // default: the centre of the water's bounding box
+  double angle = 40.0;           // horizontal field of view, degrees
+};
+
+struct LightConfig {
+  std::optional<Vec3> direction;  // towards the light (a sun): parallel light
+  std::optional<Vec3> position;   // a point light; excludes direction
+  Color color{1.0, 1.0, 1.0};
+};
+
+// Cartoon Water Shader (paper eq. 2-3).
+struct WaterConfig {
+  Color bright{0.72, 0.90, 1.00};
+  Color medium{0.30, 0.63, 0.90};
+  Color dark{0.10, 0.33, 0.65};
+  double t_bright = 0.7;  // L·n above this: bright band
+  double t_medium = 0.2;  // L·n above this (and not bright): medium band; else dark
+  double ka = 0.2;
+  double kd = 0.8;
+  double ks = 0.5;
+  Color specular_color{1.0, 1.0, 1.0};
+  double phong_size = 40.0;
+  double reflection = 0.2;
+  double transmit = 0.4;
+  double ior = 1.33;
+};
+
+enum class WidthUnits { relative, world };
+
+struct OutlineConfig {
+  bool enabled = true;
+  double width = 0.006;  // relative: fraction of the mesh's bounding-box diagonal
+  WidthUnits units = WidthUnits::relative;
+  Color color{0.0, 0.0, 0.0};
+};
+
+struct FlowConfig {
+  bool enabled = true;
+  std::optional<double> k_threshold;  // absolute T; default: the analyzer's scale-free T
+  Color ridge_color{1.0, 1.0, 1.0};
+  Color valley_color{0.04, 0.16, 0.42};
+};
+
+enum class ReflectionTarget { concrete, abstract, none };
+
+struct ObjectConfig {
+  std::string name;  // a POV-Ray identifier fragment: [A-Za-z0-9_], unique among objects
+  std::string mesh;  // a file or a numbered sequence pattern, resolved against base_dir
+  std::filesystem::path base_dir;
+  Color color{0.92, 0.45, 0.18};
+  bool outline = true;
+  ReflectionTarget reflection = ReflectionTarget::concrete;
+};
+
+struct FrameRange {
+  long first = 0;
+  long last = 0;
+};
+
+struct RenderConfig {
+  int width = 640;
+  int height = 480;
+  bool antialias = true;
+  std::optional<FrameRange> frames;  // default: every frame found
+  Color background{0.93, 0.96, 1.0};
+};
+
+struct SceneConfig {
+  CameraConfig camera;
+  LightConfig light;
+  WaterConfig water;
+  OutlineConfig outline;
+  FlowConfig flow;
+  std::vector<ObjectConfig> objects;
+  RenderConfig render;
+};
+
+// Where the configuration comes from. `object_patterns` (from --object) are appended to the
+// file's [[object]] list before the overrides apply, so `--set object.0.color=[1,0,0]` reaches
+// them too. Overrides are "key=value" with a dotted key; the value is TOML (a bare word is
+// taken as a string).
+struct ConfigSources {
+  std::optional<std::filesystem::path> file;
+  std::vector<std::string> object_patterns;
+  std::vector<std::string> overrides;
+};
+
+SceneConfig load_config(const ConfigSources& sources);
+
+// Parses "A-B" or "A" (frame numbers, A <= B). Throws ConfigError naming `key`.
+FrameRange parse_frame_range(const std::string& text, const std::string& key);
+
+// Reduces text to a POV-Ray identifier fragment: ASCII letters, digits and '_' kept, anything
+// else replaced by '_', at most 24 characters, never empty.
+std::string sanitize_identifier(const std::string& text);
+
+}  // namespace toonwater::povgen

@@ -1,0 +1,33 @@
+// POV-Ray mesh2 text for a SceneMesh (POV-Ray 3.7 reference, "Mesh2"):
+//
+//   #declare Name = mesh2 {
+//     vertex_vectors { N, <x,y,z>, ... }
+//     normal_vectors { N, <x,y,z>, ... }    // indexed like the vertices (no normal_indices)
+//     uv_vectors     { N, <u,v>, ... }      // optional, indexed like the vertices
+//     face_indices   { F, <a,b,c>, ... }
+//     inside_vector  <x,y,z>                // closed meshes only
+//   }
+//
+// Numbers are written with std::to_chars, 7 significant digits (POV-Ray stores vertices in
+// single precision), into one buffer; NaN and Inf cannot occur (SceneMesh holds finite values)
+// and are rejected if they do.
+#pragma once
+
+#include "povgen/scene_mesh.hpp"
+
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace toonwater::povgen {
+
+// Appends `#declare identifier = mesh2 {...}` to `out`. `uv` is empty or one per vertex.
+void append_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
+                  std::span<const TextureCoordinate> uv);
+
+// Appends the outline shell of `mesh`: the same faces with every vertex moved by `offset` along
+// its normal (Raskar and Cohen 1999), normals unchanged, no texture coordinates.
+void append_shell_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
+                        double offset);
+
+}  // namespace toonwater::povgen

@@ -1,0 +1,198 @@
+#include "povgen/povgen.hpp"
+
+#include "analyzer/analysis.hpp"
+#include "analyzer/atomic_file.hpp"
+#include "analyzer/mesh_reader.hpp"
+#include "analyzer/topology.hpp"
+#include "analyzer/weld.hpp"
+#include "povgen/mesh2_writer.hpp"
+#include "povgen/scene_writer.hpp"
+#include "povgen/sequence.hpp"
+#include "povgen/vertex_normals.hpp"
+
+#include <chrono>
+
+namespace toonwater::povgen {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+bool is_closed(const MeshTopology& t) { return t.boundary_edges == 0 && t.nonmanifold_edges == 0; }
+
+struct ObjectSource {
+  ObjectPlacement placement;
+  Sequence sequence;
+};
+
+}  // namespace
+
+PreparedSurface prepare_surface(const TriangleMesh& input, Axis up, const FlowConfig* flow) {
+  const auto start = Clock::now();
+  PreparedSurface out;
+  if (flow) {
+    AnalyzeOptions options;
+    options.flow.up = up;
+    options.flow.k_threshold = flow->k_threshold;
+    const Analysis a = analyze_mesh(input, options);
+    out.mesh = make_scene_mesh(a.surface, a.curvature.normal, is_closed(a.topology), up);
+    out.labels = a.flow.label;
+    out.ridge_vertices = a.flow.ridge_vertices;
+    out.valley_vertices = a.flow.valley_vertices;
+  } else {
+    WeldedMesh welded = weld_coincident_vertices(input);
+    const MeshTopology topology = analyze_topology(welded.mesh);
+    orient_consistently(welded.mesh, topology.vertex_faces);
+    const std::vector<Vec3> normals = angle_weighted_normals(welded.mesh);
+    out.mesh = make_scene_mesh(welded.mesh, normals, is_closed(topology), up);
+  }
+  out.analysis_seconds = seconds_since(start);
+  return out;
+}
+
+double outline_width(const OutlineConfig& outline, const SceneMesh& mesh) {
+  return outline.units == WidthUnits::world ? outline.width : outline.width * mesh.diagonal();
+}
+
+std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
+                         const LightGeometry& light, double shell_offset) {
+  std::string text = "// Written by toonwater povgen: meshes for scene.pov.\n";
+  const auto uv = toon_coordinates(surface.mesh, light, surface.labels);
+  append_mesh2(text, prefix + "_mesh", surface.mesh, uv);
+  if (shell_offset > 0) append_shell_mesh2(text, prefix + "_shell", surface.mesh, shell_offset);
+  return text;
+}
+
+PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& request,
+                            const ProgressFn& progress, const std::atomic<bool>* stop) {
+  Sequence water = find_sequence(request.water_pattern, request.base_dir);
+  if (config.render.frames && !water.single_file) {
+    auto& f = water.frames;
+    std::erase_if(f, [&](const auto& kv) {
+      return kv.first < config.render.frames->first || kv.first > config.render.frames->last;
+    });
+    if (f.empty())
+      throw InputError(request.water_pattern + ": no frame in render.frames " +
+                       std::to_string(config.render.frames->first) + "-" +
+                       std::to_string(config.render.frames->last));
+  }
+  // POV-Ray renders every frame number from first to last: the sequence must not have gaps.
+  const long first = water.frames.begin()->first, last = water.frames.rbegin()->first;
+  for (long f = first; f <= last; ++f)
+    if (!water.frames.count(f))
+      throw InputError(request.water_pattern + ": frame " + std::to_string(f) +
+                       " is missing (frames " + std::to_string(first) + "-" +
+                       std::to_string(last) + " must all exist)");
+
+  SceneLayout layout;
+  layout.config = &config;
+  layout.up = request.up;
+  layout.animation = water.frames.size() > 1;
+  layout.first_frame = layout.animation ? first : 0;
+  layout.last_frame = layout.animation ? last : 0;
+
+  std::vector<ObjectSource> objects;
+  for (const ObjectConfig& oc : config.objects) {
+    ObjectSource o;
+    o.placement.config = &oc;
+    o.sequence = find_sequence(oc.mesh, oc.base_dir);
+    o.placement.animated = !o.sequence.single_file;
+    if (o.placement.animated) {
+      for (const auto& [frame, path] : water.frames)
+        if (!o.sequence.frames.count(frame))
+          throw InputError(oc.mesh + ": object '" + oc.name + "' has no file for frame " +
+                           std::to_string(frame));
+    }
+    objects.push_back(std::move(o));
+  }
+
+  fs::create_directories(request.out_dir);
+  const FlowConfig* flow = config.flow.enabled ? &config.flow : nullptr;
+  const LightGeometry light = light_geometry(config.light, request.up);
+  PovgenReport report;
+  report.first_frame = layout.first_frame;
+  report.last_frame = layout.last_frame;
+  bool have_box = false;
+  double water_top = 0;
+  std::vector<double> object_bottom(objects.size(), 0.0);
+
+  auto write = [&](const fs::path& name, const std::string& text) {
+    const auto start = Clock::now();
+    write_file_atomically(request.out_dir / name, text);
+    report.write_seconds += seconds_since(start);
+  };
+  auto load = [&](const fs::path& path) {
+    const auto start = Clock::now();
+    InputMesh m = read_mesh(path);
+    report.read_seconds += seconds_since(start);
+    return m;
+  };
+  auto write_object = [&](std::size_t i, const fs::path& path, long frame) {
+    const ObjectConfig& oc = *objects[i].placement.config;
+    const PreparedSurface s = prepare_surface(load(path).mesh, request.up, nullptr);
+    const double width = config.outline.enabled && oc.outline ? outline_width(config.outline, s.mesh) : 0;
+    const auto start = Clock::now();
+    std::string text = mesh_include(s, "Obj_" + oc.name, light, width);
+    report.write_seconds += seconds_since(start);
+    write(object_include_name(oc.name, objects[i].placement.animated, frame), text);
+    object_bottom[i] = std::min(object_bottom[i], s.mesh.min.y() - water_top);
+    return s.mesh.min.y();
+  };
+
+  // Static objects first; their bottoms are compared with the water's top at the end.
+  std::vector<double> static_bottom(objects.size(), 0.0);
+  for (std::size_t i = 0; i < objects.size(); ++i)
+    if (!objects[i].placement.animated)
+      static_bottom[i] = write_object(i, objects[i].sequence.frames.begin()->second, 0);
+
+  std::size_t done = 0;
+  for (const auto& [frame, path] : water.frames) {
+    if (stop && stop->load()) throw OutputError(request.out_dir.string() + ": interrupted");
+    const long written_frame = layout.animation ? frame : 0;
+    const InputMesh input = load(path);
+    PreparedSurface s = prepare_surface(input.mesh, request.up, flow);
+    report.analysis_seconds += s.analysis_seconds;
+    report.vertices += s.mesh.positions.size();
+    report.degenerate_faces += s.mesh.degenerate_faces;
+    report.replaced_normals += s.mesh.replaced_normals;
+    report.ridge_vertices += s.ridge_vertices;
+    report.valley_vertices += s.valley_vertices;
+    if (s.mesh.positions.empty()) throw InputError(path.string() + ": the water mesh is empty");
+    if (!have_box) {
+      layout.water_min = s.mesh.min;
+      layout.water_max = s.mesh.max;
+      have_box = true;
+    }
+    layout.water_min = layout.water_min.cwiseMin(s.mesh.min);
+    layout.water_max = layout.water_max.cwiseMax(s.mesh.max);
+    water_top = s.mesh.max.y();
+
+    const double width = config.outline.enabled ? outline_width(config.outline, s.mesh) : 0;
+    const auto start = Clock::now();
+    const std::string text = mesh_include(s, "Water", light, width);
+    report.write_seconds += seconds_since(start);
+    write(water_include_name(written_frame), text);
+
+    for (std::size_t i = 0; i < objects.size(); ++i)
+      if (objects[i].placement.animated)
+        write_object(i, objects[i].sequence.frames.at(frame), written_frame);
+    ++report.frames;
+    if (progress) progress(++done, water.frames.size());
+  }
+
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    if (!objects[i].placement.animated) object_bottom[i] = static_bottom[i] - layout.water_max.y();
+    objects[i].placement.submerged = object_bottom[i] < 0;
+    layout.objects.push_back(objects[i].placement);
+  }
+  write("toon.inc", std::string(toon_template()));
+  write("scene.ini", scene_ini(layout));
+  write("scene.pov", scene_pov(layout));  // last: its presence marks a complete directory
+  return report;
+}
+
+}  // namespace toonwater::povgen

@@ -1,0 +1,71 @@
+// povgen: simulation frames in, a POV-Ray scene directory out.
+//
+//   DIR/scene.pov            the same for every frame (scene_writer.hpp)
+//   DIR/scene.ini            frame range, size, output names
+//   DIR/toon.inc             the shading template (templates/toon.inc)
+//   DIR/water_NNNN.inc       per frame: Water_mesh (+ Water_shell) as mesh2
+//   DIR/obj_NAME[_NNNN].inc  per object (per frame if animated): Obj_NAME_mesh (+ _shell)
+//
+// All references inside are relative, so DIR can be moved. Every file is written atomically.
+#pragma once
+
+#include "povgen/config.hpp"
+#include "povgen/scene_mesh.hpp"
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace toonwater::povgen {
+
+// A mesh prepared for the scene, with the flow labels when they were asked for.
+struct PreparedSurface {
+  SceneMesh mesh;
+  std::vector<std::int8_t> labels;  // per vertex; empty without flow regions
+  std::size_t ridge_vertices = 0, valley_vertices = 0;
+  double analysis_seconds = 0;  // weld, topology, normals (and curvature and flow when asked)
+};
+
+// Welds and orients the input; computes curvature and flow labels only when `flow` is given,
+// angle-weighted normals otherwise.
+PreparedSurface prepare_surface(const TriangleMesh& input, Axis up, const FlowConfig* flow);
+
+// The mesh2 include text: `Prefix_mesh` with toon coordinates, and `Prefix_shell` when
+// `outline_width` > 0 (in world units).
+std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
+                         const LightGeometry& light, double outline_width);
+
+double outline_width(const OutlineConfig& outline, const SceneMesh& mesh);
+
+struct PovgenRequest {
+  std::string water_pattern;
+  std::filesystem::path base_dir;  // patterns on the command line are relative to it
+  Axis up = Axis::y;
+  std::filesystem::path out_dir;
+};
+
+struct PovgenReport {
+  std::size_t frames = 0;
+  long first_frame = 0, last_frame = 0;
+  std::size_t vertices = 0;  // water vertices, all frames
+  std::size_t degenerate_faces = 0, replaced_normals = 0;
+  std::size_t ridge_vertices = 0, valley_vertices = 0;
+  double read_seconds = 0, analysis_seconds = 0, write_seconds = 0;
+};
+
+// Called after each frame: frames done, frames in total.
+using ProgressFn = std::function<void(std::size_t, std::size_t)>;
+
+// Throws InputError, ConfigError or OutputError; when `stop` becomes true it stops between
+// frames and throws OutputError("interrupted"). Files already written stay complete.
+PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& request,
+                            const ProgressFn& progress, const std::atomic<bool>* stop);
+
+// The text of templates/toon.inc, built into the program.
+std::string_view toon_template();
+
+}  // namespace toonwater::povgen

@@ -1,0 +1,150 @@
+#include "povgen/render.hpp"
+
+#include "analyzer/mesh_reader.hpp"
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+namespace toonwater::povgen {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct IniFrames {
+  bool animation = false;
+  long first = 0, last = 0;
+};
+
+IniFrames read_ini_frames(const fs::path& ini) {
+  std::ifstream in(ini);
+  if (!in) throw InputError(ini.string() + ": no povgen scene here (scene.ini missing)");
+  IniFrames f;
+  bool has_first = false, has_last = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("Initial_Frame=", 0) == 0) f.first = std::stol(line.substr(14)), has_first = true;
+    if (line.rfind("Final_Frame=", 0) == 0) f.last = std::stol(line.substr(12)), has_last = true;
+  }
+  f.animation = has_first && has_last;
+  return f;
+}
+
+// Runs one povray process in `dir` with its output in `log`; returns its exit status.
+int run_povray(const fs::path& dir, const std::vector<std::string>& args, const fs::path& log) {
+  std::vector<std::string> copies = args;
+  std::vector<char*> argv;
+  for (auto& a : copies) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const std::string dir_s = dir.string(), log_s = log.string();
+  const pid_t pid = ::fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {
+    const int fd = ::open(log_s.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0 || ::chdir(dir_s.c_str()) != 0) ::_exit(126);
+    ::dup2(fd, STDOUT_FILENO);
+    ::dup2(fd, STDERR_FILENO);
+    ::execvp(argv[0], argv.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+std::string read_all(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+std::string povray_error_message(const std::string& log) {
+  std::istringstream in(log);
+  std::string message, last;
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    last = line;
+    if (line.find("rror") != std::string::npos) message += (message.empty() ? "" : " | ") + line;
+  }
+  return message.empty() ? last : message;
+}
+
+RenderReport render_frames(const RenderRequest& request, const RenderProgressFn& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const fs::path dir = fs::absolute(request.scene_dir);
+  if (!fs::is_regular_file(dir / "scene.pov"))
+    throw InputError(dir.string() + ": no povgen scene here (scene.pov missing)");
+  const IniFrames ini = read_ini_frames(dir / "scene.ini");
+
+  std::vector<long> frames;
+  if (ini.animation) {
+    long first = ini.first, last = ini.last;
+    if (request.frames) {
+      if (request.frames->first < ini.first || request.frames->last > ini.last)
+        throw InputError(dir.string() + ": frames " + std::to_string(request.frames->first) + "-" +
+                         std::to_string(request.frames->last) + " are outside the scene's " +
+                         std::to_string(ini.first) + "-" + std::to_string(ini.last));
+      first = request.frames->first;
+      last = request.frames->last;
+    }
+    for (long f = first; f <= last; ++f) frames.push_back(f);
+  } else {
+    frames.push_back(0);
+  }
+
+  const int jobs = std::clamp<int>(request.jobs, 1, static_cast<int>(frames.size()));
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const std::string threads = "+WT" + std::to_string(std::max(1u, cores / static_cast<unsigned>(jobs)));
+
+  RenderReport report;
+  std::mutex mutex;
+  std::atomic<std::size_t> next{0};
+  std::size_t done = 0;
+  auto worker = [&] {
+    for (std::size_t i; (i = next++) < frames.size();) {
+      const long frame = frames[i];
+      std::vector<std::string> args{request.povray, "scene.ini", threads};
+      if (ini.animation) {
+        args.push_back("+SF" + std::to_string(frame));
+        args.push_back("+EF" + std::to_string(frame));
+      }
+      args.insert(args.end(), request.extra_arguments.begin(), request.extra_arguments.end());
+      const fs::path log = dir / ("render_" + std::to_string(frame) + ".log");
+      const int status = run_povray(dir, args, log);
+      std::string failure;
+      if (status == 127) failure = "cannot run '" + request.povray + "' (is POV-Ray installed?)";
+      else if (status != 0) failure = povray_error_message(read_all(log));
+      if (failure.empty()) fs::remove(log);
+      std::lock_guard lock(mutex);
+      if (failure.empty()) ++report.rendered;
+      else report.failures.push_back({frame, failure + " (log: " + log.filename().string() + ")"});
+      ++done;
+      if (progress)
+        progress(done, frames.size(),
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (int j = 1; j < jobs; ++j) pool.emplace_back(worker);
+    worker();
+  }
+  std::sort(report.failures.begin(), report.failures.end(),
+            [](const FrameFailure& a, const FrameFailure& b) { return a.frame < b.frame; });
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace toonwater::povgen

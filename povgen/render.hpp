@@ -1,0 +1,46 @@
+// toonwater render: runs POV-Ray on the frames of a povgen scene directory, several frames at
+// once (frames are independent), each as `povray scene.ini +SFn +EFn` in the directory.
+// A frame fails when POV-Ray exits non-zero or writes no image; the failure carries POV-Ray's
+// own error message.
+#pragma once
+
+#include "povgen/config.hpp"
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace toonwater::povgen {
+
+struct RenderRequest {
+  std::filesystem::path scene_dir;
+  int jobs = 1;                              // frames rendered at the same time
+  std::optional<FrameRange> frames;          // default: all frames in scene.ini
+  std::string povray = "povray";             // the executable, looked up on PATH
+  std::vector<std::string> extra_arguments;  // passed to every povray run
+};
+
+struct FrameFailure {
+  long frame = 0;
+  std::string message;  // POV-Ray's error line(s)
+};
+
+struct RenderReport {
+  std::size_t rendered = 0;
+  std::vector<FrameFailure> failures;  // by frame number
+  double seconds = 0;
+};
+
+// Called after each frame: frames done, total, seconds since the start.
+using RenderProgressFn = std::function<void(std::size_t, std::size_t, double)>;
+
+// Throws InputError when the directory holds no povgen scene or the range is outside it.
+RenderReport render_frames(const RenderRequest& request, const RenderProgressFn& progress);
+
+// The error lines of a POV-Ray log: lines mentioning an error, else its last line.
+std::string povray_error_message(const std::string& log);
+
+}  // namespace toonwater::povgen

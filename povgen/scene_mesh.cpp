@@ -1,0 +1,89 @@
+#include "povgen/scene_mesh.hpp"
+
+#include "povgen/axes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace toonwater::povgen {
+namespace {
+
+bool is_degenerate(const TriangleMesh& m, const Triangle& t) {
+  if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return true;
+  const Vec3 e1 = m.positions[t[1]] - m.positions[t[0]];
+  const Vec3 e2 = m.positions[t[2]] - m.positions[t[0]];
+  // Zero area relative to the edges' size: POV-Ray (single precision) drops such faces anyway.
+  return !(e1.cross(e2).norm() > 1e-12 * (e1.squaredNorm() + e2.squaredNorm()));
+}
+
+}  // namespace
+
+SceneMesh make_scene_mesh(const TriangleMesh& surface, std::span<const Vec3> normals, bool closed,
+                          Axis up) {
+  SceneMesh out;
+  out.closed = closed;
+  const std::size_t n = surface.positions.size();
+  out.triangles.reserve(surface.triangles.size());
+  for (const Triangle& t : surface.triangles) {
+    if (is_degenerate(surface, t)) ++out.degenerate_faces;
+    else out.triangles.push_back(t);
+  }
+
+  std::vector<Vec3> normal(normals.begin(), normals.end());
+  std::vector<bool> missing(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    missing[v] = !(normal[v].squaredNorm() > 0.5);  // unit normals only; zero means undefined
+    out.replaced_normals += missing[v];
+  }
+  if (out.replaced_normals > 0) {
+    for (const Triangle& t : out.triangles) {
+      if (!missing[t[0]] && !missing[t[1]] && !missing[t[2]]) continue;
+      const Vec3 face = (surface.positions[t[1]] - surface.positions[t[0]])
+                            .cross(surface.positions[t[2]] - surface.positions[t[0]]);
+      for (int k : t)
+        if (missing[k]) normal[k] += face;  // area-weighted mean face normal
+    }
+    Vec3 up_axis = Vec3::Zero();
+    up_axis[static_cast<int>(up)] = 1.0;
+    for (std::size_t v = 0; v < n; ++v) {
+      if (!missing[v]) continue;
+      const double length = normal[v].norm();
+      normal[v] = length > 0.0 && std::isfinite(length) ? Vec3(normal[v] / length) : up_axis;
+    }
+  }
+
+  out.positions.resize(n);
+  out.normals.resize(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    out.positions[v] = to_povray(surface.positions[v], up);
+    out.normals[v] = to_povray(normal[v], up);
+  }
+  if (n > 0) {
+    out.min = out.max = out.positions[0];
+    for (const Vec3& p : out.positions) {
+      out.min = out.min.cwiseMin(p);
+      out.max = out.max.cwiseMax(p);
+    }
+  }
+  return out;
+}
+
+std::vector<TextureCoordinate> toon_coordinates(const SceneMesh& mesh, const LightGeometry& light,
+                                                std::span<const std::int8_t> labels) {
+  const std::size_t n = mesh.positions.size();
+  std::vector<TextureCoordinate> uv(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    Vec3 to_light = light.vector;
+    if (!light.parallel) {
+      to_light -= mesh.positions[v];
+      const double length = to_light.norm();
+      to_light = length > 0.0 ? Vec3(to_light / length) : mesh.normals[v];
+    }
+    const double l_dot_n = std::clamp(to_light.dot(mesh.normals[v]), -1.0, 1.0);
+    const double label = labels.empty() ? 0.0 : static_cast<double>(labels[v]);
+    uv[v] = {static_cast<float>(0.5 + 0.4999 * l_dot_n), static_cast<float>(0.5 + label / 3.0)};
+  }
+  return uv;
+}
+
+}  // namespace toonwater::povgen

@@ -1,0 +1,52 @@
+// A surface made ready for POV-Ray: in POV-Ray's frame (axes.hpp), with a valid unit normal at
+// every vertex, without degenerate faces, and with the per-vertex texture coordinates the toon
+// shader reads (povray-notes.md, "Three crisp bands"):
+//
+//   u = 0.5 + 0.4999 · clamp(L·n, −1, 1)        L = unit vector from the vertex to the light
+//   v = 0.5 + label / 3                          label: −1 valley, 0 none, +1 ridge
+//
+// POV-Ray interpolates u and v linearly inside each triangle and evaluates the colour map per
+// pixel, so band and flow-region boundaries are crisp at pixel level. u stays inside (0, 1)
+// because gradient patterns wrap modulo 1.
+#pragma once
+
+#include "analyzer/mesh.hpp"
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace toonwater::povgen {
+
+struct SceneMesh {
+  std::vector<Vec3> positions;      // POV-Ray frame
+  std::vector<Vec3> normals;        // unit length, POV-Ray frame
+  std::vector<Triangle> triangles;  // non-degenerate faces only
+  bool closed = false;              // no boundary or non-manifold edge: has an inside
+  std::size_t degenerate_faces = 0;     // left out
+  std::size_t replaced_normals = 0;     // zero normals replaced by a face normal (or up)
+  Vec3 min = Vec3::Zero(), max = Vec3::Zero();  // bounding box
+
+  double diagonal() const { return (max - min).norm(); }
+};
+
+// `normals` are per vertex of `surface` in the input's frame and may contain zero vectors
+// (undefined curvature, isolated vertices): they are replaced by the mean normal of the
+// vertex's faces, or by the up axis when it has none.
+SceneMesh make_scene_mesh(const TriangleMesh& surface, std::span<const Vec3> normals, bool closed,
+                          Axis up);
+
+// The light as seen from a vertex, in POV-Ray's frame.
+struct LightGeometry {
+  bool parallel = true;
+  Vec3 vector = Vec3(0, 1, 0);  // parallel: unit direction to the light; else its position
+};
+
+using TextureCoordinate = std::array<float, 2>;
+
+// (u, v) per vertex as above; `labels` may be empty (no flow regions: v = 0.5).
+std::vector<TextureCoordinate> toon_coordinates(const SceneMesh& mesh, const LightGeometry& light,
+                                                std::span<const std::int8_t> labels);
+
+}  // namespace toonwater::povgen
