@@ -29,8 +29,10 @@ double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {
 
 namespace {
 
-// A free-surface vertex: every incident face faces up (n·up above the limit). Walls, floor
-// and the creases where they meet the water have at least one face that does not.
+// A free-surface vertex: every incident face faces up (n·up above the limit), and so do all
+// the faces of its neighbours. Walls and floor fail the first test; the second keeps one ring
+// away from where they meet the water, which marching cubes rounds into a strongly curved
+// fillet (in Mantaflow output its faces tilt 6°–65° off the vertical).
 std::vector<bool> free_surface_vertices(const TriangleMesh& mesh, const VertexFaces& vf,
                                         int up, double min_up_component) {
   std::vector<std::int8_t> face_up(mesh.triangles.size(), 0);  // 1 up, -1 not, 0 no normal
@@ -42,14 +44,20 @@ std::vector<bool> free_surface_vertices(const TriangleMesh& mesh, const VertexFa
     if (length > 0.0 && std::isfinite(length))
       face_up[f] = cross[up] > min_up_component * length ? 1 : -1;
   }
-  std::vector<bool> free_surface(mesh.positions.size(), false);
+  std::vector<bool> faces_up(mesh.positions.size(), false);
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
     bool any_up = false, all_up = true;
     for (std::int32_t f : vf.of(static_cast<std::int32_t>(v))) {
       any_up |= face_up[f] > 0;
       all_up &= face_up[f] >= 0;
     }
-    free_surface[v] = any_up && all_up;
+    faces_up[v] = any_up && all_up;
+  }
+  std::vector<bool> free_surface(faces_up);
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    if (!faces_up[v]) continue;
+    for (std::int32_t f : vf.of(static_cast<std::int32_t>(v)))
+      for (std::int32_t w : mesh.triangles[f]) free_surface[v] = free_surface[v] && faces_up[w];
   }
   return free_surface;
 }

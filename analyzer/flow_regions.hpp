@@ -2,8 +2,9 @@
 //   ridge  where |K| > T and H > 0,
 //   valley where |K| > T and H < 0,
 // marked only inside a region of interest: the bounding box of the vertices displaced from the
-// water's rest level, grown by a margin, and only on the upward-facing free surface, so that the
-// walls and floor of a closed liquid volume (and their corners) never become flow regions.
+// water's rest level, grown by a margin, and only on the upward-facing free surface (one ring
+// in from where it meets anything else), so that the walls and floor of a closed liquid volume,
+// their corners and the fillets where they meet the water never become flow regions.
 //
 // Scale-free defaults: lengths are measured in median edge lengths ℓ, and the default threshold
 // is T = c / ℓ² (K has units 1/length²), so the same scene in millimetres or in metres gets the
@@ -28,7 +29,7 @@ struct FlowOptions {
   std::optional<double> rest_height;       // default: median height of the upward-facing vertices
   double displacement_tolerance = 0.5;     // in ℓ: |height − rest| above this is "displaced"
   double margin = 3.0;                     // in ℓ: growth of the displaced vertices' box
-  double min_up_component = 0.1;           // a free-surface face has n·up above this
+  double min_up_component = 0.5;           // a free-surface face has n·up above this (slope < 60°)
 };
 
 struct Box3 {

@@ -1,0 +1,78 @@
+// The analyzer on real simulation output from ../shared/data (skipped where it is absent):
+// a Blender Mantaflow sequence (closed liquid volume, Z up) and a Blender FFT ocean (open sheet).
+#include "analyzer/analysis.hpp"
+#include "analyzer/mesh_reader.hpp"
+#include "tests/analyzer/curvature_test_util.hpp"
+#include "tests/support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+namespace toonwater::test {
+namespace {
+
+std::filesystem::path data_file(const std::string& relative) {
+  const std::filesystem::path shared = shared_dir();
+  if (shared.empty()) return {};
+  return shared / "data" / relative;
+}
+
+Analysis analyze_z_up(const std::filesystem::path& path) {
+  AnalyzeOptions options;
+  options.flow.up = Axis::z;
+  return analyze_mesh(read_mesh(path).mesh, options);
+}
+
+class MantaflowFrame : public testing::TestWithParam<int> {};
+
+TEST_P(MantaflowFrame, ClosedVolumeWallsAndFloorCarryNoFlowRegions) {
+  char name[64];
+  std::snprintf(name, sizeof name, "mantaflow-wake/water_%04d.obj", GetParam());
+  const auto path = data_file(name);
+  if (path.empty()) GTEST_SKIP() << "../shared/data is absent: real-data tests skipped";
+  const Analysis a = analyze_z_up(path);
+  EXPECT_EQ(a.topology.boundary_vertices, 0u) << "the liquid volume is closed";
+  EXPECT_EQ(a.flipped_faces, 0u);
+  EXPECT_TRUE(all_finite(a.curvature));
+  // The surface rests at z ≈ 0.2263 (data README); the floor and walls must not pull it away.
+  EXPECT_NEAR(a.flow.rest_height, 0.2263, 0.01);
+  std::size_t labelled = 0;
+  for (std::size_t v = 0; v < a.surface.positions.size(); ++v) {
+    const Vec3& p = a.surface.positions[v];
+    const bool wall_or_floor = std::abs(p.x()) > 0.98 || std::abs(p.y()) > 0.48 || p.z() < 0.02;
+    if (wall_or_floor) {
+      EXPECT_EQ(a.flow.label[v], FlowLabel::none) << p.transpose();
+    }
+    labelled += a.flow.label[v] != FlowLabel::none;
+  }
+  EXPECT_GT(a.flow.ridge_vertices, 0u);
+  EXPECT_GT(a.flow.valley_vertices, 0u);
+  EXPECT_LT(labelled, a.flow.free_surface_vertices / 5) << "flow regions are features, not the sea";
+}
+
+INSTANTIATE_TEST_SUITE_P(Frames, MantaflowFrame, testing::Values(1, 15, 25, 30));
+
+TEST(BlenderOcean, OpenSheetHasABoundaryRimAndBothKindsOfRegion) {
+  const auto path = data_file("blender-ocean/water_0001.obj");
+  if (path.empty()) GTEST_SKIP() << "../shared/data is absent: real-data tests skipped";
+  const Analysis a = analyze_z_up(path);
+  EXPECT_EQ(a.surface.positions.size(), 38809u);
+  EXPECT_EQ(a.topology.boundary_vertices, 4u * 196u);  // 197 × 197 grid rim
+  EXPECT_TRUE(all_finite(a.curvature));
+  EXPECT_GT(a.flow.ridge_vertices, 100u);
+  EXPECT_GT(a.flow.valley_vertices, 100u);
+  // Crests (ridges) lie above the rest level on average, and above the valleys. (With choppy
+  // waves the valleys are not in the broad troughs but on the concave flanks of the crests.)
+  double ridge_height = 0, valley_height = 0;
+  for (std::size_t v = 0; v < a.surface.positions.size(); ++v) {
+    if (a.flow.label[v] == FlowLabel::ridge) ridge_height += a.surface.positions[v].z();
+    if (a.flow.label[v] == FlowLabel::valley) valley_height += a.surface.positions[v].z();
+  }
+  EXPECT_GT(ridge_height / static_cast<double>(a.flow.ridge_vertices), a.flow.rest_height);
+  EXPECT_GT(ridge_height / static_cast<double>(a.flow.ridge_vertices),
+            valley_height / static_cast<double>(a.flow.valley_vertices));
+}
+
+}  // namespace
+}  // namespace toonwater::test
