@@ -6,6 +6,8 @@
 // mesh size (valences are small) and needs no halfedge structure.
 #include "analyzer/topology.hpp"
 
+#include "analyzer/parallel.hpp"
+
 #include <algorithm>
 #include <numeric>
 #include <queue>
@@ -116,21 +118,36 @@ std::size_t count_components(const TriangleMesh& mesh) {
 MeshTopology analyze_topology(const TriangleMesh& mesh) {
   MeshTopology topo;
   topo.vertex_faces = build_vertex_faces(mesh.positions.size(), mesh.triangles);
-  topo.kind.resize(mesh.positions.size());
-  std::vector<RingNeighbour> ring;
-  std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0;
-  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-    const VertexEdges e =
-        classify_vertex(mesh, topo.vertex_faces, static_cast<std::int32_t>(v), ring);
-    topo.kind[v] = e.kind;
-    boundary_edge_ends += e.boundary_edges;
-    nonmanifold_edge_ends += e.nonmanifold_edges;
-    switch (e.kind) {
-      case VertexKind::boundary: ++topo.boundary_vertices; break;
-      case VertexKind::nonmanifold: ++topo.nonmanifold_vertices; break;
-      case VertexKind::isolated: ++topo.isolated_vertices; break;
-      case VertexKind::interior: break;
+  const std::size_t n = mesh.positions.size();
+  topo.kind.resize(n);
+
+  struct Counts {
+    std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0;
+    std::size_t boundary = 0, nonmanifold = 0, isolated = 0;
+  };
+  const std::size_t workers = worker_count(n);
+  std::vector<Counts> counts(workers);
+  parallel_chunks(n, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
+    std::vector<RingNeighbour> ring;
+    Counts& c = counts[worker];
+    for (std::size_t v = begin; v < end; ++v) {
+      const VertexEdges e =
+          classify_vertex(mesh, topo.vertex_faces, static_cast<std::int32_t>(v), ring);
+      topo.kind[v] = e.kind;
+      c.boundary_edge_ends += e.boundary_edges;
+      c.nonmanifold_edge_ends += e.nonmanifold_edges;
+      c.boundary += e.kind == VertexKind::boundary;
+      c.nonmanifold += e.kind == VertexKind::nonmanifold;
+      c.isolated += e.kind == VertexKind::isolated;
     }
+  });
+  std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0;
+  for (const Counts& c : counts) {
+    boundary_edge_ends += c.boundary_edge_ends;
+    nonmanifold_edge_ends += c.nonmanifold_edge_ends;
+    topo.boundary_vertices += c.boundary;
+    topo.nonmanifold_vertices += c.nonmanifold;
+    topo.isolated_vertices += c.isolated;
   }
   topo.boundary_edges = boundary_edge_ends / 2;  // each edge was seen from both of its ends
   topo.nonmanifold_edges = nonmanifold_edge_ends / 2;
