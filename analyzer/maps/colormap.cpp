@@ -24,7 +24,7 @@ Rgb8 diverging_colour(double t) {
   Rgb8 colour;
   for (int c = 0; c < 3; ++c) {
     const double value = (1.0 - s) * blue_white_red[lower][c] + s * blue_white_red[lower + 1][c];
-    colour[c] = static_cast<std::uint8_t>(std::lround(value));
+    colour[c] = static_cast<std::uint8_t>(value + 0.5);  // value in [0, 255]
   }
   return colour;
 }
