@@ -1,8 +1,7 @@
 // Water-flow regions (You, Park, Choi, Noh, §2.3); the rules are stated in flow_regions.hpp.
 #include "analyzer/flow_regions.hpp"
 
-#include "analyzer/parallel.hpp"
-#include "analyzer/topology.hpp"
+#include "analyzer/free_surface.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,63 +28,6 @@ double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {
 }
 
 namespace {
-
-// A free-surface vertex: every incident face faces up (n·up above the limit), and so do all
-// the faces of its neighbours. Walls and floor fail the first test; the second keeps one ring
-// away from where they meet the water, which marching cubes rounds into a strongly curved
-// fillet (in Mantaflow output its faces tilt 6°–65° off the vertical).
-std::vector<std::uint8_t> free_surface_vertices(const TriangleMesh& mesh, const VertexFaces& vf,
-                                                int up, double min_up_component) {
-  std::vector<std::int8_t> face_up(mesh.triangles.size(), 0);  // 1 up, -1 not, 0 no normal
-  parallel_chunks(mesh.triangles.size(), worker_count(mesh.triangles.size()),
-                  [&](std::size_t, std::size_t begin, std::size_t end) {
-                    for (std::size_t f = begin; f < end; ++f) {
-                      const Triangle& t = mesh.triangles[f];
-                      const Vec3& a = mesh.positions[t[0]];
-                      const Vec3 cross = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);
-                      const double length = cross.norm();
-                      if (length > 0.0 && std::isfinite(length))
-                        face_up[f] = cross[up] > min_up_component * length ? 1 : -1;
-                    }
-                  });
-  const std::size_t n = mesh.positions.size();
-  std::vector<std::uint8_t> faces_up(n, 0);
-  parallel_chunks(n, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      bool any_up = false, all_up = true;
-      for (std::int32_t f : vf.of(static_cast<std::int32_t>(v))) {
-        any_up |= face_up[f] > 0;
-        all_up &= face_up[f] >= 0;
-      }
-      faces_up[v] = any_up && all_up;
-    }
-  });
-  std::vector<std::uint8_t> free_surface(n, 0);
-  parallel_chunks(n, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      bool inside = faces_up[v];
-      for (std::int32_t f : vf.of(static_cast<std::int32_t>(v)))
-        for (std::int32_t w : mesh.triangles[f]) inside = inside && faces_up[w];
-      free_surface[v] = inside;
-    }
-  });
-  return free_surface;
-}
-
-// Median height of the selected vertices, from a deterministic sample of at most 100k.
-double median_height(const TriangleMesh& mesh, const std::vector<std::uint8_t>& selected,
-                     std::size_t selected_count, int up) {
-  const std::size_t stride = std::max<std::size_t>(1, selected_count / 100000);
-  std::vector<double> heights;
-  heights.reserve(selected_count / stride + 1);
-  std::size_t seen = 0;
-  for (std::size_t v = 0; v < mesh.positions.size(); ++v)
-    if (selected[v] && seen++ % stride == 0) heights.push_back(mesh.positions[v][up]);
-  if (heights.empty()) return 0.0;
-  const auto middle = heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2);
-  std::nth_element(heights.begin(), middle, heights.end());
-  return *middle;
-}
 
 // Bounding box of the free-surface vertices displaced from the rest level, grown by `margin`.
 Box3 displaced_region(const TriangleMesh& mesh, const std::vector<std::uint8_t>& free_surface, int up,
@@ -118,12 +60,18 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   flow.threshold = options.k_threshold.value_or(
       edge > 0.0 ? options.k_threshold_relative / (edge * edge) : 0.0);
 
-  const std::vector<std::uint8_t> free_surface =
-      free_surface_vertices(mesh, vertex_faces, up, options.min_up_component);
-  flow.free_surface_vertices =
-      static_cast<std::size_t>(std::count(free_surface.begin(), free_surface.end(), 1));
-  flow.rest_height = options.rest_height.value_or(
-      median_height(mesh, free_surface, flow.free_surface_vertices, up));
+  FreeSurfaceOptions surface_options;
+  surface_options.up = options.up;
+  surface_options.min_up_component = options.min_up_component;
+  surface_options.rest_height = options.rest_height;
+  surface_options.max_depth = options.max_depth;
+  surface_options.min_patch_vertices = options.min_patch_vertices;
+  FreeSurface surface = select_free_surface(mesh, vertex_faces, edge, surface_options);
+  flow.free_surface = std::move(surface.selected);
+  flow.free_surface_vertices = surface.vertices;
+  flow.free_surface_patches_dropped = surface.patches_dropped;
+  flow.rest_height = surface.rest_height;
+  const std::vector<std::uint8_t>& free_surface = flow.free_surface;
   if (options.region_of_interest) {
     flow.region_of_interest =
         displaced_region(mesh, free_surface, up, flow.rest_height,

@@ -1,10 +1,10 @@
 // Water-flow regions (You, Park, Choi, Noh, "Toon Rendering of Water Animation", §2.3):
 //   ridge  where |K| > T and H > 0,
 //   valley where |K| > T and H < 0,
-// marked only inside a region of interest: the bounding box of the vertices displaced from the
-// water's rest level, grown by a margin, and only on the upward-facing free surface (one ring
-// in from where it meets anything else), so that the walls and floor of a closed liquid volume,
-// their corners and the fillets where they meet the water never become flow regions.
+// marked only on the free surface (free_surface.hpp: not on the walls, floor and corners of a
+// closed liquid volume, nor on the fillets where they meet the water or the floor of a cavity
+// under a floating object) and only inside a region of interest: the bounding box of the
+// free-surface vertices displaced from the water's rest level, grown by a margin.
 //
 // Scale-free defaults: lengths are measured in median edge lengths ℓ, and the default threshold
 // is T = c / ℓ² (K has units 1/length²), so the same scene in millimetres or in metres gets the
@@ -29,7 +29,10 @@ struct FlowOptions {
   std::optional<double> rest_height;       // default: median height of the upward-facing vertices
   double displacement_tolerance = 0.5;     // in ℓ: |height − rest| above this is "displaced"
   double margin = 3.0;                     // in ℓ: growth of the displaced vertices' box
+  // Free-surface selection: see free_surface.hpp.
   double min_up_component = 0.5;           // a free-surface face has n·up above this (slope < 60°)
+  double max_depth = 2.0;                  // in ℓ: patches deeper below the rest level are dropped
+  std::size_t min_patch_vertices = 16;     // smaller detached patches (droplets) carry no flow
 };
 
 struct Box3 {
@@ -49,7 +52,9 @@ struct FlowRegions {
   double median_edge_length = 0.0;
   double rest_height = 0.0;
   Box3 region_of_interest;         // empty when nothing is displaced
+  std::vector<std::uint8_t> free_surface;  // per vertex: 1 on the free surface (free_surface.hpp)
   std::size_t free_surface_vertices = 0;
+  std::size_t free_surface_patches_dropped = 0;
   std::size_t ridge_vertices = 0;
   std::size_t valley_vertices = 0;
 };

@@ -3,6 +3,7 @@
 
 #include "analyzer/analysis.hpp"
 #include "analyzer/curvature_export.hpp"
+#include "analyzer/maps/map_writer.hpp"
 #include "analyzer/mesh_reader.hpp"
 
 #include <chrono>
@@ -12,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace toonwater::cli {
 namespace {
@@ -20,6 +22,9 @@ struct AnalyzeArgs {
   std::string mesh;
   std::string csv;
   std::string ply;
+  std::string maps;                // directory for the curvature maps
+  std::optional<int> maps_size;    // pixels along the longer side
+  std::vector<double> maps_box;    // u_min, v_min, u_max, v_max
   Axis up = Axis::y;
   std::optional<double> k_threshold;
   double k_threshold_relative = FlowOptions{}.k_threshold_relative;
@@ -27,6 +32,8 @@ struct AnalyzeArgs {
   bool no_roi = false;
   double roi_tolerance = FlowOptions{}.displacement_tolerance;
   double roi_margin = FlowOptions{}.margin;
+  Estimator estimator = Estimator::one_ring;
+  int smooth = 0;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -41,8 +48,8 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
                "%s: %zu vertices (%zu welded), %zu faces\n"
                "  boundary %zu, non-manifold %zu, isolated %zu vertices; degenerate or sliver "
                "faces %zu, flipped faces %zu; curvature extrapolated at %zu, undefined at %zu\n"
-               "  flow: T = %.6g (median edge %.6g), rest height %.6g, free surface %zu, "
-               "ridge %zu, valley %zu\n"
+               "  flow: T = %.6g (median edge %.6g), rest height %.6g, free surface %zu vertices "
+               "(%zu patches dropped), ridge %zu, valley %zu\n"
                "  time: read %.3f s, weld %.3f s, topology %.3f s, curvature %.3f s, "
                "flow %.3f s, write %.3f s\n",
                mesh_path.c_str(), a.input_vertices, a.merged_vertices, a.surface.triangles.size(),
@@ -50,7 +57,7 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
                a.curvature.sliver_faces, a.flipped_faces, a.curvature.extrapolated_vertices,
                a.curvature.undefined_vertices,
                f.threshold, f.median_edge_length, f.rest_height, f.free_surface_vertices,
-               f.ridge_vertices, f.valley_vertices, read_seconds, a.times.weld, a.times.topology,
+               f.free_surface_patches_dropped, f.ridge_vertices, f.valley_vertices, read_seconds, a.times.weld, a.times.topology,
                a.times.curvature, a.times.flow, write_seconds);
 }
 
@@ -67,12 +74,26 @@ void run_analyze(const AnalyzeArgs& args) {
   options.flow.region_of_interest = !args.no_roi;
   options.flow.displacement_tolerance = args.roi_tolerance;
   options.flow.margin = args.roi_margin;
+  options.estimator = args.estimator;
+  options.smoothing_steps = args.smooth;
   const Analysis analysis = analyze_mesh(input.mesh, options);
 
   start = std::chrono::steady_clock::now();
   if (!args.csv.empty()) write_curvature_csv(args.csv, input.mesh, analysis);
   if (!args.ply.empty()) write_curvature_ply(args.ply, input.mesh, analysis);
+  std::optional<MapRanges> map_ranges;
+  if (!args.maps.empty()) {
+    MapOptions map_options;
+    map_options.size = args.maps_size;
+    if (args.maps_box.size() == 4)
+      map_options.box = MapBox{args.maps_box[0], args.maps_box[1], args.maps_box[2], args.maps_box[3]};
+    map_ranges = write_frame_maps(args.maps, std::filesystem::path(args.mesh).stem().string(),
+                                  analysis, args.up, map_options);
+  }
   print_summary(args.mesh, analysis, read_seconds, seconds_since(start));
+  if (map_ranges)
+    std::fprintf(stderr, "  maps in %s: colour ranges K \u00b1%.6g, H \u00b1%.6g\n", args.maps.c_str(),
+                 map_ranges->gaussian, map_ranges->mean);
 }
 
 }  // namespace
@@ -84,6 +105,15 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("mesh", args->mesh, "Surface mesh: OBJ, OFF, PLY or STL")->required();
   cmd->add_option("--csv", args->csv, "Write x,y,z,gaussian,mean,k1,k2,area,label per vertex");
   cmd->add_option("--ply", args->ply, "Write a binary PLY with the curvature as vertex properties");
+  cmd->add_option("--maps", args->maps,
+                  "Write top-down curvature maps (EXR + PNG previews) into this directory");
+  cmd->add_option("--maps-size", args->maps_size,
+                  "Map pixels along the longer side (default: 2 per median edge length)")
+      ->check(CLI::Range(1, 4096));
+  cmd->add_option("--maps-box", args->maps_box,
+                  "Map extent u_min,v_min,u_max,v_max seen from above (default: the surface's)")
+      ->expected(4)
+      ->delimiter(',');
   const std::map<std::string, Axis> axes{{"x", Axis::x}, {"y", Axis::y}, {"z", Axis::z}};
   cmd->add_option("--up", args->up, "Up axis of the input (Blender writes z)")
       ->transform(CLI::CheckedTransformer(axes, CLI::ignore_case))
@@ -106,6 +136,17 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--roi-margin", args->roi_margin,
                   "Growth of the displaced vertices' bounding box, in median edge lengths")
       ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  const std::map<std::string, Estimator> estimators{{"one-ring", Estimator::one_ring},
+                                                    {"jet", Estimator::jet}};
+  cmd->add_option("--estimator", args->estimator,
+                  "Curvature estimator: one-ring (the paper's operators, fastest) or jet (cubic "
+                  "fits over the two-ring: accurate on irregular and noisy meshes, slower)")
+      ->transform(CLI::CheckedTransformer(estimators, CLI::ignore_case))
+      ->default_str("one-ring");
+  cmd->add_option("--smooth", args->smooth,
+                  "Steps of area-weighted smoothing of K and H over the one-ring")
+      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   cmd->callback([args] { run_analyze(*args); });
 }

@@ -1,0 +1,80 @@
+// Free-surface selection: upward faces, one ring in from the walls, patches that are too deep
+// or too small dropped.
+#include "analyzer/flow_regions.hpp"
+#include "analyzer/free_surface.hpp"
+#include "tests/analyzer/water_meshes.hpp"
+
+#include <gtest/gtest.h>
+
+namespace toonwater::test {
+namespace {
+
+FreeSurface free_surface_of(const TriangleMesh& mesh, FreeSurfaceOptions options = {}) {
+  options.up = Axis::z;
+  const MeshTopology topology = analyze_topology(mesh);
+  return select_free_surface(mesh, topology.vertex_faces, median_edge_length(mesh), options);
+}
+
+// A square step of the given height within radius 0.3 of the centre: on a 0.05 grid its
+// sides are nearly vertical, so the step's top is a patch of its own.
+HeightFunction step(double height) {
+  return [height](double x, double y) { return std::hypot(x, y) < 0.3 ? height : 0.0; };
+}
+
+std::size_t selected_inside(const TriangleMesh& m, const FreeSurface& s, double radius) {
+  std::size_t count = 0;
+  for (std::size_t v = 0; v < m.positions.size(); ++v)
+    count += s.selected[v] && std::hypot(m.positions[v].x(), m.positions[v].y()) < radius &&
+             m.positions[v].z() > -0.5;
+  return count;
+}
+
+TEST(FreeSurface, CavityFloorBelowTheRestLevelIsDropped) {
+  const TriangleMesh m = tank(41, step(-0.3));  // 6 edge lengths deep
+  const FreeSurface s = free_surface_of(m);
+  EXPECT_EQ(s.patches_dropped, 1u);
+  EXPECT_EQ(selected_inside(m, s, 0.25), 0u);
+  EXPECT_DOUBLE_EQ(s.rest_height, 0.0);
+}
+
+TEST(FreeSurface, RaisedPatchIsKept) {
+  const TriangleMesh m = tank(41, step(0.3));
+  const FreeSurface s = free_surface_of(m);
+  EXPECT_EQ(s.patches_dropped, 0u);
+  EXPECT_EQ(s.patches_kept, 2u);
+  EXPECT_GT(selected_inside(m, s, 0.25), 10u);
+}
+
+TEST(FreeSurface, DropletsAreKeptAboveAGivenSize) {
+  TriangleMesh m = tank(41, [](double, double) { return 0.0; });
+  // A detached droplet (a separate closed sphere) above the water.
+  const AnalyticSurface drop = make_icosphere(3, 0.2);
+  const auto offset = static_cast<std::int32_t>(m.positions.size());
+  for (const Vec3& p : drop.mesh.positions) m.positions.push_back(p + Vec3(0, 0, 0.6));
+  for (const Triangle& t : drop.mesh.triangles)
+    m.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  auto droplet_vertices = [&](const FreeSurface& s) {
+    std::size_t count = 0;
+    for (std::size_t v = static_cast<std::size_t>(offset); v < m.positions.size(); ++v) count += s.selected[v];
+    return count;
+  };
+  const FreeSurface kept = free_surface_of(m);
+  EXPECT_GT(droplet_vertices(kept), 16u);  // its upper cap
+  FreeSurfaceOptions options;
+  options.min_patch_vertices = 10000;
+  const FreeSurface dropped = free_surface_of(m, options);
+  EXPECT_EQ(droplet_vertices(dropped), 0u);
+  EXPECT_EQ(dropped.patches_dropped, 1u);
+  EXPECT_EQ(dropped.vertices + droplet_vertices(kept), kept.vertices);
+}
+
+TEST(FreeSurface, SteepFacesAreNotFreeSurface) {
+  // A 70° slope everywhere: nothing faces up enough.
+  const TriangleMesh m = height_field(21, [](double x, double) { return 2.75 * x; });
+  EXPECT_EQ(free_surface_of(m).vertices, 0u);
+  const TriangleMesh gentle = height_field(21, [](double x, double) { return 1.5 * x; });  // 56°
+  EXPECT_EQ(free_surface_of(gentle).vertices, 21u * 21u);
+}
+
+}  // namespace
+}  // namespace toonwater::test
