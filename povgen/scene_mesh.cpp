@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace toonwater::povgen {
 namespace {
@@ -23,6 +24,7 @@ SceneMesh make_scene_mesh(const TriangleMesh& surface, std::span<const Vec3> nor
   SceneMesh out;
   out.closed = closed;
   const std::size_t n = surface.positions.size();
+  if (normals.size() != n) throw std::logic_error("make_scene_mesh: one normal per vertex expected");
   out.triangles.reserve(surface.triangles.size());
   for (const Triangle& t : surface.triangles) {
     if (is_degenerate(surface, t)) ++out.degenerate_faces;

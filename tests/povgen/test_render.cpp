@@ -1,0 +1,340 @@
+// povgen scenes rendered with POV-Ray at tiny sizes, pixels read back with OpenImageIO.
+// PNGs are written with File_Gamma=1.0, so pixel values are the scene's colours × 255.
+#include "tests/povgen/povgen_test_util.hpp"
+#include "tests/support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace toonwater::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Writes a scene with toonwater povgen and renders it; returns the frame's image.
+Image render_scene(const ScratchDir& dir, const std::string& name,
+                   std::vector<std::string> args) {
+  const fs::path out = dir / name;
+  std::vector<std::string> full{"povgen", "--out", out.string()};
+  full.insert(full.end(), args.begin(), args.end());
+  const CommandResult r = run_toonwater(full);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const Povray p = run_povray(out);
+  EXPECT_EQ(p.exit_code, 0) << p.output;
+  return read_image(out / "frame.png");
+}
+
+std::string color(const std::array<double, 3>& c) {
+  return "[" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) + "]";
+}
+
+const std::array<double, 3> kBright{0.9, 0.9, 0.2}, kMedium{0.2, 0.6, 0.9}, kDark{0.1, 0.1, 0.5},
+    kBackground{1, 1, 1}, kObject{0.9, 0.5, 0.1};
+
+std::vector<std::string> opaque_flat_water() {
+  return {"--set", "water.ks=0", "--set", "water.reflection=0", "--set", "water.transmit=0",
+          "--set", "render.antialias=false", "--set", "render.background=" + color(kBackground),
+          "--set", "flow.enabled=false"};
+}
+
+std::vector<std::string> operator+(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+bool orange(const Rgb8& c) { return c[0] > c[2] + 60 && c[0] > c[1] + 20; }
+
+TEST(PovgenRender, ThreeCrispBandsExactlyWhereTheThresholdsPutThem) {
+  ScratchDir dir;
+  write_obj(dir / "water.obj", make_sphere(Vec3::Zero(), 1.0, 48, 96));
+  const int W = 64, H = 48;
+  const double angle = 40, t_bright = 0.6, t_medium = 0.0;
+  const Image img = render_scene(
+      dir, "bands",
+      std::vector<std::string>{"--water", (dir / "water.obj").string(), "--set", "outline.enabled=false",
+                               "--set", "water.bright=" + color(kBright), "--set",
+                               "water.medium=" + color(kMedium), "--set", "water.dark=" + color(kDark),
+                               "--set", "water.t_bright=0.6", "--set", "water.t_medium=0.0", "--set",
+                               "light.direction=[1, 1, 1]", "--set", "camera.location=[0, 0, 5]",
+                               "--set", "camera.look_at=[0, 0, 0]", "--set", "camera.angle=40",
+                               "--set", "render.width=64", "--set", "render.height=48"} +
+          opaque_flat_water());
+  ASSERT_EQ(img.width, W);
+  const Rgb8 bright = to_rgb8(kBright[0], kBright[1], kBright[2]);
+  const Rgb8 medium = to_rgb8(kMedium[0], kMedium[1], kMedium[2]);
+  const Rgb8 dark = to_rgb8(kDark[0], kDark[1], kDark[2]);
+  const Rgb8 background = to_rgb8(1, 1, 1);
+
+  // POV-Ray's frame: y-up input (x, y, z) -> (x, y, -z); camera at -5 z looking at +z.
+  const Vec3 eye(0, 0, -5), light = Vec3(1, 1, -1).normalized();
+  const double aspect = double(W) / H;
+  const double focal = 0.5 * aspect / std::tan(angle / 2 * std::numbers::pi / 180);
+  int counts[4] = {0, 0, 0, 0}, checked = 0;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const Rgb8 c = img.at(x, y);
+      const bool known = near(c, bright) || near(c, medium) || near(c, dark) || near(c, background);
+      ASSERT_TRUE(known) << "pixel " << x << "," << y << " has a colour outside the bands";
+      counts[0] += near(c, bright), counts[1] += near(c, medium), counts[2] += near(c, dark);
+      counts[3] += near(c, background);
+      const Vec3 ray = Vec3(aspect * ((x + 0.5) / W - 0.5), 0.5 - (y + 0.5) / H, focal).normalized();
+      const double b = eye.dot(ray), miss = b * b - eye.squaredNorm();  // |eye + t ray| = r
+      const double closest = std::sqrt(std::max(0.0, eye.squaredNorm() - b * b));
+      if (std::abs(closest - 1.0) < 0.04) continue;  // the silhouette: the mesh is polygonal
+      if (closest > 1.0) {
+        EXPECT_TRUE(near(c, background)) << x << "," << y;
+        continue;
+      }
+      const double t = -b - std::sqrt(miss + 1.0);
+      const Vec3 n = (eye + t * ray).normalized();
+      const double l_dot_n = light.dot(n);
+      if (std::abs(l_dot_n - t_bright) < 0.04 || std::abs(l_dot_n - t_medium) < 0.04) continue;
+      const Rgb8 expected = l_dot_n > t_bright ? bright : l_dot_n > t_medium ? medium : dark;
+      EXPECT_TRUE(near(c, expected)) << "pixel " << x << "," << y << " L.n " << l_dot_n;
+      ++checked;
+    }
+  EXPECT_GT(checked, 600);
+  for (int band = 0; band < 3; ++band) EXPECT_GT(counts[band], 40) << "band " << band;
+}
+
+TEST(PovgenRender, OutlineAroundASphereIsARingOfTheExpectedWidth) {
+  ScratchDir dir;
+  write_obj(dir / "water.obj", make_height_grid(3, 0.5, [](double, double) { return -50.0; }));
+  write_obj(dir / "ball.obj", make_sphere(Vec3::Zero(), 1.0, 48, 96));
+  const int W = 96;
+  const double angle = 30, D = 6, R = 1, w = 0.1;
+  const Image img = render_scene(
+      dir, "ring",
+      std::vector<std::string>{"--water", (dir / "water.obj").string(), "--object",
+                               (dir / "ball.obj").string(), "--set", "outline.units=world", "--set",
+                               "outline.width=0.1", "--set", "object.0.color=" + color(kObject),
+                               "--set", "camera.location=[0, 0, 6]", "--set", "camera.look_at=[0, 0, 0]",
+                               "--set", "camera.angle=30", "--set", "render.width=96", "--set",
+                               "render.height=96"} +
+          opaque_flat_water());
+  const double f = (W / 2.0) / std::tan(angle / 2 * std::numbers::pi / 180);
+  const double r_inner = f * std::tan(std::asin(R / D)), r_outer = f * std::tan(std::asin((R + w) / D));
+  int black = 0;
+  for (int y = 0; y < W; ++y)
+    for (int x = 0; x < W; ++x) {
+      const double d = std::hypot(x + 0.5 - W / 2.0, y + 0.5 - W / 2.0);
+      const bool is_black = near(img.at(x, y), {0, 0, 0}, 8);
+      if (d < r_inner - 1.0) {
+        EXPECT_FALSE(is_black) << "black inside the object at " << x << "," << y;
+      }
+      if (d > r_outer + 1.0) {
+        EXPECT_FALSE(is_black) << "black outside the ring at " << x << "," << y;
+      }
+      black += is_black;
+    }
+  const double annulus = std::numbers::pi * (r_outer * r_outer - r_inner * r_inner);
+  EXPECT_NEAR(black, annulus, 0.25 * annulus) << "ring " << r_inner << "-" << r_outer << " px";
+  // Continuous: every direction from the centre crosses the ring.
+  for (int k = 0; k < 72; ++k) {
+    const double a = 2 * std::numbers::pi * k / 72;
+    bool hit = false;
+    for (double r = r_inner - 1; r <= r_outer + 1; r += 0.25) {
+      const int x = int(W / 2.0 + r * std::cos(a)), y = int(W / 2.0 + r * std::sin(a));
+      hit = hit || near(img.at(x, y), {0, 0, 0}, 8);
+    }
+    EXPECT_TRUE(hit) << "gap in the outline at " << k * 5 << " degrees";
+  }
+}
+
+TEST(PovgenRender, AbstractReflectionShowsOnlyTheFlatSilhouette) {
+  ScratchDir dir;
+  write_obj(dir / "water.obj", make_height_grid(5, 4.0, [](double, double) { return 0.0; }));
+  write_obj(dir / "ball.obj", make_sphere(Vec3(0, 0.9, 0), 0.5, 16, 32));
+  auto args = [&](const char* target) {
+    return std::vector<std::string>{
+               "--water", (dir / "water.obj").string(), "--object", (dir / "ball.obj").string(),
+               "--set", "object.0.reflection=" + std::string(target), "--set",
+               "object.0.color=" + color(kObject), "--set", "outline.color=[0, 1, 0]", "--set",
+               "outline.units=world", "--set", "outline.width=0.05", "--set",
+               "water.bright=[0, 0, 0]", "--set", "water.medium=[0, 0, 0]", "--set",
+               "water.dark=[0, 0, 0]", "--set", "camera.location=[0, 1.0, 6]", "--set",
+               "camera.look_at=[0, 0.2, 0]", "--set", "render.width=64", "--set",
+               "render.height=48"} +
+           opaque_flat_water() + std::vector<std::string>{"--set", "water.reflection=1"};
+  };
+  const Image concrete = render_scene(dir, "concrete", args("concrete"));
+  const Image abstract = render_scene(dir, "abstract", args("abstract"));
+  const Image none = render_scene(dir, "none", args("none"));
+  int reflected = 0, orange_concrete = 0, orange_abstract = 0;
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x) {
+      orange_concrete += orange(concrete.at(x, y));
+      orange_abstract += orange(abstract.at(x, y));
+      if (near(concrete.at(x, y), abstract.at(x, y), 2)) continue;
+      ++reflected;  // differs: part of the reflection
+      EXPECT_TRUE(near(abstract.at(x, y), {0, 255, 0}, 2))
+          << "abstract reflection pixel " << x << "," << y << " is not the silhouette colour";
+      EXPECT_FALSE(near(none.at(x, y), {0, 255, 0}, 2) || orange(none.at(x, y)))
+          << "reflection target none still reflected at " << x << "," << y;
+    }
+  EXPECT_GT(reflected, 20);
+  EXPECT_GT(orange_concrete, orange_abstract + 20) << "concrete shows the object's bands";
+}
+
+TEST(PovgenRender, SubmergedObjectMovesWhenTheIorChangesAndKeepsItsOutline) {
+  ScratchDir dir;
+  write_obj(dir / "water.obj", make_height_grid(5, 3.0, [](double, double) { return 0.0; }));
+  write_obj(dir / "stone.obj", make_sphere(Vec3(0.6, -0.7, 0), 0.35, 16, 32));
+  struct Seen { double x = 0, y = 0; int count = 0, black = 0; };
+  auto render = [&](const char* ior) {
+    const Image img = render_scene(
+        dir, std::string("ior") + ior,
+        std::vector<std::string>{"--water", (dir / "water.obj").string(), "--object",
+                                 (dir / "stone.obj").string(), "--set", "object.0.color=" + color(kObject),
+                                 "--set", "camera.location=[0, 2.5, 4]", "--set",
+                                 "camera.look_at=[0, -0.5, 0]", "--set", "render.width=64", "--set",
+                                 "render.height=48", "--set", "outline.units=world", "--set",
+                                 "outline.width=0.04"} +
+            opaque_flat_water() +
+            std::vector<std::string>{"--set", "water.transmit=0.8", "--set",
+                                     std::string("water.ior=") + ior});
+    Seen s;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const Rgb8 c = img.at(x, y);
+        if (c[0] > c[2] + 50) s.x += x, s.y += y, ++s.count;
+        s.black += c[0] + c[1] + c[2] < 120;
+      }
+    s.x /= std::max(1, s.count), s.y /= std::max(1, s.count);
+    return s;
+  };
+  const Seen air = render("1.0"), water = render("1.33");
+  ASSERT_GT(air.count, 15);
+  ASSERT_GT(water.count, 15);
+  EXPECT_GT(std::hypot(air.x - water.x, air.y - water.y), 1.5)
+      << "centroid " << air.x << "," << air.y << " vs " << water.x << "," << water.y;
+  EXPECT_GT(water.black, 5) << "the outline survives refraction";
+}
+
+TEST(PovgenRender, RidgeColourOnABumpAndNotOnFlatWater) {
+  ScratchDir dir;
+  write_obj(dir / "bump.obj", make_height_grid(61, 1.0, [](double x, double z) {
+              return 0.25 * std::exp(-(x * x + z * z) / 0.05);
+            }));
+  write_obj(dir / "flat.obj", make_height_grid(61, 1.0, [](double, double) { return 0.0; }));
+  auto args = [&](const char* mesh) {
+    return std::vector<std::string>{
+               "--water", (dir / mesh).string(), "--set", "flow.ridge_color=[1, 0, 0]", "--set",
+               "flow.valley_color=[0, 0, 1]", "--set", "water.bright=[0.6, 0.9, 0.6]", "--set",
+               "water.medium=[0.3, 0.7, 0.3]", "--set", "water.dark=[0.1, 0.4, 0.1]", "--set",
+               "camera.location=[0, 2.5, 2.5]", "--set", "camera.look_at=[0, 0, 0]", "--set",
+               "render.width=64", "--set", "render.height=48"} +
+           opaque_flat_water() + std::vector<std::string>{"--set", "flow.enabled=true"};
+  };
+  auto count_ridge = [](const Image& img) {
+    int n = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) n += near(img.at(x, y), {255, 0, 0}, 2);
+    return n;
+  };
+  EXPECT_GT(count_ridge(render_scene(dir, "bump", args("bump.obj"))), 5);
+  EXPECT_EQ(count_ridge(render_scene(dir, "flat", args("flat.obj"))), 0);
+}
+
+// Input axes map to POV-Ray without mirroring: a marker on the viewer's right stays there.
+TEST(PovgenRender, AxesAreMappedWithoutMirroring) {
+  struct Case { const char* up; Vec3 marker; const char* camera; };
+  const Case cases[] = {{"y", {0.8, 0.3, 0}, "[0, 2, 5]"},
+                        {"z", {0.8, 0, 0.3}, "[0, -5, 2]"},
+                        {"x", {0.3, 0.8, 0}, "[2, 0, -5]"}};
+  for (const Case& c : cases) {
+    ScratchDir dir;
+    TriangleMesh water = make_height_grid(3, 2.0, [](double, double) { return 0.0; });
+    Vec3 up = Vec3::Zero();
+    up[c.up[0] - 'x'] = 1;
+    for (Vec3& p : water.positions)  // the y-up grid turned so that its normal is `up`
+      p = c.up[0] == 'y' ? p : c.up[0] == 'z' ? Vec3(p.x(), -p.z(), p.y()) : Vec3(p.y(), p.z(), p.x());
+    write_obj(dir / "water.obj", water);
+    write_obj(dir / "marker.obj", make_sphere(c.marker, 0.25, 8, 16));
+    const Image img = render_scene(
+        dir, "axes",
+        std::vector<std::string>{"--water", (dir / "water.obj").string(), "--object",
+                                 (dir / "marker.obj").string(), "--up", c.up, "--set",
+                                 "object.0.color=" + color(kObject), "--set",
+                                 std::string("camera.location=") + c.camera, "--set",
+                                 "camera.look_at=[0, 0, 0]", "--set", "render.width=64", "--set",
+                                 "render.height=48", "--set", "outline.enabled=false"} +
+            opaque_flat_water());
+    double sum = 0;
+    int count = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x)
+        if (orange(img.at(x, y))) sum += x, ++count;
+    ASSERT_GT(count, 5) << "--up " << c.up;
+    EXPECT_GT(sum / count, img.width / 2.0 + 5) << "--up " << c.up << ": marker mirrored";
+  }
+}
+
+TEST(PovgenRender, TwoFrameSequenceRendersWithOnePovrayCommandAndWithRender) {
+  ScratchDir dir;
+  for (int f = 1; f <= 2; ++f)
+    write_obj(dir / ("water_000" + std::to_string(f) + ".obj"),
+              make_height_grid(21, 1.0, [f](double x, double z) {
+                return 0.2 * std::sin(3 * x + f) * std::cos(2 * z);
+              }));
+  const fs::path out = dir / "seq";
+  CommandResult r = run_toonwater({"povgen", "--water", (dir / "water_####.obj").string(), "--out",
+                                   out.string(), "--set", "render.width=48", "--set",
+                                   "render.height=36", "--set", "render.antialias=false"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("frame 2/2"), std::string::npos) << "progress shown";
+  const Povray p = run_povray(out);
+  ASSERT_EQ(p.exit_code, 0) << p.output;
+  const Image a = read_image(out / "frame_1.png"), b = read_image(out / "frame_2.png");
+  EXPECT_NE(a.pixels, b.pixels) << "the two frames show different meshes";
+
+  fs::remove(out / "frame_1.png");
+  fs::remove(out / "frame_2.png");
+  r = run_toonwater({"render", out.string(), "--jobs", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("2 frame(s) rendered, 0 failed"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out / "frame_1.png") && fs::exists(out / "frame_2.png"));
+
+  // A broken frame is reported with POV-Ray's own message; the other frame still renders.
+  write_text(out / "water_0002.inc", "#declare Water_mesh = mesh2 { vertex_vectors { 1, <0,0,0> }");
+  r = run_toonwater({"render", out.string(), "--jobs", "2"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("frame 2 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("rror"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 frame(s) rendered, 1 failed"), std::string::npos) << r.output;
+}
+
+TEST(PovgenRender, MantaflowWakeSequence) {
+  const fs::path shared = shared_dir();
+  if (shared.empty()) GTEST_SKIP() << "../shared/data is absent: skipping the Mantaflow sequence";
+  const fs::path data = shared / "data" / "mantaflow-wake";
+  ScratchDir dir;
+  const fs::path out = dir / "wake";
+  const CommandResult r = run_toonwater(
+      {"povgen", "--water", (data / "water_####.obj").string(), "--object",
+       (data / "sphere_####.obj").string(), "--up", "z", "--out", out.string(), "--set",
+       "render.frames=14-15", "--set", "render.width=64", "--set", "render.height=48"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Povray p = run_povray(out);
+  ASSERT_EQ(p.exit_code, 0) << p.output;
+  EXPECT_EQ(p.output.find("Max Level: 10/10"), std::string::npos) << "ran out of trace depth";
+  for (const char* frame : {"frame_14.png", "frame_15.png"}) {
+    const Image img = read_image(out / frame);
+    int object = 0, outline = 0, watery = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const Rgb8 c = img.at(x, y);
+        object += orange(c);
+        outline += c[0] + c[1] + c[2] < 60;
+        watery += c[2] > c[0] + 40;
+      }
+    EXPECT_GT(object, 0) << frame << ": the sphere is visible";
+    EXPECT_GT(outline, 10) << frame << ": outlines drawn";
+    EXPECT_GT(watery, 100) << frame << ": water bands drawn";
+  }
+}
+
+}  // namespace
+}  // namespace toonwater::test

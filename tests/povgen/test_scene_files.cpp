@@ -1,0 +1,262 @@
+// povgen without rendering: configuration errors, the mesh2 text, which constructs minimal and
+// full scenes contain, and that hostile names never reach the scene raw.
+#include "povgen/config.hpp"
+#include "povgen/mesh2_writer.hpp"
+#include "povgen/scene_mesh.hpp"
+#include "tests/povgen/povgen_test_util.hpp"
+#include "tests/support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <regex>
+
+namespace toonwater::test {
+namespace {
+
+using povgen::ConfigError;
+using povgen::load_config;
+
+povgen::SceneConfig config_from(const std::string& toml, std::vector<std::string> overrides = {}) {
+  ScratchDir dir;
+  write_text(dir / "scene.toml", toml);
+  povgen::ConfigSources sources;
+  sources.file = dir / "scene.toml";
+  sources.overrides = std::move(overrides);
+  return load_config(sources);
+}
+
+std::string config_error(const std::string& toml, std::vector<std::string> overrides = {}) {
+  try {
+    config_from(toml, std::move(overrides));
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(PovgenConfig, DefaultsAreThePapersChoices) {
+  const auto c = config_from("");
+  EXPECT_GT(c.water.t_bright, c.water.t_medium);
+  EXPECT_DOUBLE_EQ(c.water.ior, 1.33);
+  EXPECT_TRUE(c.outline.enabled);
+  EXPECT_TRUE(c.flow.enabled);
+  EXPECT_TRUE(c.objects.empty());
+}
+
+TEST(PovgenConfig, ReadsEveryKindOfValueAndOverrides) {
+  const auto c = config_from(
+      "[water]\nior = 1.2\nbright = [1, 0.5, 0]\n[light]\nposition = [1, 2, 3]\n"
+      "[[object]]\nmesh = \"ball.obj\"\nreflection = \"abstract\"\n",
+      {"water.ior=1.5", "object.0.color=[0, 1, 0]", "render.frames=3-7", "outline.units=world"});
+  EXPECT_DOUBLE_EQ(c.water.ior, 1.5);
+  EXPECT_DOUBLE_EQ(c.water.bright[1], 0.5);
+  ASSERT_TRUE(c.light.position.has_value());
+  EXPECT_DOUBLE_EQ(c.light.position->z(), 3.0);
+  ASSERT_EQ(c.objects.size(), 1u);
+  EXPECT_EQ(c.objects[0].name, "ball");
+  EXPECT_EQ(c.objects[0].reflection, povgen::ReflectionTarget::abstract);
+  EXPECT_DOUBLE_EQ(c.objects[0].color[1], 1.0);
+  ASSERT_TRUE(c.render.frames.has_value());
+  EXPECT_EQ(c.render.frames->first, 3);
+  EXPECT_EQ(c.render.frames->last, 7);
+  EXPECT_EQ(c.outline.units, povgen::WidthUnits::world);
+}
+
+TEST(PovgenConfig, ErrorsNameTheKey) {
+  EXPECT_NE(config_error("[water]\niorr = 1.2\n").find("'water.iorr'"), std::string::npos);
+  EXPECT_NE(config_error("[water]\nior = \"high\"\n").find("'water.ior' must be a number"),
+            std::string::npos);
+  EXPECT_NE(config_error("[outline]\ncolor = [0, 0]\n").find("'outline.color'"), std::string::npos);
+  EXPECT_NE(config_error("[flow]\nridge_color = [2, 0, 0]\n").find("'flow.ridge_color'"),
+            std::string::npos);
+  EXPECT_NE(config_error("[outline]\nenabled = 1\n").find("'outline.enabled' must be true or false"),
+            std::string::npos);
+  EXPECT_NE(config_error("[[object]]\nmesh = \"a.obj\"\nreflection = \"mirror\"\n")
+                .find("'object.0.reflection' must be one of"),
+            std::string::npos);
+  EXPECT_NE(config_error("[[object]]\ncolor = [1, 0, 0]\n").find("'object.0.mesh' is required"),
+            std::string::npos);
+  EXPECT_NE(config_error("[sky]\ncolor = [1, 1, 1]\n").find("'sky'"), std::string::npos);
+  EXPECT_NE(config_error("", {"water.kt=0.3"}).find("'water.kt'"), std::string::npos);
+  EXPECT_NE(config_error("", {"render.frames=9-2"}).find("'render.frames'"), std::string::npos);
+  EXPECT_NE(config_error("", {"object.0.color=[1,0,0]"}).find("'object.0.color'"),
+            std::string::npos);
+  EXPECT_NE(config_error("[water\n").find("scene.toml:1"), std::string::npos);
+}
+
+TEST(PovgenConfig, IdentifiersAreSanitisedAndUnique) {
+  EXPECT_EQ(povgen::sanitize_identifier("a\"}#declare\nX"), "a___declare_X");
+  EXPECT_EQ(povgen::sanitize_identifier(""), "object");
+  const auto c = config_from(
+      "[[object]]\nmesh = \"x.obj\"\nname = \"boat\"\n[[object]]\nmesh = \"y.obj\"\nname = "
+      "\"boat\"\n");
+  EXPECT_EQ(c.objects[0].name, "boat");
+  EXPECT_EQ(c.objects[1].name, "boat_2");
+}
+
+// ---- mesh2 ----
+
+TEST(PovgenMesh2, LeavesOutDegenerateFacesReplacesZeroNormalsNeverWritesNan) {
+  TriangleMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {2, 0, 0}, {5, 5, 5}, {1.23456789, 0, 0}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 1, 2}};  // a good face, a collinear one, a repeated corner
+  std::vector<Vec3> normals(m.positions.size(), Vec3::Zero());  // all undefined
+  const povgen::SceneMesh sm = povgen::make_scene_mesh(m, normals, false, Axis::y);
+  EXPECT_EQ(sm.triangles.size(), 1u);
+  EXPECT_EQ(sm.degenerate_faces, 2u);
+  EXPECT_EQ(sm.replaced_normals, m.positions.size());
+  for (const Vec3& n : sm.normals) EXPECT_NEAR(n.norm(), 1.0, 1e-12);
+  EXPECT_NEAR(sm.normals[0].y(), 1.0, 1e-12);  // from the face (0,2,1): up
+  EXPECT_NEAR(sm.normals[4].y(), 1.0, 1e-12);  // isolated: the up axis
+
+  std::string text;
+  const auto uv = povgen::toon_coordinates(sm, {}, {});
+  povgen::append_mesh2(text, "M", sm, uv);
+  EXPECT_NE(text.find("vertex_vectors { 6,"), std::string::npos);
+  EXPECT_NE(text.find("normal_vectors { 6,"), std::string::npos);
+  EXPECT_NE(text.find("uv_vectors { 6,"), std::string::npos);
+  EXPECT_NE(text.find("face_indices { 1,"), std::string::npos);
+  EXPECT_NE(text.find("<1.234568,0,-0>"), std::string::npos) << "7 significant digits";
+  EXPECT_EQ(text.find("inside_vector"), std::string::npos) << "open mesh";
+  EXPECT_EQ(text.find("nan"), std::string::npos);
+  EXPECT_EQ(text.find("inf"), std::string::npos);
+}
+
+TEST(PovgenMesh2, ClosedMeshesGetAnInsideVectorAndShellsMoveAlongNormals) {
+  const TriangleMesh sphere = make_sphere(Vec3::Zero(), 1.0, 6, 8);
+  std::vector<Vec3> normals;
+  for (const Vec3& p : sphere.positions) normals.push_back(p.normalized());
+  const povgen::SceneMesh sm = povgen::make_scene_mesh(sphere, normals, true, Axis::y);
+  std::string text;
+  povgen::append_shell_mesh2(text, "S", sm, 0.5);
+  EXPECT_NE(text.find("inside_vector"), std::string::npos);
+  EXPECT_EQ(text.find("uv_vectors"), std::string::npos);
+  EXPECT_NE(text.find("<0,1.5,-0>"), std::string::npos) << text.substr(0, 200);
+}
+
+TEST(PovgenMesh2, BandCoordinateFollowsLightDotNormalForParallelAndPointLights) {
+  TriangleMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}};
+  m.triangles = {{0, 2, 1}};
+  const std::vector<Vec3> up(3, Vec3(0, 1, 0));
+  const povgen::SceneMesh sm = povgen::make_scene_mesh(m, up, false, Axis::y);
+  povgen::LightGeometry sun;
+  sun.vector = Vec3(0, 1, 0);
+  const std::vector<std::int8_t> labels{-1, 0, 1};
+  auto uv = povgen::toon_coordinates(sm, sun, labels);
+  EXPECT_NEAR(uv[0][0], 0.5 + 0.4999, 1e-6);
+  EXPECT_NEAR(uv[0][1], 0.5 - 1.0 / 3.0, 1e-6);
+  EXPECT_NEAR(uv[2][1], 0.5 + 1.0 / 3.0, 1e-6);
+  povgen::LightGeometry lamp{false, Vec3(1, 1, 0)};  // 45° above vertex 0, straight above vertex 1
+  uv = povgen::toon_coordinates(sm, lamp, {});
+  EXPECT_NEAR(uv[0][0], 0.5 + 0.4999 * std::sqrt(0.5), 1e-6);
+  EXPECT_NEAR(uv[1][0], 0.5 + 0.4999, 1e-6);
+  EXPECT_NEAR(uv[0][1], 0.5, 1e-6);
+}
+
+// ---- scene constructs ----
+
+struct Generated {
+  std::string pov, water_inc, ini;
+  CommandResult result;
+};
+
+Generated generate(const ScratchDir& dir, std::vector<std::string> args) {
+  std::vector<std::string> full{"povgen", "--out", (dir / "scene").string()};
+  full.insert(full.end(), args.begin(), args.end());
+  Generated g;
+  g.result = run_toonwater(full);
+  if (g.result.exit_code != 0) return g;
+  g.pov = read_text(dir / "scene" / "scene.pov");
+  g.ini = read_text(dir / "scene" / "scene.ini");
+  g.water_inc = read_text(dir / "scene" / "water_0000.inc");
+  return g;
+}
+
+TEST(PovgenScene, MinimalSceneContainsOnlyWhatItNeeds) {
+  ScratchDir dir;
+  write_obj(dir / "water.obj", make_height_grid(9, 1.0, [](double, double) { return 0.0; }));
+  const Generated g = generate(dir, {"--water", (dir / "water.obj").string(), "--set",
+                                     "flow.enabled=false", "--set", "outline.enabled=false",
+                                     "--set", "water.ks=0", "--set", "water.reflection=0",
+                                     "--set", "water.transmit=0"});
+  ASSERT_EQ(g.result.exit_code, 0) << g.result.output;
+  for (const char* absent : {"light_source", "reflection", "interior", "Toon_outline_shell",
+                             "Toon_bands_with_flow", "Obj_", "no_reflection", "phong",
+                             "Toon_silhouette", "#include \"obj_"})
+    EXPECT_EQ(g.pov.find(absent), std::string::npos) << absent;
+  for (const char* present : {"#include \"toon.inc\"", "Toon_bands(", "Water_mesh", "camera",
+                              "background", "max_trace_level 10"})
+    EXPECT_NE(g.pov.find(present), std::string::npos) << present;
+  EXPECT_EQ(g.water_inc.find("Water_shell"), std::string::npos);
+  EXPECT_EQ(g.water_inc.find("inside_vector"), std::string::npos);
+  EXPECT_EQ(g.ini.find("Initial_Frame"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir / "scene" / "obj_water.inc"));
+}
+
+TEST(PovgenScene, FullSceneHasEveryFeature) {
+  ScratchDir dir;
+  write_obj(dir / "water.obj", make_sphere(Vec3::Zero(), 1.0, 8, 12));
+  write_obj(dir / "ball.obj", make_sphere(Vec3(0, -0.2, 0), 0.3, 6, 8));
+  write_obj(dir / "kite.obj", make_sphere(Vec3(0, 3, 0), 0.3, 6, 8));
+  write_text(dir / "scene.toml",
+             "[[object]]\nmesh = \"ball.obj\"\nreflection = \"none\"\n"
+             "[[object]]\nmesh = \"kite.obj\"\nreflection = \"abstract\"\noutline = false\n");
+  const Generated g = generate(dir, {"--water", (dir / "water.obj").string(), "--config",
+                                     (dir / "scene.toml").string()});
+  ASSERT_EQ(g.result.exit_code, 0) << g.result.output;
+  for (const char* present :
+       {"light_source", "parallel", "reflection { 0.2 }", "interior { ior 1.33 }",
+        "Toon_outline_shell(Water_shell", "Toon_bands_with_flow", "#include \"obj_ball.inc\"",
+        "Obj_ball_mesh", "Toon_outline_shell(Obj_ball_shell", "no_reflection",
+        "Toon_silhouette(Obj_kite_mesh", "phong 0.5"})
+    EXPECT_NE(g.pov.find(present), std::string::npos) << present;
+  // The submerged ball's shell takes the water's ior; the kite (above) has no shell at all.
+  EXPECT_NE(g.pov.find("Toon_outline_shell(Obj_ball_shell, rgb <0, 0, 0>) interior { ior 1.33 }"),
+            std::string::npos);
+  EXPECT_EQ(g.pov.find("Obj_kite_shell"), std::string::npos);
+  EXPECT_NE(g.water_inc.find("Water_shell"), std::string::npos);
+  EXPECT_NE(g.water_inc.find("inside_vector"), std::string::npos);
+  EXPECT_NE(read_text(dir / "scene" / "obj_kite.inc").find("inside_vector"), std::string::npos);
+  EXPECT_EQ(read_text(dir / "scene" / "obj_kite.inc").find("Obj_kite_shell"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir / "scene" / "toon.inc"));
+}
+
+TEST(PovgenScene, HostileNamesAndValuesNeverReachTheSceneRaw) {
+  ScratchDir dir;
+  write_obj(dir / "water.obj", make_height_grid(5, 1.0, [](double, double) { return 0.0; }));
+  write_obj(dir / "a.obj", make_sphere(Vec3(0, 0.5, 0), 0.2, 6, 8));
+  write_text(dir / "scene.toml",
+             "[[object]]\nmesh = \"a.obj\"\nname = \"x\\\"}\\n#fopen F \\\"/etc/passwd\\\" "
+             "read\"\n");
+  const Generated g = generate(dir, {"--water", (dir / "water.obj").string(), "--config",
+                                     (dir / "scene.toml").string()});
+  ASSERT_EQ(g.result.exit_code, 0) << g.result.output;
+  EXPECT_EQ(g.pov.find("#fopen"), std::string::npos);
+  EXPECT_EQ(g.pov.find("passwd\""), std::string::npos);
+  EXPECT_NE(g.pov.find("Obj_x____fopen_F"), std::string::npos) << g.pov;
+  // A value that is not a number never gets in either.
+  const Generated bad = generate(dir, {"--water", (dir / "water.obj").string(), "--set",
+                                       "water.ior=1.33 } #declare X = 1"});
+  EXPECT_NE(bad.result.exit_code, 0);
+  EXPECT_NE(bad.result.output.find("'water.ior' must be a number"), std::string::npos)
+      << bad.result.output;
+}
+
+TEST(PovgenScene, BadInputGetsAClearErrorAndNoScene) {
+  ScratchDir dir;
+  CommandResult r = run_toonwater({"povgen", "--water", (dir / "missing_####.obj").string(),
+                                   "--out", (dir / "scene").string()});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("missing_####.obj"), std::string::npos) << r.output;
+  write_text(dir / "water_0001.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n");
+  write_text(dir / "water_0003.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n");
+  r = run_toonwater({"povgen", "--water", (dir / "water_####.obj").string(), "--out",
+                     (dir / "scene").string()});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("frame 2 is missing"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "scene" / "scene.pov"));
+}
+
+}  // namespace
+}  // namespace toonwater::test
