@@ -1,0 +1,195 @@
+// read_mesh: loads the file with one read, picks the reader by extension, and checks that a mesh
+// came out. Also the parsing helpers the format readers share (readers/readers.hpp).
+#include "analyzer/mesh_reader.hpp"
+
+#include "analyzer/readers/readers.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <system_error>
+
+namespace toonwater {
+namespace readers {
+
+void fail(const SourceFile& file, std::string_view message) {
+  throw InputError(file.name + ": " + std::string(message));
+}
+
+void fail_at_line(const SourceFile& file, std::size_t line, std::string_view message) {
+  throw InputError(file.name + ":" + std::to_string(line) + ": " + std::string(message));
+}
+
+std::string quote(std::string_view field) {
+  constexpr std::size_t max_shown = 40;
+  std::string text = "'";
+  for (const char c : field.substr(0, max_shown)) {
+    const bool printable = c >= ' ' && c <= '~';
+    text += printable ? c : '?';
+  }
+  if (field.size() > max_shown) text += "...";
+  return text + "'";
+}
+
+bool LineReader::next(std::string_view& line) {
+  if (rest_.empty()) return false;
+  const std::size_t end = rest_.find('\n');
+  if (end == std::string_view::npos) {
+    line = rest_;
+    rest_ = {};
+  } else {
+    line = rest_.substr(0, end);
+    rest_.remove_prefix(end + 1);
+  }
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  ++line_number_;
+  return true;
+}
+
+std::string_view strip_comment(std::string_view line) {
+  return line.substr(0, line.find('#'));
+}
+
+namespace {
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+// std::from_chars takes no leading '+'; text formats occasionally write one.
+std::string_view without_plus(std::string_view field) {
+  if (field.size() > 1 && field[0] == '+' && field[1] != '-' && field[1] != '+')
+    field.remove_prefix(1);
+  return field;
+}
+}  // namespace
+
+std::string_view Fields::next() {
+  std::size_t begin = 0;
+  while (begin < rest_.size() && is_space(rest_[begin])) ++begin;
+  std::size_t end = begin;
+  while (end < rest_.size() && !is_space(rest_[end])) ++end;
+  const std::string_view field = rest_.substr(begin, end - begin);
+  rest_.remove_prefix(end);
+  return field;
+}
+
+bool Fields::at_end() {
+  while (!rest_.empty() && is_space(rest_.front())) rest_.remove_prefix(1);
+  return rest_.empty();
+}
+
+std::optional<double> parse_double(std::string_view field) {
+  field = without_plus(field);
+  double value = 0;
+  const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
+  if (end != field.data() + field.size()) return std::nullopt;
+  if (error == std::errc::result_out_of_range) {
+    // from_chars leaves the value unset on overflow and on underflow alike; strtod tells them
+    // apart (±HUGE_VAL, then rejected as infinite, or a denormal or zero, which is fine).
+    const std::string copy(field);
+    return std::strtod(copy.c_str(), nullptr);
+  }
+  if (error != std::errc{}) return std::nullopt;
+  return value;
+}
+
+std::optional<std::int64_t> parse_integer(std::string_view field) {
+  field = without_plus(field);
+  std::int64_t value = 0;
+  const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
+  if (error != std::errc{} || end != field.data() + field.size()) return std::nullopt;
+  return value;
+}
+
+double parse_coordinate(const SourceFile& file, std::size_t line, std::string_view field) {
+  const std::optional<double> value = parse_double(field);
+  if (!value) fail_at_line(file, line, "malformed number " + quote(field));
+  if (!std::isfinite(*value)) fail_at_line(file, line, "coordinate " + quote(field) + " is NaN or infinite");
+  return *value;
+}
+
+std::size_t capped_reserve(std::uint64_t declared, std::size_t remaining_bytes,
+                           std::size_t min_record_bytes) {
+  return static_cast<std::size_t>(
+      std::min<std::uint64_t>(declared, remaining_bytes / min_record_bytes));
+}
+
+void add_polygon(TriangleMesh& mesh, std::span<const std::int32_t> corners) {
+  for (std::size_t i = 1; i + 1 < corners.size(); ++i)
+    mesh.triangles.push_back({corners[0], corners[i], corners[i + 1]});
+}
+
+}  // namespace readers
+
+namespace {
+
+using readers::SourceFile;
+
+[[noreturn]] void fail_errno(const SourceFile& file, std::string_view what, int error) {
+  readers::fail(file, std::string(what) + ": " + std::generic_category().message(error));
+}
+
+// The whole file, read with one read() (more only if the kernel returns it in pieces).
+std::unique_ptr<char[]> load_file(const SourceFile& file, std::size_t& size) {
+  const int fd = ::open(file.name.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) fail_errno(file, "cannot open", errno);
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) fail_errno(file, "cannot read", errno);
+  if (!S_ISREG(info.st_mode)) readers::fail(file, "is not a regular file");
+  size = static_cast<std::size_t>(info.st_size);
+  auto bytes = std::make_unique_for_overwrite<char[]>(size);
+  std::size_t done = 0;
+  while (done < size) {
+    const ssize_t n = ::read(fd, bytes.get() + done, size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail_errno(file, "cannot read", errno);
+    if (n == 0) break;  // the file shrank while we read it
+    done += static_cast<std::size_t>(n);
+  }
+  size = done;
+  return bytes;
+}
+
+std::string lowercase_extension(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+}  // namespace
+
+InputMesh read_mesh(const std::filesystem::path& path) {
+  SourceFile file{path.string(), {}};
+  const std::string extension = lowercase_extension(path);
+  InputMesh (*read)(const SourceFile&) = nullptr;
+  if (extension == ".obj") read = readers::read_obj;
+  else if (extension == ".off") read = readers::read_off;
+  else if (extension == ".ply") read = readers::read_ply;
+  else if (extension == ".stl") read = readers::read_stl;
+  else if (extension.empty())
+    readers::fail(file, "has no extension to tell its format (expected .obj, .off, .ply or .stl)");
+  else
+    readers::fail(file, "unknown mesh format " + readers::quote(extension) +
+                            " (expected .obj, .off, .ply or .stl)");
+
+  std::size_t size = 0;
+  const std::unique_ptr<char[]> bytes = load_file(file, size);
+  file.bytes = std::string_view(bytes.get(), size);
+  InputMesh result = read(file);
+  if (result.mesh.triangles.empty()) readers::fail(file, "contains no faces");
+  return result;
+}
+
+}  // namespace toonwater

@@ -1,0 +1,482 @@
+// Mesh readers: every format and variant reads to the expected positions and triangles, and every
+// kind of bad input throws one line naming the file and the line (text) or record (binary).
+#include "analyzer/mesh_reader.hpp"
+
+#include "tests/support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <string>
+#include <vector>
+
+// The largest single allocation since the last reset: hostile headers must not cause big ones.
+namespace {
+std::atomic<std::size_t> largest_allocation{0};
+}  // namespace
+
+// Not inlined, so that GCC does not pair the malloc and free inside with new and delete.
+[[gnu::noinline]] void* operator new(std::size_t size) {
+  std::size_t seen = largest_allocation.load(std::memory_order_relaxed);
+  while (size > seen && !largest_allocation.compare_exchange_weak(seen, size)) {
+  }
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+[[gnu::noinline]] void operator delete(void* p) noexcept { std::free(p); }
+[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace toonwater {
+namespace {
+
+namespace fs = std::filesystem;
+using test::ScratchDir;
+using test::write_text;
+
+std::vector<Vec3> positions(std::initializer_list<std::array<double, 3>> xyz) {
+  std::vector<Vec3> result;
+  for (const auto& p : xyz) result.emplace_back(p[0], p[1], p[2]);
+  return result;
+}
+
+// Bytes of a binary file in either byte order.
+class Bytes {
+ public:
+  explicit Bytes(bool big_endian = false) : big_endian_(big_endian) {}
+  template <class T>
+  Bytes& put(T value) {
+    char raw[sizeof(T)];
+    std::memcpy(raw, &value, sizeof(T));
+    if (big_endian_ != (std::endian::native == std::endian::big)) std::reverse(raw, raw + sizeof(T));
+    data_.append(raw, sizeof(T));
+    return *this;
+  }
+  Bytes& text(const std::string& s) {
+    data_ += s;
+    return *this;
+  }
+  const std::string& data() const { return data_; }
+
+ private:
+  bool big_endian_;
+  std::string data_;
+};
+
+class MeshReader : public ::testing::Test {
+ protected:
+  fs::path write(const std::string& name, const std::string& contents) {
+    const fs::path path = dir_ / name;
+    write_text(path, contents);
+    return path;
+  }
+
+  // The error read_mesh reports for `path`; fails the test if there is none.
+  static std::string error_of(const fs::path& path) {
+    try {
+      read_mesh(path);
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+      return message;
+    }
+    ADD_FAILURE() << "no error for " << path;
+    return {};
+  }
+
+  // Checks that reading `contents` as `name` fails at `line` with a message containing `fragment`.
+  void expect_line_error(const std::string& name, const std::string& contents, int line,
+                         const std::string& fragment) {
+    const fs::path path = write(name, contents);
+    const std::string message = error_of(path);
+    const std::string prefix = path.string() + ":" + std::to_string(line) + ": ";
+    EXPECT_EQ(message.rfind(prefix, 0), 0u) << "expected prefix " << prefix << "\n got " << message;
+    EXPECT_NE(message.find(fragment), std::string::npos) << message;
+  }
+
+  // Checks that reading `contents` as `name` fails naming the file and containing each fragment.
+  void expect_error(const std::string& name, const std::string& contents,
+                    std::initializer_list<std::string> fragments) {
+    const fs::path path = write(name, contents);
+    const std::string message = error_of(path);
+    EXPECT_EQ(message.rfind(path.string() + ": ", 0), 0u) << message;
+    for (const std::string& fragment : fragments)
+      EXPECT_NE(message.find(fragment), std::string::npos) << fragment << " not in " << message;
+  }
+
+  ScratchDir dir_;
+};
+
+// ---- OBJ --------------------------------------------------------------------------------------
+
+TEST_F(MeshReader, ObjQuadsAreFanTriangulatedInFileOrder) {
+  const InputMesh input = read_mesh(write("quad.obj",
+                                          "# a quad and a pentagon\n"
+                                          "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 0.5 0\n"
+                                          "f 1 2 3 4\n"
+                                          "f 1 4 5 3 2\n"));
+  EXPECT_EQ(input.polygon_count, 2u);
+  const std::vector<Triangle> expected{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 2}, {0, 2, 1}};
+  EXPECT_EQ(input.mesh.triangles, expected);
+  EXPECT_EQ(input.mesh.positions, positions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 0.5, 0}}));
+}
+
+TEST_F(MeshReader, ObjCornerFormsNegativeIndicesAndIgnoredStatements) {
+  const InputMesh input = read_mesh(write("forms.obj",
+                                          "mtllib scene.mtl\r\n"
+                                          "o water\r\n"
+                                          "v 0.1 0.2 0.30000000000000004 1.0\r\n"
+                                          "v +1.2345678901234567 -2e-3 1E2 0.5 0.5 0.5\r\n"
+                                          "v 7 8 9  # trailing comment\r\n"
+                                          "vt 0 0\r\nvn 0 0 1\r\nvp 0.5\r\n"
+                                          "g group\r\ns 1\r\nusemtl water\r\n"
+                                          "f 1/1 2/1/1 3//1\r\n"
+                                          "f -3 -2 -1\r\n"
+                                          "l 1 2\r\np 3\r\n"
+                                          "f 3 1 1\r\n"));  // repeated corner kept
+  EXPECT_EQ(input.mesh.positions,
+            positions({{0.1, 0.2, 0.30000000000000004}, {1.2345678901234567, -2e-3, 100}, {7, 8, 9}}));
+  const std::vector<Triangle> expected{{0, 1, 2}, {0, 1, 2}, {2, 0, 0}};
+  EXPECT_EQ(input.mesh.triangles, expected);
+  EXPECT_EQ(input.polygon_count, 3u);
+}
+
+TEST_F(MeshReader, ObjFacesMayReferToLaterVertices) {
+  const InputMesh input = read_mesh(write("forward.obj", "f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"));
+  EXPECT_EQ(input.mesh.triangles, std::vector<Triangle>({{0, 1, 2}}));
+}
+
+TEST_F(MeshReader, ByteOrderMarkIsSkipped) {
+  const InputMesh input =
+      read_mesh(write("bom.obj", "\xEF\xBB\xBFv 5 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+  EXPECT_EQ(input.mesh.positions.size(), 3u);
+  EXPECT_EQ(input.mesh.positions[0], Vec3(5, 0, 0));
+}
+
+TEST_F(MeshReader, ExtensionIsCaseInsensitive) {
+  const InputMesh input = read_mesh(write("upper.OBJ", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+  EXPECT_EQ(input.mesh.triangles.size(), 1u);
+}
+
+const std::string triangle_obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+TEST_F(MeshReader, ObjErrorsNameFileAndLine) {
+  expect_line_error("a.obj", triangle_obj + "v 1 2x 3\n", 4, "malformed number '2x'");
+  expect_line_error("b.obj", "# two\nv 1 2\n", 2, "vertex has 2 coordinates, expected 3");
+  expect_line_error("c.obj", triangle_obj + "f 1 2\n", 4, "face has 2 corners");
+  expect_line_error("d.obj", triangle_obj + "f 1 2 3\nf 1 2 4\nf 1 2 3\n", 5,
+                    "face index 4 out of range");
+  expect_line_error("e.obj", triangle_obj + "f -1 -2 -4\n", 4, "face index -4 out of range");
+  expect_line_error("f.obj", triangle_obj + "f 0 1 2\n", 4, "face index 0 is invalid");
+  expect_line_error("g.obj", "v 0 0 0\nv nan 0 0\n", 2, "NaN or infinite");
+  expect_line_error("h.obj", "v 0 0 0\nv 1 -inf 0\n", 2, "NaN or infinite");
+  expect_line_error("i.obj", "v 0 0 0\nv 1 1e999 0\n", 2, "NaN or infinite");
+  expect_line_error("j.obj", triangle_obj + "f 1/x 2 3\n", 4, "malformed face corner '1/x'");
+  expect_line_error("k.obj", triangle_obj + "f 1 2 \\\n 3\n", 4, "line continuation");
+  expect_line_error("l.obj", triangle_obj + "f 1 2 3.5\n", 4, "malformed face index '3.5'");
+}
+
+TEST_F(MeshReader, EmptyMeshesAreRejected) {
+  expect_error("empty.obj", "", {"contains no faces"});
+  expect_error("points.obj", triangle_obj, {"contains no faces"});
+  expect_error("empty.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n", {"contains no faces"});
+  expect_error("empty.stl", "", {"contains no faces"});
+}
+
+TEST_F(MeshReader, MissingFileAndUnknownFormat) {
+  const std::string missing = error_of(dir_ / "absent.obj");
+  EXPECT_EQ(missing, (dir_ / "absent.obj").string() + ": cannot open: No such file or directory");
+  expect_error("mesh.xyz", triangle_obj + "f 1 2 3\n", {"unknown mesh format '.xyz'"});
+  fs::create_directory(dir_ / "folder.obj");
+  EXPECT_NE(error_of(dir_ / "folder.obj").find("not a regular file"), std::string::npos);
+}
+
+TEST_F(MeshReader, FullDoublePrecisionIsKept) {
+  // 1 + 2^-40 is not representable in float; OpenMesh's float parsing would round it away.
+  const InputMesh input =
+      read_mesh(write("precise.obj", "v 1.0000000000009095 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+  EXPECT_EQ(input.mesh.positions[0].x(), 1.0 + std::ldexp(1.0, -40));
+}
+
+// ---- OFF --------------------------------------------------------------------------------------
+
+TEST_F(MeshReader, OffWithCommentsColoursAndPolygons) {
+  const InputMesh input = read_mesh(write("square.off",
+                                          "# exported by hand\n"
+                                          "COFF\n"
+                                          "\n"
+                                          "5 2 0  # counts\n"
+                                          "0 0 0 255 0 0 255\n"
+                                          "1 0 0 255 0 0 255\n"
+                                          "# a comment between vertices\n"
+                                          "1 1 0 255 0 0 255\n"
+                                          "0 1 0 255 0 0 255\n"
+                                          "0.5 2 0.25 255 0 0 255\n"
+                                          "4 0 1 2 3 0.5 0.5 0.5\n"
+                                          "3 3 2 4\n"));
+  EXPECT_EQ(input.mesh.positions,
+            positions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 2, 0.25}}));
+  EXPECT_EQ(input.mesh.triangles, std::vector<Triangle>({{0, 1, 2}, {0, 2, 3}, {3, 2, 4}}));
+  EXPECT_EQ(input.polygon_count, 2u);
+}
+
+TEST_F(MeshReader, OffHeaderVariants) {
+  for (const std::string header : {"OFF 3 1 0\n", "OFF\n3 1\n", "3 1 3\n", "NOFF\n3 1 0\n"}) {
+    const std::string normals = header.starts_with("NOFF") ? " 0 0 1" : "";
+    const std::string text = header + "0 0 0" + normals + "\n1 0 0" + normals + "\n0 1 0" +
+                             normals + "\n3 0 1 2\n";
+    const InputMesh input = read_mesh(write("variant.off", text));
+    EXPECT_EQ(input.mesh.positions.size(), 3u) << header;
+    EXPECT_EQ(input.mesh.triangles, std::vector<Triangle>({{0, 1, 2}})) << header;
+  }
+}
+
+TEST_F(MeshReader, OffErrorsNameFileAndLine) {
+  expect_line_error("a.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n", 5, "file ends after 3 of 4 vertices");
+  expect_line_error("b.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", 6,
+                    "file ends after 1 of 2 faces");
+  expect_line_error("c.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", 6,
+                    "face index 3 out of range (the file has 3 vertices)");
+  expect_line_error("d.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", 6, "face has 2 corners");
+  expect_line_error("e.off", "OFF\n3 1 0\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n", 4,
+                    "vertex has 2 coordinates");
+  expect_line_error("f.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 NaN 0\n3 0 1 2\n", 5, "NaN or infinite");
+  expect_line_error("g.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n", 7,
+                    "unexpected data after the last");
+  expect_line_error("h.off", "OFX\n3 1 0\n", 1, "not an OFF file");
+  expect_line_error("i.off", "4OFF\n3 1 0\n", 1, "not three-dimensional");
+  expect_line_error("j.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n", 6,
+                    "face declares 4 corners but lists 3");
+}
+
+TEST_F(MeshReader, HostileOffCountsAreRefusedWithoutAllocating) {
+  largest_allocation = 0;
+  expect_line_error("huge.off", "OFF\n2147483647 2147483647 0\n0 0 0\n", 3,
+                    "file ends after 1 of 2147483647 vertices");
+  EXPECT_LT(largest_allocation.load(), std::size_t{1} << 20);
+  expect_line_error("huger.off", "OFF\n2147483648 1 0\n0 0 0\n", 2, "exceeds what a mesh can index");
+}
+
+// ---- PLY --------------------------------------------------------------------------------------
+
+TEST_F(MeshReader, AsciiPlySkipsOtherPropertiesAndElements) {
+  const InputMesh input = read_mesh(write("mesh.ply",
+                                          "ply\n"
+                                          "format ascii 1.0\n"
+                                          "comment other properties around x y z\n"
+                                          "element vertex 4\n"
+                                          "property float nx\n"
+                                          "property double x\n"
+                                          "property double y\n"
+                                          "property list uchar float texcoords\n"
+                                          "property double z\n"
+                                          "property uchar red\n"
+                                          "element edge 1\n"
+                                          "property int vertex1\n"
+                                          "property int vertex2\n"
+                                          "element face 2\n"
+                                          "property list uchar int vertex_index\n"
+                                          "property uchar flags\n"
+                                          "end_header\n"
+                                          "9 0 0 2 0.5 0.5 0 255\n"
+                                          "9 0.1 0 0 0 255\n"
+                                          "9 1 1 1 7 0 255\n"
+                                          "9 0 1 0 0 255\n"
+                                          "0 1\n"
+                                          "4 0 1 2 3 7\n"
+                                          "3 3 2 0 7\n"));
+  EXPECT_EQ(input.mesh.positions, positions({{0, 0, 0}, {0.1, 0, 0}, {1, 1, 0}, {0, 1, 0}}));
+  EXPECT_EQ(input.mesh.triangles, std::vector<Triangle>({{0, 1, 2}, {0, 2, 3}, {3, 2, 0}}));
+  EXPECT_EQ(input.polygon_count, 2u);
+}
+
+// A binary PLY with mixed types, lists to skip in the vertex and face elements, an element
+// before the faces and one after, in the given byte order.
+std::string binary_ply(bool big_endian) {
+  Bytes b(big_endian);
+  b.text(std::string("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
+         " 1.0\n"
+         "element vertex 4\n"
+         "property double x\n"
+         "property float y\n"
+         "property short z\n"
+         "property list uchar float extra\n"
+         "property uchar red\n"
+         "element edge 2\n"
+         "property int a\n"
+         "property int b\n"
+         "element face 2\n"
+         "property uchar flags\n"
+         "property list uchar uint vertex_indices\n"
+         "element note 1\n"
+         "property list ushort char text\n"
+         "end_header\n");
+  const double xs[4] = {0.1, 1.0, 1.0, -2.5};
+  const float ys[4] = {0.0f, 0.25f, 1.0f, 1.0f};
+  const std::int16_t zs[4] = {0, -3, 7, 300};
+  for (int v = 0; v < 4; ++v) {
+    b.put(xs[v]).put(ys[v]).put(zs[v]);
+    b.put(std::uint8_t{2}).put(1.5f).put(2.5f);  // extra
+    b.put(std::uint8_t{200});                    // red
+  }
+  b.put(std::int32_t{0}).put(std::int32_t{1}).put(std::int32_t{1}).put(std::int32_t{2});
+  b.put(std::uint8_t{1}).put(std::uint8_t{3});
+  b.put(std::uint32_t{0}).put(std::uint32_t{1}).put(std::uint32_t{2});
+  b.put(std::uint8_t{0}).put(std::uint8_t{4});
+  for (std::uint32_t i : {3u, 2u, 1u, 0u}) b.put(i);
+  b.put(std::uint16_t{3}).text("hi!");
+  return b.data();
+}
+
+TEST_F(MeshReader, BinaryPlyBothByteOrders) {
+  for (const bool big_endian : {false, true}) {
+    const InputMesh input = read_mesh(write("binary.ply", binary_ply(big_endian)));
+    EXPECT_EQ(input.mesh.positions,
+              positions({{0.1, 0, 0}, {1, 0.25, -3}, {1, 1, 7}, {-2.5, 1, 300}}))
+        << "big endian " << big_endian;
+    EXPECT_EQ(input.mesh.triangles, std::vector<Triangle>({{0, 1, 2}, {3, 2, 1}, {3, 1, 0}}));
+    EXPECT_EQ(input.polygon_count, 2u);
+  }
+}
+
+const std::string triangle_ply_header =
+    "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+    "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+    "end_header\n";
+
+std::string triangle_ply(float bad_y, std::int32_t last_index, std::uint8_t corners = 3) {
+  Bytes b;
+  b.text(triangle_ply_header);
+  b.put(0.0f).put(0.0f).put(0.0f).put(1.0f).put(bad_y).put(0.0f).put(0.0f).put(1.0f).put(0.0f);
+  b.put(corners).put(std::int32_t{0}).put(std::int32_t{1});
+  if (corners > 2) b.put(last_index);
+  return b.data();
+}
+
+TEST_F(MeshReader, BinaryPlyErrorsNameTheRecord) {
+  EXPECT_EQ(read_mesh(write("good.ply", triangle_ply(0.0f, 2))).mesh.triangles.size(), 1u);
+  expect_error("nan.ply", triangle_ply(std::nanf(""), 2), {"NaN or infinite", "(vertex 1)"});
+  expect_error("inf.ply", triangle_ply(INFINITY, 2), {"NaN or infinite", "(vertex 1)"});
+  expect_error("index.ply", triangle_ply(0.0f, 3),
+               {"face index 3 out of range (the file has 3 vertices)", "(face 0)"});
+  expect_error("corners.ply", triangle_ply(0.0f, 2, 2), {"face has 2 corners", "(face 0)"});
+  const std::string whole = triangle_ply(0.0f, 2);
+  const std::string cut = whole.substr(0, triangle_ply_header.size() + 20);
+  expect_error("cut.ply", cut,
+               {"truncated", "vertex 1 of 3", "(byte offset " + std::to_string(cut.size()) + ")"});
+  expect_error("cut_face.ply", whole.substr(0, whole.size() - 2), {"truncated", "face 0 of 1"});
+  expect_error("long.ply", whole + "xy", {"2 unexpected bytes after the last element"});
+}
+
+TEST_F(MeshReader, PlyHeaderAndAsciiErrorsNameTheLine) {
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\n";
+  const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+  const std::string faces = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  expect_line_error("a.ply", "plx\n", 1, "not a PLY file");
+  expect_line_error("b.ply", header + "property flot x\n", 4, "unknown property type 'flot'");
+  expect_line_error("c.ply", "ply\nformat ascii 1.0\nproperty float x\n", 3, "property before any element");
+  expect_line_error("d.ply", header + "property float x\nproperty float y\n" + faces, 3,
+                    "vertex element has no property 'z'");
+  expect_line_error("e.ply", header + xyz, 6, "no end_header");
+  expect_line_error("f.ply", "ply\nformat binary_middle_endian 1.0\n", 2, "unknown PLY format");
+  expect_line_error("g.ply", header + xyz + "element face 1\nproperty list uchar float vertex_indices\nend_header\n",
+                    8, "integer type");
+  const std::string good = header + xyz + faces;
+  expect_line_error("h.ply", good + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", 13,
+                    "face index 3 out of range");
+  expect_line_error("i.ply", good + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", 11, "NaN or infinite");
+  expect_line_error("j.ply", good + "0 0 0\n1 0\n0 1 0\n3 0 1 2\n", 11, "too few values");
+  expect_line_error("k.ply", good + "0 0 0\n1 0 0\n", 11, "file ends after 2 of 3 'vertex' records");
+  expect_line_error("l.ply", good + "0 0 0\n1 0 0\n0 1 0\n", 12, "file ends after 0 of 1 'face' records");
+  expect_line_error("m.ply", good + "0 0 0\n1 0 0 0\n0 1 0\n3 0 1 2\n", 11, "too many values");
+  expect_line_error("n.ply", good + "0 0 0\n1 0 0\n0 1 0\n2 0 1\n", 13, "face has 2 corners");
+}
+
+TEST_F(MeshReader, HostilePlyCountsAreRefusedWithoutAllocating) {
+  largest_allocation = 0;
+  std::string text = triangle_ply_header;
+  text.replace(text.find("vertex 3"), 8, "vertex 2000000000");
+  text.replace(text.find("face 1"), 6, "face 2000000000");
+  expect_error("huge.ply", text + std::string(64, '\0'), {"truncated", "vertex 5 of 2000000000"});
+  EXPECT_LT(largest_allocation.load(), std::size_t{1} << 20);
+  // A face claiming 255 corners in a file that holds two indices.
+  std::string face = triangle_ply(0.0f, 2);
+  face[face.size() - 13] = static_cast<char>(255);
+  expect_error("corners.ply", face, {"truncated", "face 0 of 1"});
+  EXPECT_LT(largest_allocation.load(), std::size_t{1} << 20);
+}
+
+// ---- STL --------------------------------------------------------------------------------------
+
+TEST_F(MeshReader, AsciiStlIsATriangleSoup) {
+  const InputMesh input = read_mesh(write("soup.stl",
+                                          "solid two\n"
+                                          "  facet normal 0 0 1\n"
+                                          "    outer loop\n"
+                                          "      vertex 0 0 0\n"
+                                          "      vertex 1 0 0\n"
+                                          "      vertex 0 1 0\n"
+                                          "    endloop\n"
+                                          "  endfacet\n"
+                                          "  facet normal nan nan nan\n"
+                                          "    outer loop\n"
+                                          "      vertex 1 0 0\n"
+                                          "      vertex 1 1 0\n"
+                                          "      vertex 0 1 0.5e-1\n"
+                                          "    endloop\n"
+                                          "  endfacet\n"
+                                          "endsolid two\n"));
+  EXPECT_EQ(input.mesh.positions,
+            positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0.05}}));
+  EXPECT_EQ(input.mesh.triangles, std::vector<Triangle>({{0, 1, 2}, {3, 4, 5}}));
+  EXPECT_EQ(input.polygon_count, 2u);
+}
+
+std::string binary_stl(const std::vector<std::array<float, 9>>& facets, std::string header) {
+  header.resize(80, ' ');
+  Bytes b;
+  b.text(header).put(static_cast<std::uint32_t>(facets.size()));
+  for (const auto& corners : facets) {
+    b.put(0.0f).put(0.0f).put(1.0f);
+    for (float c : corners) b.put(c);
+    b.put(std::uint16_t{0});
+  }
+  return b.data();
+}
+
+TEST_F(MeshReader, BinaryStlEvenWhenItStartsWithSolid) {
+  const std::vector<std::array<float, 9>> facets{{0, 0, 0, 1, 0, 0, 0, 1, 0},
+                                                 {1, 0, 0, 1, 1, 0, 0.5f, 1, 0.25f}};
+  const InputMesh input = read_mesh(write("binary.stl", binary_stl(facets, "solid exported")));
+  EXPECT_EQ(input.mesh.positions,
+            positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {1, 1, 0}, {0.5, 1, 0.25}}));
+  EXPECT_EQ(input.mesh.triangles, std::vector<Triangle>({{0, 1, 2}, {3, 4, 5}}));
+  EXPECT_EQ(input.polygon_count, 2u);
+}
+
+TEST_F(MeshReader, StlErrors) {
+  const std::vector<std::array<float, 9>> facets{{0, 0, 0, 1, 0, 0, 0, 1, 0},
+                                                 {1, 0, 0, 1, std::nanf(""), 0, 0, 1, 0}};
+  expect_error("nan.stl", binary_stl(facets, "binary"), {"NaN or infinite", "(facet 1)"});
+  const std::string whole = binary_stl(facets, "solid but binary");
+  expect_error("cut.stl", whole.substr(0, whole.size() - 7),
+               {"truncated", "promises 2 facets", "byte offset " + std::to_string(whole.size() - 7)});
+  expect_error("short.stl", "abc", {"truncated"});
+  const std::string facet_start = "solid s\nfacet normal 0 0 1\nouter loop\n";
+  expect_line_error("a.stl", facet_start + "vertex 0 0 0\nvertex 1 0 0\nvertex 0 inf 0\n", 6,
+                    "NaN or infinite");
+  expect_line_error("b.stl", facet_start + "vertex 0 0 0\nvertex 1 0 0\nendloop\n", 6,
+                    "facet has 2 vertices");
+  expect_line_error("c.stl", facet_start + "vertex 0 0 0\nvertex 1 0 0\n", 5,
+                    "ends inside a facet");
+  expect_line_error("d.stl", facet_start + "vertex 0 0\n", 4, "vertex has 2 coordinates");
+  expect_line_error("e.stl", "solid s\nvertex 0 0 0\n", 2, "unexpected 'vertex'");
+}
+
+}  // namespace
+}  // namespace toonwater
