@@ -1,0 +1,100 @@
+// Atomic writes: the target gets exactly the new content; on failure the target is untouched,
+// the error names it, and no temporary file is left behind.
+#include "analyzer/atomic_file.hpp"
+
+#include "tests/support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace toonwater {
+namespace {
+
+namespace fs = std::filesystem;
+using test::read_text;
+using test::ScratchDir;
+using test::write_text;
+
+std::vector<std::string> entries(const fs::path& directory) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(directory))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// The OutputError message of writing `contents` to `path`, or "" when it succeeds.
+std::string write_error(const fs::path& path, std::string_view contents) {
+  try {
+    write_file_atomically(path, contents);
+  } catch (const OutputError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TEST(AtomicFile, CreatesAndReplacesContent) {
+  ScratchDir dir;
+  const fs::path target = dir / "out.csv";
+  write_file_atomically(target, std::string(100000, 'a'));
+  EXPECT_EQ(read_text(target), std::string(100000, 'a'));
+  const std::string binary("new\0content\n", 12);
+  write_file_atomically(target, binary);
+  EXPECT_EQ(read_text(target), binary);
+  write_file_atomically(target, "");
+  EXPECT_EQ(read_text(target), "");
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>({"out.csv"}));
+}
+
+TEST(AtomicFile, LongestFileNameWorks) {
+  ScratchDir dir;
+  const std::string name(255, 'n');
+  write_file_atomically(dir / name, "long");
+  EXPECT_EQ(read_text(dir / name), "long");
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>({name}));
+}
+
+TEST(AtomicFile, RelativePathWritesIntoTheCurrentDirectory) {
+  ScratchDir dir;
+  const fs::path previous = fs::current_path();
+  fs::current_path(dir.path());
+  write_file_atomically("relative.txt", "here");
+  fs::current_path(previous);
+  EXPECT_EQ(read_text(dir / "relative.txt"), "here");
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>({"relative.txt"}));
+}
+
+TEST(AtomicFile, MissingDirectoryFailsNamingTheFile) {
+  ScratchDir dir;
+  const fs::path target = dir / "missing" / "out.csv";
+  const std::string message = write_error(target, "data");
+  EXPECT_EQ(message.rfind(target.string() + ": ", 0), 0u) << message;
+  EXPECT_NE(message.find("No such file or directory"), std::string::npos) << message;
+  EXPECT_TRUE(entries(dir.path()).empty());
+}
+
+TEST(AtomicFile, FailedReplaceKeepsTheTargetAndLeavesNoTemporary) {
+  // The target is a non-empty directory, which rename() cannot replace: the write itself
+  // succeeds and the failure comes at the last step, after the temporary file exists.
+  ScratchDir dir;
+  const fs::path target = dir / "out.csv";
+  fs::create_directory(target);
+  write_text(target / "kept.txt", "good");
+  const std::string message = write_error(target, "new content");
+  EXPECT_EQ(message.rfind(target.string() + ": cannot replace the file: ", 0), 0u) << message;
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>({"out.csv"}));
+  EXPECT_EQ(read_text(target / "kept.txt"), "good");
+}
+
+TEST(AtomicFile, PathWithoutFileNameIsRejected) {
+  ScratchDir dir;
+  const std::string message = write_error(dir.path() / "", "data");
+  EXPECT_NE(message.find("not a file name"), std::string::npos) << message;
+  EXPECT_TRUE(entries(dir.path()).empty());
+}
+
+}  // namespace
+}  // namespace toonwater
