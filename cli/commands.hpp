@@ -8,5 +8,6 @@ namespace toonwater::cli {
 void add_analyze_command(CLI::App& app);
 void add_povgen_command(CLI::App& app);
 void add_render_command(CLI::App& app);
+void add_simulate_command(CLI::App& app);
 
 }  // namespace toonwater::cli
