@@ -1,5 +1,7 @@
 #include "analyzer/analysis.hpp"
 
+#include "analyzer/curvature_jet.hpp"
+#include "analyzer/curvature_smoothing.hpp"
 #include "analyzer/weld.hpp"
 
 #include <chrono>
@@ -31,7 +33,9 @@ Analysis analyze_mesh(const TriangleMesh& input, const AnalyzeOptions& options) 
   a.times.topology = seconds_since(start);
 
   start = Clock::now();
-  a.curvature = compute_curvature(a.surface, a.topology);
+  a.curvature = options.estimator == Estimator::jet ? compute_curvature_jet(a.surface, a.topology)
+                                                    : compute_curvature(a.surface, a.topology);
+  smooth_curvature(a.surface, a.topology.vertex_faces, a.curvature, options.smoothing_steps);
   a.times.curvature = seconds_since(start);
 
   start = Clock::now();

@@ -13,9 +13,15 @@
 
 namespace toonwater {
 
+// Curvature estimators: the paper's one-ring operators (curvature.hpp), or jets fitted over the
+// two-ring (curvature_jet.hpp): slower, but accurate on irregular and noisy meshes.
+enum class Estimator : std::uint8_t { one_ring, jet };
+
 struct AnalyzeOptions {
   FlowOptions flow;
   bool flow_regions = true;  // false: curvature only, all labels 0
+  Estimator estimator = Estimator::one_ring;
+  int smoothing_steps = 0;  // curvature_smoothing.hpp; 0: none
 };
 
 struct StageTimes {  // seconds

@@ -1,0 +1,68 @@
+// Smoothing of the curvature field (analyzer/curvature_smoothing.hpp).
+#include "analyzer/curvature_smoothing.hpp"
+#include "tests/analyzer/curvature_test_util.hpp"
+
+#include <gtest/gtest.h>
+
+namespace toonwater::test {
+namespace {
+
+constexpr Jitter jittered{0.2, 7};
+
+TEST(CurvatureSmoothing, ZeroStepsChangeNothing) {
+  const AnalyticSurface s = make_saddle(33, 0.5, jittered);
+  Curvature c = curvature_of(s.mesh);
+  const CurvatureField before = c.field;
+  smooth_curvature(c.mesh, c.topology.vertex_faces, c.field, 0);
+  EXPECT_EQ(c.field.gaussian, before.gaussian);
+  EXPECT_EQ(c.field.mean, before.mean);
+  EXPECT_EQ(c.field.k1, before.k1);
+}
+
+TEST(CurvatureSmoothing, DampsTheCotangentNoiseOnJitteredMeshes) {
+  const AnalyticSurface s = make_saddle(129, 0.5, jittered);
+  Curvature c = curvature_of(s.mesh);
+  const double h_scale = rms(s.mean, s.interior), k_scale = rms(s.gaussian, s.interior);
+  const double mean_before = rms_error(c.field.mean, s.mean, s.interior, h_scale);
+  const double gaussian_before = rms_error(c.field.gaussian, s.gaussian, s.interior, k_scale);
+  smooth_curvature(c.mesh, c.topology.vertex_faces, c.field, 2);
+  const double mean_after = rms_error(c.field.mean, s.mean, s.interior, h_scale);
+  const double gaussian_after = rms_error(c.field.gaussian, s.gaussian, s.interior, k_scale);
+  EXPECT_LT(mean_after, mean_before / 4);
+  EXPECT_LT(gaussian_after, gaussian_before / 2);
+  for (std::size_t v = 0; v < s.mesh.positions.size(); ++v) {
+    ASSERT_LE(c.field.k2[v], c.field.k1[v]);
+    ASSERT_NEAR(c.field.k1[v] + c.field.k2[v], 2.0 * c.field.mean[v], 1e-12);
+  }
+}
+
+TEST(CurvatureSmoothing, KeepsAConstantFieldAndAPlane) {
+  const AnalyticSurface s = make_cylinder(32, 16, 0.5, 2.0);
+  Curvature c = curvature_of(s.mesh);
+  smooth_curvature(c.mesh, c.topology.vertex_faces, c.field, 5);
+  for (std::size_t v = 0; v < s.mesh.positions.size(); ++v) {
+    EXPECT_NEAR(c.field.mean[v], 1.0, 1e-12);
+    EXPECT_NEAR(c.field.gaussian[v], 0.0, 1e-9);
+  }
+}
+
+TEST(CurvatureSmoothing, UndefinedVerticesNeitherChangeNorContribute) {
+  TriangleMesh m = make_icosphere(2).mesh;
+  m.positions.emplace_back(5, 5, 5);  // isolated
+  m.positions.push_back(m.positions[3]);  // a copy of vertex 3, in one face with a zero-length edge
+  const auto copy = static_cast<std::int32_t>(m.positions.size() - 1);
+  m.triangles.push_back({3, copy, 4});
+  Curvature c = curvature_of(m);
+  ASSERT_EQ(c.field.status[copy], CurvatureStatus::undefined);
+  c.field.gaussian[copy] = c.field.mean[copy] = 1e300;  // would dominate any mean it entered
+  smooth_curvature(c.mesh, c.topology.vertex_faces, c.field, 3);
+  EXPECT_EQ(c.field.gaussian.back(), 1e300);
+  EXPECT_EQ(c.field.gaussian[m.positions.size() - 2], 0.0);
+  for (std::size_t v = 0; v + 2 < m.positions.size(); ++v) {
+    EXPECT_NEAR(c.field.mean[v], 1.0, 0.05) << v;
+    EXPECT_NEAR(c.field.gaussian[v], 1.0, 0.1) << v;
+  }
+}
+
+}  // namespace
+}  // namespace toonwater::test
