@@ -50,7 +50,7 @@ void Rasterize(benchmark::State& state) {
   planner.add(a);
   const MapView view = planner.view(size_1024());
   for (auto _ : state) {
-    const TopDownMap map = rasterize_top_down(a.surface, a.curvature, a.flow.label, view);
+    const TopDownMap map = rasterize_top_down(a.surface, a.curvature, a.flow.label, a.flow.free_surface, view);
     benchmark::DoNotOptimize(map.covered_pixels);
   }
   state.counters["pixels"] = static_cast<double>(view.width) * view.height;

@@ -13,11 +13,11 @@ void MapPlanner::add(const Analysis& analysis) {
   const double edge = analysis.flow.median_edge_length > 0.0
                           ? analysis.flow.median_edge_length
                           : median_edge_length(analysis.surface);
-  add(analysis.surface, analysis.curvature, edge);
+  add(analysis.surface, analysis.curvature, analysis.flow.free_surface, edge);
 }
 
 void MapPlanner::add(const TriangleMesh& surface, const CurvatureField& curvature,
-                     double median_edge) {
+                     std::span<const std::uint8_t> free_surface, double median_edge) {
   ++frames_;
   if (median_edge > 0.0 && std::isfinite(median_edge))
     median_edge_ = median_edge_ > 0.0 ? std::min(median_edge_, median_edge) : median_edge;
@@ -25,6 +25,7 @@ void MapPlanner::add(const TriangleMesh& surface, const CurvatureField& curvatur
   const Vec3 u_axis = map_u_axis(up_), v_axis = map_v_axis(up_);
   const Vec3 up_axis = u_axis.cross(v_axis);
   for (const Triangle& t : surface.triangles) {
+    if (!on_mapped_surface(free_surface, t)) continue;
     const Vec3 &p0 = surface.positions[t[0]], &p1 = surface.positions[t[1]],
                &p2 = surface.positions[t[2]];
     const double projected_area = 0.5 * (p1 - p0).cross(p2 - p0).dot(up_axis);

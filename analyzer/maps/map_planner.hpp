@@ -8,10 +8,10 @@
 //   const MapRanges ranges = planner.ranges();
 //   for (frame : frames) write_maps(dir, stem, analyze(frame), view, ranges);  // pass 2
 //
-// Extent: the union of the frames' upward-facing faces (n·up > 0) seen from above, unless a
-// box is given. Pixel size: the smallest median edge length of the frames over
+// Extent: the union of the frames' mapped faces (n·up > 0, on the free surface: see
+// top_down_map.hpp) seen from above, unless a box is given. Pixel size: the smallest median edge length of the frames over
 // `pixels_per_edge`, unless a size is given; the longer side is capped at `max_size`.
-// Ranges: the 98th percentile of |K| and |H| over the upward-facing surface of all frames
+// Ranges: the 98th percentile of |K| and |H| over the mapped faces of all frames
 // pooled, each vertex weighted by the area it covers in the map (a third of the projected area
 // of its upward faces), i.e. the share of map pixels; see robust_range.hpp for the precision.
 // A range is never below the curvature of a radius of 10⁴ median edge lengths ℓ
@@ -45,7 +45,8 @@ class MapPlanner {
  public:
   explicit MapPlanner(Axis up) : up_(up) {}
   void add(const Analysis& analysis);
-  void add(const TriangleMesh& surface, const CurvatureField& curvature, double median_edge);
+  void add(const TriangleMesh& surface, const CurvatureField& curvature,
+           std::span<const std::uint8_t> free_surface, double median_edge);
   std::size_t frames() const { return frames_; }
   // Throws std::runtime_error when there is nothing to map (no upward face and no box).
   MapView view(const MapOptions& options) const;

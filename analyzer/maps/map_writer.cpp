@@ -136,7 +136,8 @@ MapFiles write_maps(const fs::path& dir, const std::string& stem, const TopDownM
 MapFiles write_maps(const fs::path& dir, const std::string& stem, const Analysis& analysis,
                     const MapView& view, const MapRanges& ranges) {
   return write_maps(dir, stem,
-                    rasterize_top_down(analysis.surface, analysis.curvature, analysis.flow.label, view),
+                    rasterize_top_down(analysis.surface, analysis.curvature, analysis.flow.label,
+                                       analysis.flow.free_surface, view),
                     ranges);
 }
 

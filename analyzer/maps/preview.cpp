@@ -77,8 +77,10 @@ PreviewImage signed_preview(const TopDownMap& map, const std::vector<float>& val
       put(image, x, y, colour);
   }
   std::string heading = title;
-  heading += "   colour range \xC2\xB1";
-  heading += number(range);
+  heading += "   colour range ";
+  heading += number(-range);
+  heading += " to ";
+  heading += number(range, true);
   draw_text(image, left, top + 17, heading, Align::left);
   const int baseline = top + bar_top_offset + bar_rows + 15;
   draw_text(image, left, baseline, number(-range), Align::left);

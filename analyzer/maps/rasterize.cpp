@@ -67,7 +67,8 @@ struct Coverage {
   std::vector<double> depth;       // interpolated height of that face
 };
 
-Coverage cover_pixels(const TriangleMesh& mesh, const MapView& view) {
+Coverage cover_pixels(const TriangleMesh& mesh, std::span<const std::uint8_t> free_surface,
+                      const MapView& view) {
   const std::size_t pixels = static_cast<std::size_t>(view.width) * view.height;
   Coverage c;
   c.face.assign(pixels, -1);
@@ -77,6 +78,7 @@ Coverage cover_pixels(const TriangleMesh& mesh, const MapView& view) {
 
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const Triangle& t = mesh.triangles[f];
+    if (!on_mapped_surface(free_surface, t)) continue;
     const PixelTriangle tri(mesh, t, view);
     if (!(tri.area2 < 0.0)) continue;  // faces down, edge-on, degenerate or NaN
     const double xs[3] = {tri.ax, tri.ax + tri.e1x, tri.ax + tri.e2x};
@@ -106,7 +108,8 @@ Coverage cover_pixels(const TriangleMesh& mesh, const MapView& view) {
 }  // namespace
 
 TopDownMap rasterize_top_down(const TriangleMesh& surface, const CurvatureField& curvature,
-                              std::span<const std::int8_t> label, const MapView& view) {
+                              std::span<const std::int8_t> label,
+                              std::span<const std::uint8_t> free_surface, const MapView& view) {
   TopDownMap map;
   map.view = view;
   const std::size_t pixels = static_cast<std::size_t>(view.width) * view.height;
@@ -115,7 +118,7 @@ TopDownMap rasterize_top_down(const TriangleMesh& surface, const CurvatureField&
     channel->assign(pixels, 0.0f);
   if (pixels == 0) return map;
 
-  const Coverage c = cover_pixels(surface, view);
+  const Coverage c = cover_pixels(surface, free_surface, view);
   const std::size_t workers = worker_count(pixels, 1 << 18);
   std::vector<std::size_t> covered(workers, 0);
   parallel_chunks(pixels, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {

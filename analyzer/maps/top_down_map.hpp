@@ -1,7 +1,9 @@
 // A top-down map of a surface: an orthographic view along the up axis, rasterised from the
 // triangles with barycentric interpolation of per-vertex values, topmost layer winning where
-// the surface overlaps itself. Only faces with n·up > 0 are drawn, so a closed liquid volume
-// (free surface, walls, floor; outward normals) maps only its upward-facing free surface.
+// the surface overlaps itself. Only faces with n·up > 0 are drawn, and, given a free-surface
+// selection (FlowRegions::free_surface, free_surface.hpp), only faces whose three corners are
+// on the free surface: a closed liquid volume (walls, floor, the fillets between them and the
+// water, the floor of a cavity under an object) maps only its free surface.
 //
 // Map axes, right-handed and seen from above (u × v = up): columns run along u to the right,
 // rows along v downwards (row 0 is v_max):
@@ -48,9 +50,16 @@ struct TopDownMap {
   std::size_t covered_pixels = 0;
 };
 
-// Curvature and labels are per vertex of `surface` (as in Analysis). Values beyond float's
-// range are clamped to it, so the map holds no Inf or NaN.
+// Whether a face is drawn, apart from facing up: all corners selected, or no selection.
+inline bool on_mapped_surface(std::span<const std::uint8_t> free_surface, const Triangle& t) {
+  return free_surface.empty() || (free_surface[t[0]] && free_surface[t[1]] && free_surface[t[2]]);
+}
+
+// Curvature, labels and the free-surface selection are per vertex of `surface` (as in
+// Analysis); an empty selection draws every upward face. Values beyond float's range are
+// clamped to it, so the map holds no Inf or NaN.
 TopDownMap rasterize_top_down(const TriangleMesh& surface, const CurvatureField& curvature,
-                              std::span<const std::int8_t> label, const MapView& view);
+                              std::span<const std::int8_t> label,
+                              std::span<const std::uint8_t> free_surface, const MapView& view);
 
 }  // namespace toonwater

@@ -22,7 +22,8 @@ std::size_t index(const MapView& view, int x, int y) {
 TopDownMap map_of(const Analysis& a, Axis up, const MapOptions& options) {
   MapPlanner planner(up);
   planner.add(a);
-  return rasterize_top_down(a.surface, a.curvature, a.flow.label, planner.view(options));
+  return rasterize_top_down(a.surface, a.curvature, a.flow.label, a.flow.free_surface,
+                            planner.view(options));
 }
 
 // Curvature given directly, so a test controls every vertex value.
@@ -70,8 +71,16 @@ TEST(MapRasterize, SphereCapCentreMatchesAnalyticCurvature) {
   EXPECT_EQ(map.alpha[corner], 0.0f);
   for (const auto* channel : {&map.height, &map.gaussian, &map.mean, &map.k1, &map.k2, &map.label})
     EXPECT_EQ((*channel)[corner], 0.0f);
+  // Only the free surface of the closed sphere is drawn: its upward cap (slopes below 60°,
+  // free_surface.hpp), never the lower hemisphere.
   const double covered = static_cast<double>(map.covered_pixels) / (101.0 * 101.0);
-  EXPECT_NEAR(covered, std::numbers::pi / 4.0, 0.02);
+  EXPECT_GT(covered, 0.4);
+  EXPECT_LT(covered, std::numbers::pi / 4.0);
+  for (std::size_t i = 0; i < map.alpha.size(); ++i) {
+    if (map.alpha[i] > 0.0f) {
+      ASSERT_GT(map.height[i], 0.5);
+    }
+  }
 }
 
 // Saddle z = (x² − y²)/2: at the centre K = −1, H = 0 (tolerance 0.02).
@@ -109,7 +118,7 @@ TEST(MapRasterize, InterpolatesBarycentricallyNotNearestVertex) {
   CurvatureField c = constant_curvature(4, 0.0, 0.0);
   for (std::size_t v = 0; v < 4; ++v) c.gaussian[v] = 5.0 * mesh.positions[v].x();
   MapView view{Axis::z, {-1, -1, 1, 1}, 64, 64, 2.0 / 64};
-  const TopDownMap map = rasterize_top_down(mesh, c, {}, view);
+  const TopDownMap map = rasterize_top_down(mesh, c, {}, {}, view);
   EXPECT_EQ(map.covered_pixels, 64u * 64u);
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x) {
@@ -127,7 +136,7 @@ TEST(MapRasterize, TopmostLayerWinsWhateverTheFaceOrder) {
     CurvatureField c = constant_curvature(8, 0.0, 0.0);
     for (std::size_t v = 0; v < 8; ++v) c.gaussian[v] = mesh.positions[v].z() > 0.5 ? -3.0 : 5.0;
     const MapView view{Axis::z, {-1, -1, 1, 1}, 20, 20, 0.1};
-    const TopDownMap map = rasterize_top_down(mesh, c, {}, view);
+    const TopDownMap map = rasterize_top_down(mesh, c, {}, {}, view);
     EXPECT_FLOAT_EQ(map.height[index(view, 10, 10)], 1.0f);  // inside the upper square
     EXPECT_FLOAT_EQ(map.gaussian[index(view, 10, 10)], -3.0f);
     EXPECT_FLOAT_EQ(map.height[index(view, 1, 1)], 0.0f);    // only the lower one there
@@ -139,8 +148,22 @@ TEST(MapRasterize, DownwardFacesAreNotDrawn) {
   TriangleMesh mesh;
   add_square(mesh, 1.0, 1.0, /*up=*/false);  // e.g. the underside of an overhang or a floor
   const MapView view{Axis::z, {-1, -1, 1, 1}, 10, 10, 0.2};
-  const TopDownMap map = rasterize_top_down(mesh, constant_curvature(4, 1, 1), {}, view);
+  const TopDownMap map = rasterize_top_down(mesh, constant_curvature(4, 1, 1), {}, {}, view);
   EXPECT_EQ(map.covered_pixels, 0u);
+}
+
+// Given a free-surface selection, faces with a corner off it are not drawn.
+TEST(MapRasterize, OnlyFacesOnTheFreeSurfaceAreDrawn) {
+  TriangleMesh mesh;
+  add_square(mesh, 1.0, 0.0);
+  const std::vector<std::uint8_t> selected{1, 1, 1, 0};  // the face (0, 2, 3) is off
+  const MapView view{Axis::z, {-1, -1, 1, 1}, 40, 40, 0.05};
+  const TopDownMap all = rasterize_top_down(mesh, constant_curvature(4, 0, 0), {}, {}, view);
+  const TopDownMap some = rasterize_top_down(mesh, constant_curvature(4, 0, 0), {}, selected, view);
+  EXPECT_EQ(all.covered_pixels, 40u * 40u);
+  EXPECT_EQ(some.alpha[index(view, 37, 37)], 1.0f);  // face (0, 1, 2), below the diagonal
+  EXPECT_EQ(some.alpha[index(view, 2, 2)], 0.0f);    // face (0, 2, 3)
+  EXPECT_NEAR(static_cast<double>(some.covered_pixels), 40.0 * 41.0 / 2.0, 1.0);
 }
 
 // Labels are categorical: each pixel takes its nearest corner's label, never a blend.
@@ -150,7 +173,7 @@ TEST(MapRasterize, LabelIsTheNearestCornersLabel) {
   const std::vector<std::int8_t> label{FlowLabel::valley, FlowLabel::ridge, FlowLabel::ridge,
                                        FlowLabel::none};
   const MapView view{Axis::z, {-1, -1, 1, 1}, 40, 40, 0.05};
-  const TopDownMap map = rasterize_top_down(mesh, constant_curvature(4, 0, 0), label, view);
+  const TopDownMap map = rasterize_top_down(mesh, constant_curvature(4, 0, 0), label, {}, view);
   EXPECT_EQ(map.label[index(view, 2, 37)], -1.0f);  // next to (−1, −1)
   EXPECT_EQ(map.label[index(view, 37, 37)], 1.0f);  // next to (1, −1)
   EXPECT_EQ(map.label[index(view, 2, 2)], 0.0f);    // next to (−1, 1)
@@ -177,7 +200,7 @@ TEST(MapRasterize, ValuesBeyondFloatRangeAreClampedNotInfinite) {
   TriangleMesh mesh;
   add_square(mesh, 1.0, 0.0);
   const MapView view{Axis::z, {-1, -1, 1, 1}, 8, 8, 0.25};
-  const TopDownMap map = rasterize_top_down(mesh, constant_curvature(4, 1e300, -1e300), {}, view);
+  const TopDownMap map = rasterize_top_down(mesh, constant_curvature(4, 1e300, -1e300), {}, {}, view);
   for (std::size_t i = 0; i < map.alpha.size(); ++i) {
     ASSERT_TRUE(std::isfinite(map.gaussian[i]));
     ASSERT_TRUE(std::isfinite(map.mean[i]));
