@@ -1,0 +1,165 @@
+// Temporal coherence of flow regions; the method is stated in flow_coherence.hpp.
+#include "analyzer/flow_coherence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace toonwater {
+
+PointGrid::PointGrid(const std::vector<Vec3>& points, double cell_size)
+    : points_(points), cell_size_(cell_size > 0.0 ? cell_size : 1.0) {
+  std::vector<std::pair<std::int64_t, std::int32_t>> keyed(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    keyed[i] = {key_of(points[i]), static_cast<std::int32_t>(i)};
+  std::sort(keyed.begin(), keyed.end());
+  order_.resize(keyed.size());
+  for (std::size_t i = 0; i < keyed.size(); ++i) {
+    order_[i] = keyed[i].second;
+    if (cells_.empty() || cells_.back().key != keyed[i].first)
+      cells_.push_back({keyed[i].first, static_cast<std::int32_t>(i), static_cast<std::int32_t>(i)});
+    cells_.back().end = static_cast<std::int32_t>(i + 1);
+  }
+}
+
+namespace {
+
+std::int64_t cell_index(double coordinate, double cell_size) {
+  constexpr double limit = 1e15;  // far beyond any mesh; keeps the cast defined
+  return static_cast<std::int64_t>(std::floor(std::clamp(coordinate / cell_size, -limit, limit)));
+}
+
+// Cells are hashed; two cells sharing a key only cost a few extra distance tests.
+std::int64_t hash_cell(std::int64_t x, std::int64_t y, std::int64_t z) {
+  auto mix = [](std::uint64_t h) {
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdULL;
+    h ^= h >> 33;
+    return h;
+  };
+  const std::uint64_t h = mix(static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ULL ^
+                              mix(static_cast<std::uint64_t>(y) + 0x632BE59BD9B4E019ULL) ^
+                              mix(static_cast<std::uint64_t>(z) * 0x85157AF5ULL));
+  return static_cast<std::int64_t>(h >> 1);
+}
+
+}  // namespace
+
+std::int64_t PointGrid::key_of(const Vec3& p) const {
+  return hash_cell(cell_index(p.x(), cell_size_), cell_index(p.y(), cell_size_),
+                   cell_index(p.z(), cell_size_));
+}
+
+std::int32_t PointGrid::closest(const Vec3& p) const {
+  const std::int64_t cx = cell_index(p.x(), cell_size_), cy = cell_index(p.y(), cell_size_),
+                     cz = cell_index(p.z(), cell_size_);
+  std::int32_t best = -1;
+  double best_distance2 = cell_size_ * cell_size_;
+  for (std::int64_t dx = -1; dx <= 1; ++dx)
+    for (std::int64_t dy = -1; dy <= 1; ++dy)
+      for (std::int64_t dz = -1; dz <= 1; ++dz) {
+        const std::int64_t key = hash_cell(cx + dx, cy + dy, cz + dz);
+        const auto cell = std::lower_bound(cells_.begin(), cells_.end(), key,
+                                           [](const Cell& c, std::int64_t k) { return c.key < k; });
+        if (cell == cells_.end() || cell->key != key) continue;
+        for (std::int32_t i = cell->begin; i < cell->end; ++i) {
+          const double d2 = (points_[order_[i]] - p).squaredNorm();
+          if (d2 <= best_distance2) {
+            best_distance2 = d2;
+            best = order_[i];
+          }
+        }
+      }
+  return best;
+}
+
+FlowFrame flow_frame(const TriangleMesh& surface, const CurvatureField& curvature,
+                     const FlowRegions& flow) {
+  FlowFrame frame;
+  frame.edge_length = flow.median_edge_length;
+  for (std::size_t v = 0; v < surface.positions.size(); ++v) {
+    if (flow.free_surface.empty() || !flow.free_surface[v]) continue;
+    frame.positions.push_back(surface.positions[v]);
+    frame.gaussian.push_back(curvature.gaussian[v]);
+    frame.mean.push_back(curvature.mean[v]);
+    frame.label.push_back(flow.label[v]);
+    frame.age.push_back(flow.label[v] != FlowLabel::none ? 1 : 0);
+  }
+  return frame;
+}
+
+double label_flicker(const FlowFrame& previous, const TriangleMesh& surface,
+                     const CurvatureField& curvature, const FlowRegions& flow) {
+  const PointGrid grid(previous.positions, CoherenceOptions{}.max_distance * flow.median_edge_length);
+  double changed = 0.0, total = 0.0;
+  for (std::size_t v = 0; v < surface.positions.size(); ++v) {
+    if (flow.free_surface.empty() || !flow.free_surface[v]) continue;
+    const std::int32_t p = grid.closest(surface.positions[v]);
+    const std::int8_t before = p >= 0 ? previous.label[p] : std::int8_t{FlowLabel::none};
+    total += curvature.area[v];
+    if (before != flow.label[v]) changed += curvature.area[v];
+  }
+  return total > 0.0 ? changed / total : 0.0;
+}
+
+void FlowCoherence::apply(const TriangleMesh& surface, const CurvatureField& curvature,
+                          FlowRegions& flow) {
+  if (!has_previous_) {
+    previous_ = flow_frame(surface, curvature, flow);
+    has_previous_ = true;
+    last_flicker_ = 0.0;
+    return;
+  }
+  const PointGrid grid(previous_.positions, options_.max_distance * flow.median_edge_length);
+  const double t_on = flow.threshold, t_off = options_.off_fraction * flow.threshold;
+  const double b = options_.blend;
+  FlowFrame next;
+  next.edge_length = flow.median_edge_length;
+  double changed = 0.0, total = 0.0;
+  flow.ridge_vertices = flow.valley_vertices = 0;
+
+  for (std::size_t v = 0; v < surface.positions.size(); ++v) {
+    if (flow.free_surface.empty() || !flow.free_surface[v]) {
+      flow.label[v] = FlowLabel::none;
+      continue;
+    }
+    const Vec3& x = surface.positions[v];
+    const std::int32_t p = grid.closest(x);
+    const bool carried = p >= 0;
+    const double gaussian = carried ? (1 - b) * curvature.gaussian[v] + b * previous_.gaussian[p]
+                                    : curvature.gaussian[v];
+    const double mean =
+        carried ? (1 - b) * curvature.mean[v] + b * previous_.mean[p] : curvature.mean[v];
+    const std::int8_t before = carried ? previous_.label[p] : std::int8_t{FlowLabel::none};
+    const std::int32_t before_age = carried ? previous_.age[p] : 0;
+    const std::int8_t sign = mean > 0.0 ? FlowLabel::ridge : mean < 0.0 ? FlowLabel::valley : FlowLabel::none;
+
+    std::int8_t label = FlowLabel::none;
+    const bool eligible = curvature.status[v] != CurvatureStatus::undefined &&
+                          !flow.region_of_interest.empty() && flow.region_of_interest.contains(x);
+    if (eligible) {
+      const bool holds = before != FlowLabel::none &&
+                         (before_age < options_.min_lifetime ||
+                          (std::abs(gaussian) > t_off && sign == before));
+      if (holds)
+        label = before;
+      else if (std::abs(gaussian) > t_on)
+        label = sign;
+    }
+    flow.label[v] = label;
+    flow.ridge_vertices += label == FlowLabel::ridge;
+    flow.valley_vertices += label == FlowLabel::valley;
+    total += curvature.area[v];
+    if (label != before) changed += curvature.area[v];
+
+    next.positions.push_back(x);
+    next.gaussian.push_back(gaussian);
+    next.mean.push_back(mean);
+    next.label.push_back(label);
+    next.age.push_back(label == FlowLabel::none ? 0 : label == before ? before_age + 1 : 1);
+  }
+  last_flicker_ = total > 0.0 ? changed / total : 0.0;
+  previous_ = std::move(next);
+}
+
+}  // namespace toonwater

@@ -1,0 +1,88 @@
+// Temporal coherence of the water-flow regions over a frame sequence.
+//
+// Simulation meshes change topology every frame (marching cubes), so per-frame labels flicker.
+// Each frame's free-surface vertices find their closest free-surface vertex of the previous
+// frame (a uniform grid with cells of `max_distance`), and
+//   K̃ = (1 − b) K + b K̃_prev,  H̃ = (1 − b) H + b H̃_prev       (exponential blend, b = blend)
+// drives the labels with hysteresis, in the spirit of DeCarlo et al., "Interactive rendering of
+// suggestive contours with temporal coherence" (NPAR 2004): a vertex whose predecessor was
+// labelled keeps the label while |K̃| > T_off = off_fraction · T and H̃ keeps its sign, or until
+// the label is `min_lifetime` frames old; otherwise it switches on where |K̃| > T_on = T.
+//
+// Flicker is measured as the share of free-surface area (mixed Voronoi areas) whose label
+// differs from its closest predecessor's.
+#pragma once
+
+#include "analyzer/curvature.hpp"
+#include "analyzer/flow_regions.hpp"
+#include "analyzer/mesh.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace toonwater {
+
+struct CoherenceOptions {
+  double blend = 0.7;          // weight of the carried-over (already blended) curvature
+  double off_fraction = 0.6;   // T_off = off_fraction · T_on
+  int min_lifetime = 3;        // frames a label lasts at least once switched on
+  double max_distance = 2.0;   // in median edge lengths: farther vertices have no predecessor
+};
+
+// A frame's free surface as the next frame needs it.
+struct FlowFrame {
+  std::vector<Vec3> positions;
+  std::vector<double> gaussian, mean;  // blended
+  std::vector<std::int8_t> label;
+  std::vector<std::int32_t> age;       // frames the label has been on
+  double edge_length = 0.0;
+};
+
+// Closest point among `points` within a radius, through a uniform grid of cells of that size.
+class PointGrid {
+ public:
+  PointGrid(const std::vector<Vec3>& points, double cell_size);
+  // Index of the closest point within cell_size of p, or −1.
+  std::int32_t closest(const Vec3& p) const;
+
+ private:
+  struct Cell {
+    std::int64_t key;
+    std::int32_t begin, end;  // range in order_
+  };
+  std::int64_t key_of(const Vec3& p) const;
+  const std::vector<Vec3>& points_;
+  double cell_size_;
+  std::vector<std::int32_t> order_;  // point indices sorted by cell
+  std::vector<Cell> cells_;          // sorted by key
+};
+
+class FlowCoherence {
+ public:
+  explicit FlowCoherence(CoherenceOptions options = {}) : options_(options) {}
+
+  // Replaces flow.label (and the ridge/valley counts) by coherent labels for this frame and
+  // remembers the frame. The first frame's labels are left as they are.
+  void apply(const TriangleMesh& surface, const CurvatureField& curvature, FlowRegions& flow);
+
+  // Flicker of the frame last passed to apply(), against the frame before it: the share of
+  // free-surface area whose label changed; 0 for the first frame.
+  double last_flicker() const { return last_flicker_; }
+
+ private:
+  CoherenceOptions options_;
+  FlowFrame previous_;
+  bool has_previous_ = false;
+  double last_flicker_ = 0.0;
+};
+
+// Flicker between two labelled frames without coherence: the share of `current`'s free-surface
+// area whose label differs from its closest free-surface vertex's in `previous`.
+double label_flicker(const FlowFrame& previous, const TriangleMesh& surface,
+                     const CurvatureField& curvature, const FlowRegions& flow);
+
+// The free-surface part of a frame, unblended, as FlowCoherence and label_flicker take it.
+FlowFrame flow_frame(const TriangleMesh& surface, const CurvatureField& curvature,
+                     const FlowRegions& flow);
+
+}  // namespace toonwater

@@ -1,0 +1,137 @@
+// Temporal coherence of flow regions: closest-point carry-over, hysteresis, minimum lifetime,
+// and the flicker measure.
+#include "analyzer/analysis.hpp"
+#include "analyzer/flow_coherence.hpp"
+#include "analyzer/mesh_reader.hpp"
+#include "tests/analyzer/water_meshes.hpp"
+#include "tests/support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <random>
+
+namespace toonwater::test {
+namespace {
+
+TEST(PointGrid, FindsTheClosestPointWithinItsCell) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> points(2000);
+  for (Vec3& p : points) p = Vec3(u(rng), u(rng), u(rng));
+  const double radius = 0.15;
+  const PointGrid grid(points, radius);
+  for (int trial = 0; trial < 500; ++trial) {
+    const Vec3 q(u(rng), u(rng), u(rng));
+    std::int32_t expected = -1;
+    double best = radius * radius;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if ((points[i] - q).squaredNorm() <= best) {
+        best = (points[i] - q).squaredNorm();
+        expected = static_cast<std::int32_t>(i);
+      }
+    EXPECT_EQ(grid.closest(q), expected);
+  }
+}
+
+Analysis analyze_frame(const TriangleMesh& mesh) {
+  AnalyzeOptions options;
+  options.flow.up = Axis::z;
+  return analyze_mesh(mesh, options);
+}
+
+// A row of three swells along y at x = x0, with small per-frame noise standing in for the
+// simulator's frame-to-frame jitter.
+TriangleMesh wave_frame(int n, double x0, double noise, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> jitter(0.0, noise);
+  TriangleMesh m = height_field(n, [x0](double x, double y) {
+    return bump(0.08, x0, -0.5, 0.15)(x, y) + bump(0.08, x0, 0.0, 0.15)(x, y) +
+           bump(0.08, x0, 0.5, 0.15)(x, y);
+  });
+  for (Vec3& p : m.positions) p.z() += noise > 0.0 ? jitter(rng) : 0.0;
+  return m;
+}
+
+TEST(FlowCoherence, SteadyWaveKeepsItsRegions) {
+  FlowCoherence coherence;
+  const TriangleMesh m = wave_frame(81, 0.0, 0.0, 1);
+  const Analysis reference = analyze_frame(m);
+  ASSERT_GT(reference.flow.ridge_vertices, 20u);
+  for (int frame = 0; frame < 6; ++frame) {
+    Analysis a = analyze_frame(m);
+    coherence.apply(a.surface, a.curvature, a.flow);
+    EXPECT_EQ(a.flow.label, reference.flow.label) << "frame " << frame;
+    EXPECT_EQ(coherence.last_flicker(), 0.0);
+  }
+}
+
+TEST(FlowCoherence, CutsFlickerOfANoisySequenceByMoreThanHalf) {
+  FlowCoherence coherence;
+  FlowFrame previous_raw;
+  double raw_flicker = 0.0, coherent_flicker = 0.0;
+  for (int frame = 0; frame < 12; ++frame) {
+    // Alternate resolutions: the topology changes every frame, as marching cubes does.
+    const TriangleMesh m = wave_frame(frame % 2 ? 81 : 78, 0.0, 4e-4, 100 + frame);
+    Analysis a = analyze_frame(m);
+    if (frame > 0) raw_flicker += label_flicker(previous_raw, a.surface, a.curvature, a.flow);
+    previous_raw = flow_frame(a.surface, a.curvature, a.flow);
+    coherence.apply(a.surface, a.curvature, a.flow);
+    coherent_flicker += coherence.last_flicker();
+  }
+  EXPECT_GT(raw_flicker, 0.0);
+  EXPECT_LT(coherent_flicker, 0.5 * raw_flicker);
+}
+
+double ridge_centroid_x(const Analysis& a) {
+  double sum = 0.0;
+  for (std::size_t v = 0; v < a.surface.positions.size(); ++v)
+    if (a.flow.label[v] == FlowLabel::ridge) sum += a.surface.positions[v].x();
+  return sum / static_cast<double>(a.flow.ridge_vertices);
+}
+
+// Blending trades flicker for lag: with blend b the carried curvature trails a moving wave by
+// about b/(1 − b) frames of its motion (2.3 frames for b = 0.7), and labels last at least
+// min_lifetime frames. At 0.3 edge lengths a frame the regions stay within two edge lengths of
+// the per-frame ones and keep moving with the wave.
+TEST(FlowCoherence, TravellingWaveRegionsFollowTheWave) {
+  FlowCoherence coherence;
+  const int n = 81;
+  const double edge = 2.0 / (n - 1);
+  double last = -1.0;
+  for (int frame = 0; frame < 12; ++frame) {
+    const double crest = -0.4 + 0.3 * edge * frame;
+    Analysis a = analyze_frame(wave_frame(n, crest, 0.0, 1));
+    const double raw = ridge_centroid_x(a);
+    coherence.apply(a.surface, a.curvature, a.flow);
+    ASSERT_GT(a.flow.ridge_vertices, 0u);
+    const double coherent = ridge_centroid_x(a);
+    EXPECT_NEAR(coherent, raw, 2.0 * edge) << "frame " << frame;
+    EXPECT_GE(coherent, last - 1e-12) << "frame " << frame;
+    last = coherent;
+  }
+  EXPECT_GT(last, -0.4 + 0.5 * 0.3 * edge * 11);  // it moved
+}
+
+TEST(FlowCoherence, MantaflowWakeFlickerIsAtLeastHalved) {
+  const std::filesystem::path shared = shared_dir();
+  if (shared.empty()) GTEST_SKIP() << "../shared/data is absent: real-data test skipped";
+  FlowCoherence coherence;
+  FlowFrame previous_raw;
+  double raw_flicker = 0.0, coherent_flicker = 0.0;
+  for (int frame = 1; frame <= 30; ++frame) {
+    char name[64];
+    std::snprintf(name, sizeof name, "data/mantaflow-wake/water_%04d.obj", frame);
+    Analysis a = analyze_frame(read_mesh(shared / name).mesh);
+    if (frame > 1) raw_flicker += label_flicker(previous_raw, a.surface, a.curvature, a.flow);
+    previous_raw = flow_frame(a.surface, a.curvature, a.flow);
+    coherence.apply(a.surface, a.curvature, a.flow);
+    coherent_flicker += coherence.last_flicker();
+  }
+  std::printf("mantaflow-wake mean flicker per frame: %.4f without coherence, %.4f with\n",
+              raw_flicker / 29, coherent_flicker / 29);
+  EXPECT_LT(coherent_flicker, 0.5 * raw_flicker);
+}
+
+}  // namespace
+}  // namespace toonwater::test
