@@ -4,9 +4,11 @@
 // adding +0.0, which turns -0 into +0 so that both hash alike.
 #include "analyzer/weld.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <stdexcept>
+#include <vector>
 
 namespace toonwater {
 namespace {

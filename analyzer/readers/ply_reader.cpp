@@ -2,13 +2,13 @@
 // (name, count) and their properties (scalars, or lists with a count type and an item type, of
 // the eight PLY scalar types). The reader takes x, y, z of the "vertex" element and the
 // "vertex_indices" (or "vertex_index") list of the "face" element; other properties and elements
-// are skipped — in binary files by their sizes, so they must be well-formed too.
+// are skipped — in binary files by their sizes, so they must be well-formed too. ASCII records
+// are read one per line, as every writer writes them, so that errors can name the line.
 #include "analyzer/readers/readers.hpp"
 
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
