@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace toonwater {
 
@@ -49,7 +50,9 @@ void MapPlanner::add(const TriangleMesh& surface, const CurvatureField& curvatur
 
 MapView MapPlanner::view(const MapOptions& options) const {
   if (!options.box && !has_extent_)
-    throw std::runtime_error("maps: nothing faces up along the up axis, so there is no top-down map");
+    throw std::runtime_error(std::string("maps: no free-surface face faces up along +") +
+                             "xyz"[static_cast<int>(up_)] +
+                             ", so there is no top-down map (is the up axis right?)");
   MapView view;
   view.up = up_;
   view.box = options.box.value_or(extent_);
