@@ -157,8 +157,10 @@ std::string scene_pov(const SceneLayout& l) {
   s += "\n    " + finish(c, true) + "\n  }\n";
   if (refracts) s += "  interior { ior " + num(w.ior) + " }\n";
   s += "}\n";
+  // The water's shell lies above its surface: rays the water reflects would meet its inside.
   if (c.outline.enabled)
-    s += "object { Toon_outline_shell(Water_shell, " + rgb(c.outline.color) + ") }\n";
+    s += "object { Toon_outline_shell(Water_shell, " + rgb(c.outline.color) + ")" +
+         (reflects ? " no_reflection }\n" : " }\n");
 
   for (const ObjectPlacement& o : l.objects) {
     const ObjectConfig& oc = *o.config;

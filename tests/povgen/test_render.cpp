@@ -200,7 +200,7 @@ TEST(PovgenRender, SubmergedObjectMovesWhenTheIorChangesAndKeepsItsOutline) {
       for (int x = 0; x < img.width; ++x) {
         const Rgb8 c = img.at(x, y);
         if (c[0] > c[2] + 50) s.x += x, s.y += y, ++s.count;
-        s.black += c[0] + c[1] + c[2] < 120;
+        s.black += c[0] + c[1] + c[2] < 160;  // outline seen through the water
       }
     s.x /= std::max(1, s.count), s.y /= std::max(1, s.count);
     return s;
@@ -315,7 +315,8 @@ TEST(PovgenRender, MantaflowWakeSequence) {
   const CommandResult r = run_toonwater(
       {"povgen", "--water", (data / "water_####.obj").string(), "--object",
        (data / "sphere_####.obj").string(), "--up", "z", "--out", out.string(), "--set",
-       "render.frames=14-15", "--set", "render.width=64", "--set", "render.height=48"});
+       "render.frames=14-15", "--set", "render.width=64", "--set", "render.height=48", "--set",
+       "outline.width=0.02"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const Povray p = run_povray(out);
   ASSERT_EQ(p.exit_code, 0) << p.output;
@@ -327,11 +328,11 @@ TEST(PovgenRender, MantaflowWakeSequence) {
       for (int x = 0; x < img.width; ++x) {
         const Rgb8 c = img.at(x, y);
         object += orange(c);
-        outline += c[0] + c[1] + c[2] < 60;
+        outline += c[0] + c[1] + c[2] < 60;  // water and sphere silhouettes
         watery += c[2] > c[0] + 40;
       }
     EXPECT_GT(object, 0) << frame << ": the sphere is visible";
-    EXPECT_GT(outline, 10) << frame << ": outlines drawn";
+    EXPECT_GT(outline, 3) << frame << ": outlines drawn";
     EXPECT_GT(watery, 100) << frame << ": water bands drawn";
   }
 }
