@@ -49,14 +49,14 @@ void drop(const SimulationRequest& r, const MeshSink& sink, const SimulationProg
   const double tau = (radius - rest) / (gravity * t_hit);
   WaveScene s;
   s.field = make_height_field(-1.6, 1.6, -1.0, 1.0, r.resolution);
-  s.waves = {.wave_speed = 1.0, .damping = 0.2};
+  s.waves = {.wave_speed = 1.0, .damping = 0.2, .viscosity = 0.004};
   s.sphere = MovingSphere{[=](double t) {
                             const double y =
                                 t < t_hit ? start - 0.5 * gravity * t * t
                                           : rest + (radius - rest) * std::exp(-(t - t_hit) / tau);
                             return Vec3(0.0, y, 0.0);
                           },
-                          radius, 1.0};
+                          radius, 3.0};
   s.record_start = 0.3;
   s.record_end = 1.5;
   run(s, "sphere", r, sink, progress);
@@ -67,11 +67,11 @@ void drop(const SimulationRequest& r, const MeshSink& sink, const SimulationProg
 void reflection(const SimulationRequest& r, const MeshSink& sink,
                 const SimulationProgress& progress) {
   constexpr double radius = 0.22;
-  sink("left_ball.obj", uv_sphere(Vec3(-0.6, 0.4, 0.0), radius, sphere_rings, sphere_segments));
-  sink("right_ball.obj", uv_sphere(Vec3(0.6, 0.4, 0.0), radius, sphere_rings, sphere_segments));
+  sink("left_ball.obj", uv_sphere(Vec3(-0.6, 0.35, 0.0), radius, sphere_rings, sphere_segments));
+  sink("right_ball.obj", uv_sphere(Vec3(0.6, 0.35, 0.0), radius, sphere_rings, sphere_segments));
   WaveScene s;
   s.field = make_height_field(-1.6, 1.6, -1.0, 1.0, r.resolution);
-  s.waves = {.wave_speed = 1.0, .damping = 0.2};
+  s.waves = {.wave_speed = 1.0, .damping = 0.2, .viscosity = 0.004};
   HeightField& f = s.field;
   for (int j = 0; j < f.nz; ++j)
     for (int i = 0; i < f.nx; ++i) {

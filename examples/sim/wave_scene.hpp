@@ -18,7 +18,7 @@ namespace toonwater::sim {
 struct MovingSphere {
   std::function<Vec3(double)> centre;  // position at time t (y up, rest level y = 0)
   double radius = 0;
-  double gain = 1.0;  // share of the displaced volume the water takes up
+  double gain = 1.0;  // scales the displaced volume the water takes up (> 1 exaggerates)
 };
 
 struct WaveScene {
