@@ -2,7 +2,9 @@
 //                  [--set key=value]... [--up x|y|z] --out DIR
 #include "cli/commands.hpp"
 
+#include "analyzer/maps/sequence_maps.hpp"
 #include "povgen/povgen.hpp"
+#include "povgen/sequence.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -27,6 +29,7 @@ struct PovgenArgs {
   std::vector<std::string> overrides;
   std::string out;
   Axis up = Axis::y;
+  std::string maps;  // curvature maps of the water frames, one shared colour range
 };
 
 void run_povgen(const PovgenArgs& args) {
@@ -63,6 +66,17 @@ void run_povgen(const PovgenArgs& args) {
                r.frames, args.out.c_str(), r.vertices, r.degenerate_faces, r.replaced_normals,
                r.ridge_vertices, r.valley_vertices, r.read_seconds, r.analysis_seconds,
                r.write_seconds, args.out.c_str(), args.out.c_str());
+  if (!args.maps.empty()) {
+    std::vector<std::filesystem::path> frames;
+    for (const auto& [number, path] : povgen::find_sequence(args.water, request.base_dir).frames)
+      frames.push_back(path);
+    AnalyzeOptions options;
+    options.flow.up = args.up;
+    options.flow.k_threshold = config.flow.k_threshold;
+    const SequenceMaps maps = write_sequence_maps(frames, options, MapOptions{}, args.maps);
+    std::fprintf(stderr, "  maps: %zu frame(s) -> %s, shared colour ranges K \u00b1%.6g, H \u00b1%.6g\n",
+                 maps.frames, args.maps.c_str(), maps.ranges.gaussian, maps.ranges.mean);
+  }
 }
 
 }  // namespace
@@ -79,6 +93,9 @@ void add_povgen_command(CLI::App& app) {
   cmd->add_option("--config", args->config, "Scene configuration (TOML)")->check(CLI::ExistingFile);
   cmd->add_option("--set", args->overrides, "Override a configuration key: section.key=value");
   cmd->add_option("--out", args->out, "Output directory")->required();
+  cmd->add_option("--maps", args->maps,
+                  "Also write top-down curvature maps of the water frames into this directory, "
+                  "with one colour range shared by all frames");
   const std::map<std::string, Axis> axes{{"x", Axis::x}, {"y", Axis::y}, {"z", Axis::z}};
   cmd->add_option("--up", args->up, "Up axis of the input (Blender writes z)")
       ->transform(CLI::CheckedTransformer(axes, CLI::ignore_case))

@@ -1,0 +1,31 @@
+// Maps of a frame sequence with one shared view and one shared colour range (map_planner.hpp),
+// in two passes over the files so that only one frame's analysis is in memory at a time:
+// pass 1 reads and analyses every frame into a MapPlanner, pass 2 reads and analyses each
+// frame again and writes its maps (map_writer.hpp) as STEM.exr, STEM_K.png, ... where STEM is
+// the frame file's stem.
+#pragma once
+
+#include "analyzer/analysis.hpp"
+#include "analyzer/maps/map_planner.hpp"
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <vector>
+
+namespace toonwater {
+
+struct SequenceMaps {
+  MapView view;
+  MapRanges ranges;
+  std::size_t frames = 0;
+};
+
+// progress(done, total) is called after each written frame. Throws InputError for a frame that
+// cannot be read and OutputError for a map that cannot be written.
+SequenceMaps write_sequence_maps(const std::vector<std::filesystem::path>& frames,
+                                 const AnalyzeOptions& analyze, const MapOptions& maps,
+                                 const std::filesystem::path& dir,
+                                 const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+}  // namespace toonwater
