@@ -1,9 +1,13 @@
 #include "povgen/mesh2_writer.hpp"
 
+#include "analyzer/parallel.hpp"
+
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <vector>
 
 namespace toonwater::povgen {
 namespace {
@@ -22,27 +26,46 @@ class Writer {
     std::memcpy(out_.data() + size_, s.data(), s.size());
     size_ += s.size();
   }
-  void number(double value) {
+  // Fixed point with `decimals` digits after the point (trailing zeros dropped): an integer
+  // conversion, several times faster than floating-point formatting.
+  void fixed(double value, int decimals) {
     if (!std::isfinite(value)) throw std::logic_error("mesh2 writer: non-finite number");
-    reserve(32);
-    // Round to single precision first: POV-Ray stores floats, and shortest-float formatting
-    // is faster than a fixed precision; "general" with 7 digits keeps the files short.
-    const auto r = std::to_chars(out_.data() + size_, out_.data() + out_.size(),
-                                 static_cast<float>(value), std::chars_format::general, 7);
-    size_ = static_cast<std::size_t>(r.ptr - out_.data());
+    reserve(48);
+    const double scaled = std::round(value * kPowersOfTen[decimals]);
+    if (!(std::abs(scaled) < 9e18)) throw std::logic_error("mesh2 writer: number out of range");
+    auto q = static_cast<std::int64_t>(scaled);
+    char* p = out_.data() + size_;
+    if (q < 0) *p++ = '-', q = -q;
+    const auto unit = static_cast<std::int64_t>(kPowersOfTen[decimals]);
+    p = std::to_chars(p, p + 24, q / unit).ptr;
+    std::int64_t fraction = q % unit;
+    if (fraction != 0) {
+      int digits = decimals;
+      while (fraction % 10 == 0) fraction /= 10, --digits;
+      *p++ = '.';
+      char buf[24];
+      const auto r = std::to_chars(buf, buf + sizeof buf, fraction);
+      const auto len = static_cast<int>(r.ptr - buf);
+      for (int z = len; z < digits; ++z) *p++ = '0';
+      std::memcpy(p, buf, static_cast<std::size_t>(len));
+      p += len;
+    }
+    size_ = static_cast<std::size_t>(p - out_.data());
   }
+  static constexpr double kPowersOfTen[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9,
+                                            1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16};
   void integer(std::int64_t value) {
     reserve(24);
     const auto r = std::to_chars(out_.data() + size_, out_.data() + out_.size(), value);
     size_ = static_cast<std::size_t>(r.ptr - out_.data());
   }
-  void vector(const Vec3& v) {
+  void vector(const Vec3& v, int decimals) {
     text("<");
-    number(v.x());
+    fixed(v.x(), decimals);
     text(",");
-    number(v.y());
+    fixed(v.y(), decimals);
     text(",");
-    number(v.z());
+    fixed(v.z(), decimals);
     text(">");
   }
 
@@ -54,40 +77,67 @@ class Writer {
   std::size_t size_;
 };
 
+// One mesh2 block. Big blocks are formatted in contiguous chunks on all cores (each chunk into
+// its own buffer), then joined in order: the text is the same as a serial pass.
 template <class Fn>
-void block(Writer& w, std::string_view keyword, std::size_t count, Fn&& element) {
-  w.text("  ");
-  w.text(keyword);
-  w.text(" { ");
-  w.integer(static_cast<std::int64_t>(count));
-  for (std::size_t i = 0; i < count; ++i) {
-    w.text(i % 4 == 0 ? ",\n    " : ", ");
-    element(i);
+void block(std::string& out, std::string_view keyword, std::size_t count,
+           std::size_t bytes_per_element, Fn&& element) {
+  {
+    Writer w(out, 64);
+    w.text("  ");
+    w.text(keyword);
+    w.text(" { ");
+    w.integer(static_cast<std::int64_t>(count));
   }
-  w.text("\n  }\n");
+  const std::size_t workers = worker_count(count, 65536);
+  std::vector<std::string> parts(workers);
+  parallel_chunks(count, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    Writer w(parts[chunk], (end - begin) * bytes_per_element);
+    for (std::size_t i = begin; i < end; ++i) {
+      w.text(i % 4 == 0 ? ",\n    " : ", ");
+      element(w, i);
+    }
+  });
+  for (const std::string& part : parts) out += part;
+  out += "\n  }\n";
+}
+
+// Unit vectors and texture coordinates: 6 decimals, finer than single precision resolves L·n.
+constexpr int kUnitDecimals = 6;
+
+// Positions get 7 significant digits relative to the mesh's largest coordinate, the precision
+// POV-Ray's single-precision vertices keep.
+int position_decimals(const SceneMesh& mesh, double offset) {
+  const double largest =
+      std::max(mesh.min.cwiseAbs().maxCoeff(), mesh.max.cwiseAbs().maxCoeff()) + std::abs(offset);
+  if (!(largest > 0)) return 6;
+  return std::clamp(6 - static_cast<int>(std::floor(std::log10(largest))), 0, 16);
 }
 
 void append(std::string& out, std::string_view identifier, const SceneMesh& mesh,
             std::span<const TextureCoordinate> uv, double offset) {
   const std::size_t n = mesh.positions.size();
-  Writer w(out, 256 + n * (uv.empty() ? 60 : 78) + mesh.triangles.size() * 24);
-  w.text("#declare ");
-  w.text(identifier);
-  w.text(" = mesh2 {\n");
-  block(w, "vertex_vectors", n,
-        [&](std::size_t i) { w.vector(mesh.positions[i] + offset * mesh.normals[i]); });
-  block(w, "normal_vectors", n, [&](std::size_t i) { w.vector(mesh.normals[i]); });
+  out.reserve(out.size() + 256 + n * (uv.empty() ? 60 : 78) + mesh.triangles.size() * 24);
+  out += "#declare ";
+  out += identifier;
+  out += " = mesh2 {\n";
+  const int decimals = position_decimals(mesh, offset);
+  block(out, "vertex_vectors", n, 32, [&](Writer& w, std::size_t i) {
+    w.vector(mesh.positions[i] + offset * mesh.normals[i], decimals);
+  });
+  block(out, "normal_vectors", n, 32,
+        [&](Writer& w, std::size_t i) { w.vector(mesh.normals[i], kUnitDecimals); });
   if (!uv.empty()) {
     if (uv.size() != n) throw std::logic_error("mesh2 writer: one uv per vertex expected");
-    block(w, "uv_vectors", n, [&](std::size_t i) {
+    block(out, "uv_vectors", n, 20, [&](Writer& w, std::size_t i) {
       w.text("<");
-      w.number(uv[i][0]);
+      w.fixed(uv[i][0], kUnitDecimals);
       w.text(",");
-      w.number(uv[i][1]);
+      w.fixed(uv[i][1], kUnitDecimals);
       w.text(">");
     });
   }
-  block(w, "face_indices", mesh.triangles.size(), [&](std::size_t i) {
+  block(out, "face_indices", mesh.triangles.size(), 24, [&](Writer& w, std::size_t i) {
     const Triangle& t = mesh.triangles[i];
     w.text("<");
     w.integer(t[0]);
@@ -98,8 +148,8 @@ void append(std::string& out, std::string_view identifier, const SceneMesh& mesh
     w.text(">");
   });
   // Any direction works for a closed mesh; an irrational-looking one avoids grazing edges.
-  if (mesh.closed) w.text("  inside_vector <0.2718, 0.8182, 0.5069>\n");
-  w.text("}\n");
+  if (mesh.closed) out += "  inside_vector <0.2718, 0.8182, 0.5069>\n";
+  out += "}\n";
 }
 
 }  // namespace

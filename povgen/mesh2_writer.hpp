@@ -8,9 +8,10 @@
 //     inside_vector  <x,y,z>                // closed meshes only
 //   }
 //
-// Numbers are written with std::to_chars, 7 significant digits (POV-Ray stores vertices in
-// single precision), into one buffer; NaN and Inf cannot occur (SceneMesh holds finite values)
-// and are rejected if they do.
+// Numbers are written with std::to_chars as fixed-point decimals into one buffer: positions
+// with 7 significant digits relative to the mesh's largest coordinate (POV-Ray stores vertices
+// in single precision), normals and texture coordinates with 6 decimals, trailing zeros
+// dropped. NaN and Inf cannot occur (SceneMesh holds finite values) and are rejected if they do.
 #pragma once
 
 #include "povgen/scene_mesh.hpp"
