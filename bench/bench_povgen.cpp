@@ -52,7 +52,7 @@ void BM_PovgenFrame(benchmark::State& state) {
   state.counters["writing_s"] = benchmark::Counter(writing, benchmark::Counter::kAvgIterations);
   fs::remove_all(dir);
 }
-BENCHMARK(BM_PovgenFrame)->Arg(235)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_PovgenFrame)->Arg(235)->Arg(707)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_Mesh2Write(benchmark::State& state) {
   const TriangleMesh mesh = wave_field(static_cast<int>(state.range(0)));
