@@ -1,0 +1,39 @@
+// `toonwater report`: runs the measurements of issue 5 and writes, into one directory,
+//   report.md              the report: tables, plots, and when each estimator is the better choice
+//   curvature_errors.csv   every sample of the curvature study (curvature_study.hpp)
+//   pipeline.csv           the Table 1 timings (pipeline_timing.hpp)
+//   error_{K,H}_{regular,jittered,noisy}.svg   error against run time, log–log
+// Every number in them comes from this run.
+#pragma once
+
+#include "report/curvature_study.hpp"
+#include "report/pipeline_timing.hpp"
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace toonwater::report {
+
+enum class ReportSize {
+  quick,     // 1k–16k vertices, one run each, tiny renders: for CI
+  standard,  // 1k–250k vertices, median of three runs, 640×480 renders
+  full,      // standard plus 1M vertices
+};
+
+struct ReportOptions {
+  std::filesystem::path out_dir;
+  ReportSize size = ReportSize::standard;
+  std::filesystem::path data_dir;  // holds mantaflow-wake/ and blender-ocean/; skipped if absent
+  std::function<void(const std::string&)> progress;
+};
+
+struct ReportResult {
+  std::vector<StudySample> study;
+  std::vector<PipelineTiming> pipeline;
+};
+
+ReportResult write_report(const ReportOptions& options);
+
+}  // namespace toonwater::report

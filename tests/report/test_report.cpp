@@ -1,0 +1,108 @@
+// toonwater report: the reduced run CI makes (--quick), read back from its CSV files, and the
+// SVG plot writer.
+#include "report/svg_plot.hpp"
+#include "tests/support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace toonwater::test {
+namespace {
+
+using Row = std::vector<std::string>;
+
+std::vector<Row> read_csv(const std::string& text) {
+  std::vector<Row> rows;
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    Row row;
+    std::stringstream fields(line);
+    std::string field;
+    while (std::getline(fields, field, ',')) row.push_back(field);
+    if (!line.empty() && line.back() == ',') row.emplace_back();
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double number(const std::string& text) {
+  std::size_t used = 0;
+  const double value = std::stod(text, &used);
+  EXPECT_EQ(used, text.size()) << text;
+  return value;
+}
+
+TEST(Report, QuickRunHasFiniteNumbersAndErrorsFallingOnRegularMeshes) {
+  ScratchDir dir;
+  const std::filesystem::path data = shared_dir().empty() ? dir.path() : shared_dir() / "data";
+  const CommandResult r = run_toonwater(
+      {"report", "--quick", "--out", (dir / "out").string(), "--data", data.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  const std::vector<Row> study = read_csv(read_text(dir / "out" / "curvature_errors.csv"));
+  ASSERT_EQ(study.front(), (Row{"surface", "sampling", "method", "vertices", "rms_K", "max_K",
+                                "rms_H", "max_H", "median_seconds"}));
+  // 5 surfaces × 3 samplings × 3 resolutions × 4 methods.
+  ASSERT_EQ(study.size(), 1u + 5 * 3 * 3 * 4);
+  std::map<std::string, std::vector<std::pair<double, std::pair<double, double>>>> regular;
+  for (std::size_t i = 1; i < study.size(); ++i) {
+    const Row& row = study[i];
+    ASSERT_EQ(row.size(), 9u);
+    for (std::size_t c = 3; c < 9; ++c) {
+      const double value = number(row[c]);
+      EXPECT_TRUE(std::isfinite(value) && value > 0.0) << row[0] << " " << row[2] << " " << c;
+    }
+    EXPECT_LE(number(row[4]), number(row[5]));  // RMS ≤ max
+    EXPECT_LE(number(row[6]), number(row[7]));
+    if (row[1] == "regular")
+      regular[row[0] + ", " + row[2]].push_back({number(row[3]), {number(row[4]), number(row[6])}});
+  }
+  ASSERT_EQ(regular.size(), 20u);
+  for (const auto& [series, points] : regular) {
+    SCOPED_TRACE(series);
+    ASSERT_EQ(points.size(), 3u);
+    for (std::size_t i = 1; i < points.size(); ++i) {
+      EXPECT_GT(points[i].first, points[i - 1].first);
+      EXPECT_LT(points[i].second.first, points[i - 1].second.first);    // K
+      EXPECT_LT(points[i].second.second, points[i - 1].second.second);  // H
+    }
+  }
+
+  const std::vector<Row> pipeline = read_csv(read_text(dir / "out" / "pipeline.csv"));
+  ASSERT_GE(pipeline.size(), 2u);
+  EXPECT_EQ(pipeline[1][0], "generated height field");
+  EXPECT_EQ(number(pipeline[1][1]), 101.0 * 101.0);
+  for (std::size_t c = 2; c < 7; ++c) {
+    ASSERT_FALSE(pipeline[1][c].empty()) << "column " << c << " not measured";
+    const double seconds = number(pipeline[1][c]);
+    EXPECT_TRUE(std::isfinite(seconds) && seconds > 0.0) << c;
+  }
+
+  const std::string md = read_text(dir / "out" / "report.md");
+  for (const char* part : {"## 1.", "## 2.", "## 4.", "error_H_jittered.svg"})
+    EXPECT_NE(md.find(part), std::string::npos) << part;
+  const std::string svg = read_text(dir / "out" / "error_H_jittered.svg");
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_GE(std::count(svg.begin(), svg.end(), '\n'), 20);
+}
+
+TEST(SvgPlot, PlacesPointsOnLogAxesAndEscapesText) {
+  report::LogLogPlot plot{"a <title> & more", "x", "y", {}};
+  plot.series.push_back({"s\"1\"", "#000000", "", {{1e-3, 1e-2}, {1e-1, 1.0}, {0.0, 5.0}}});
+  const std::string svg = report::render_svg(plot);
+  EXPECT_NE(svg.find("a &lt;title&gt; &amp; more"), std::string::npos);
+  EXPECT_NE(svg.find("s&quot;1&quot;"), std::string::npos);
+  // Decades 1e-3..1e-1 on x span the plotting area [80, 640], 1e-2..1e0 on y span [460, 40]:
+  // the two drawable points are its corners; the point at x = 0 is left out.
+  EXPECT_NE(svg.find("points=\"80.0,460.0 640.0,40.0 \""), std::string::npos) << svg;
+  EXPECT_EQ(svg.find("nan"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace toonwater::test
