@@ -11,7 +11,8 @@ namespace toonwater {
 
 using Rgb8 = std::array<std::uint8_t, 3>;
 
-// t in [−1, 1] (clamped; NaN gives the zero colour): −1 darkest blue, 0 white, 1 darkest red.
+// t in [−1, 1] (clamped; NaN gives the zero colour, t is rounded to a multiple of 1/1024):
+// −1 darkest blue, 0 white, 1 darkest red.
 Rgb8 diverging_colour(double t);
 // value / range mapped into the diverging colour map; a zero range maps everything to 0.
 Rgb8 diverging_colour(double value, double range);
