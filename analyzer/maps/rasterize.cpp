@@ -1,10 +1,10 @@
 // Top-down rasteriser (see top_down_map.hpp). Two passes over flat arrays:
 //  1. coverage: each upward-facing triangle, projected on the map plane, visits the pixel
 //     centres inside it (edge functions, inclusive so shared edges leave no cracks) and keeps
-//     the face of the highest point seen so far (a depth test on the interpolated height: the
-//     topmost layer wins);
-//  2. resolve (split over the cores): every covered pixel recomputes its face's barycentric
-//     weights and interpolates the corners' values, once, however much overdraw there was. Labels are categorical, so a
+//     the face and barycentric weights of the highest point seen so far (a depth test on the
+//     interpolated height: the topmost layer wins);
+//  2. resolve (split over the cores): every covered pixel interpolates its face's corner
+//     values with those weights, once, however much overdraw there was. Labels are categorical, so a
 //     pixel takes the label of its nearest corner (largest weight) instead of a blend.
 #include "analyzer/maps/top_down_map.hpp"
 
@@ -37,7 +37,7 @@ float finite_float(double value) {
 }
 
 // A triangle projected into pixel coordinates, in which pixel centres are integers and y grows
-// downwards. Both passes take barycentric weights from here, so they agree exactly.
+// downwards.
 struct PixelTriangle {
   double ax, ay, e1x, e1y, e2x, e2y, area2;
 
@@ -64,6 +64,7 @@ struct PixelTriangle {
 
 struct Coverage {
   std::vector<std::int32_t> face;  // -1: not covered
+  std::vector<float> w1, w2;       // barycentric weights of corners 1 and 2 in that face
   std::vector<double> depth;       // interpolated height of that face
 };
 
@@ -72,6 +73,8 @@ Coverage cover_pixels(const TriangleMesh& mesh, std::span<const std::uint8_t> fr
   const std::size_t pixels = static_cast<std::size_t>(view.width) * view.height;
   Coverage c;
   c.face.assign(pixels, -1);
+  c.w1.assign(pixels, 0.0f);
+  c.w2.assign(pixels, 0.0f);
   c.depth.assign(pixels, -std::numeric_limits<double>::infinity());
   const int up = static_cast<int>(view.up);
   constexpr double tolerance = -1e-9;  // relative: keeps pixel centres on shared edges
@@ -99,6 +102,8 @@ Coverage cover_pixels(const TriangleMesh& mesh, std::span<const std::uint8_t> fr
         if (!(height > c.depth[i])) continue;
         c.depth[i] = height;
         c.face[i] = static_cast<std::int32_t>(f);
+        c.w1[i] = static_cast<float>(w1);
+        c.w2[i] = static_cast<float>(w2);
       }
     }
   }
@@ -125,10 +130,8 @@ TopDownMap rasterize_top_down(const TriangleMesh& surface, const CurvatureField&
     for (std::size_t i = begin; i < end; ++i) {
       if (c.face[i] < 0) continue;
       const Triangle& t = surface.triangles[c.face[i]];
-      const auto [w1_raw, w2_raw] = PixelTriangle(surface, t, view)
-                                        .weights(static_cast<int>(i % view.width),
-                                                 static_cast<int>(i / view.width));
-      const double w1 = std::clamp(w1_raw, 0.0, 1.0), w2 = std::clamp(w2_raw, 0.0, 1.0);
+      const double w1 = std::clamp<double>(c.w1[i], 0.0, 1.0);
+      const double w2 = std::clamp<double>(c.w2[i], 0.0, 1.0);
       const double w0 = std::max(0.0, 1.0 - w1 - w2);
       auto blend = [&](const std::vector<double>& v) {
         return finite_float(w0 * v[t[0]] + w1 * v[t[1]] + w2 * v[t[2]]);
