@@ -178,11 +178,14 @@ InputMesh read_mesh(const std::filesystem::path& path) {
   else if (extension == ".off") read = readers::read_off;
   else if (extension == ".ply") read = readers::read_ply;
   else if (extension == ".stl") read = readers::read_stl;
+  else if (extension == ".gz" && lowercase_extension(path.stem()) == ".bobj")
+    read = readers::read_bobj;
   else if (extension.empty())
-    readers::fail(file, "has no extension to tell its format (expected .obj, .off, .ply or .stl)");
+    readers::fail(file, "has no extension to tell its format "
+                        "(expected .obj, .off, .ply, .stl or .bobj.gz)");
   else
     readers::fail(file, "unknown mesh format " + readers::quote(extension) +
-                            " (expected .obj, .off, .ply or .stl)");
+                            " (expected .obj, .off, .ply, .stl or .bobj.gz)");
 
   std::size_t size = 0;
   const std::unique_ptr<char[]> bytes = load_file(file, size);

@@ -28,7 +28,7 @@ struct InputMesh {
   std::size_t polygon_count = 0;  // faces as the file lists them, before triangulation
 };
 
-// Reads OBJ/OFF/PLY/STL, chosen by the file's extension (case-insensitive).
+// Reads OBJ/OFF/PLY/STL or Mantaflow's .bobj.gz, chosen by the file's extension (case-insensitive).
 // Throws InputError for a missing, unreadable, malformed or truncated file, an index out of
 // range, a face with fewer than three corners, or a coordinate that is NaN or infinite.
 InputMesh read_mesh(const std::filesystem::path& path);

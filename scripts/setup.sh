@@ -7,7 +7,7 @@ build_dir=${TOONWATER_BUILD_DIR:-$root/build}
 
 packages=(
   build-essential cmake pkg-config
-  libeigen3-dev libcli11-dev libtomlplusplus-dev
+  libeigen3-dev libcli11-dev libtomlplusplus-dev zlib1g-dev
   libopenimageio-dev openimageio-tools fonts-dejavu-core
   povray
   libgtest-dev libbenchmark-dev

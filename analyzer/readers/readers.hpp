@@ -90,5 +90,6 @@ InputMesh read_obj(const SourceFile& file);
 InputMesh read_off(const SourceFile& file);
 InputMesh read_ply(const SourceFile& file);
 InputMesh read_stl(const SourceFile& file);
+InputMesh read_bobj(const SourceFile& file);  // Mantaflow .bobj.gz
 
 }  // namespace toonwater::readers

@@ -1,0 +1,54 @@
+// Affine maps of mesh positions. A is singular, for our purposes, when
+// |det A| <= 1e-12 · |row 0| |row 1| |row 2|: by Hadamard's inequality |det A| never exceeds the
+// product of the row lengths (equality for orthogonal rows), so the ratio measures how close A
+// comes to flattening space whatever its scale — a uniform scale by 1e-6 passes, a matrix whose
+// rows are (numerically) dependent does not.
+#include "analyzer/affine_transform.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+namespace toonwater {
+namespace {
+
+constexpr double singular_ratio = 1e-12;
+
+AffineTransform validated(const AffineTransform& transform) {
+  if (!transform.linear.allFinite() || !transform.translation.allFinite())
+    throw std::invalid_argument("transform: an entry is NaN or infinite");
+  const double det = transform.linear.determinant();
+  const double bound = transform.linear.row(0).norm() * transform.linear.row(1).norm() *
+                       transform.linear.row(2).norm();
+  if (!(std::abs(det) > singular_ratio * bound)) {
+    std::ostringstream message;
+    message << "transform: the linear part is singular (determinant " << det
+            << "): it would flatten the mesh";
+    throw std::invalid_argument(message.str());
+  }
+  return transform;
+}
+
+}  // namespace
+
+AffineTransform affine_from_rows(std::span<const double, 12> rows) {
+  AffineTransform transform;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) transform.linear(r, c) = rows[4 * r + c];
+    transform.translation[r] = rows[4 * r + 3];
+  }
+  return validated(transform);
+}
+
+AffineTransform scale_then_translate(double scale, const Vec3& translation) {
+  return validated({scale * Eigen::Matrix3d::Identity(), translation});
+}
+
+void apply_transform(const AffineTransform& transform, TriangleMesh& mesh) {
+  for (Vec3& p : mesh.positions) p = transform.linear * p + transform.translation;
+  if (transform.linear.determinant() < 0)
+    for (Triangle& t : mesh.triangles) std::swap(t[1], t[2]);
+}
+
+}  // namespace toonwater
