@@ -19,8 +19,8 @@
 namespace toonwater::cli {
 namespace {
 
-std::atomic<bool> stop_requested{false};
-extern "C" void request_stop(int) { stop_requested = true; }
+std::atomic<bool> povgen_stop_requested{false};
+void request_povgen_stop(int) { povgen_stop_requested = true; }
 
 struct PovgenArgs {
   std::string water;
@@ -46,8 +46,8 @@ void run_povgen(const PovgenArgs& args) {
   request.out_dir = args.out;
 
   // Ctrl-C stops between frames: every file written so far is complete.
-  std::signal(SIGINT, request_stop);
-  std::signal(SIGTERM, request_stop);
+  std::signal(SIGINT, request_povgen_stop);
+  std::signal(SIGTERM, request_povgen_stop);
   const auto start = std::chrono::steady_clock::now();
   auto progress = [&](std::size_t done, std::size_t total) {
     const double elapsed =
@@ -57,7 +57,7 @@ void run_povgen(const PovgenArgs& args) {
                  elapsed, left);
     if (done == total) std::fputc('\n', stderr);
   };
-  const povgen::PovgenReport r = povgen::generate_scene(config, request, progress, &stop_requested);
+  const povgen::PovgenReport r = povgen::generate_scene(config, request, progress, &povgen_stop_requested);
   std::fprintf(stderr,
                "povgen: %zu frame(s) -> %s (%zu water vertices, %zu degenerate faces left out, "
                "%zu normals replaced, ridge %zu, valley %zu)\n"

@@ -115,7 +115,8 @@ int position_decimals(const SceneMesh& mesh, double offset) {
 }
 
 void append(std::string& out, std::string_view identifier, const SceneMesh& mesh,
-            std::span<const TextureCoordinate> uv, double offset) {
+            std::span<const TextureCoordinate> uv, double offset,
+            std::span<const Triangle> triangles, bool closed) {
   const std::size_t n = mesh.positions.size();
   out.reserve(out.size() + 256 + n * (uv.empty() ? 60 : 78) + mesh.triangles.size() * 24);
   out += "#declare ";
@@ -137,8 +138,8 @@ void append(std::string& out, std::string_view identifier, const SceneMesh& mesh
       w.text(">");
     });
   }
-  block(out, "face_indices", mesh.triangles.size(), 24, [&](Writer& w, std::size_t i) {
-    const Triangle& t = mesh.triangles[i];
+  block(out, "face_indices", triangles.size(), 24, [&](Writer& w, std::size_t i) {
+    const Triangle& t = triangles[i];
     w.text("<");
     w.integer(t[0]);
     w.text(",");
@@ -148,7 +149,7 @@ void append(std::string& out, std::string_view identifier, const SceneMesh& mesh
     w.text(">");
   });
   // Any direction works for a closed mesh; an irrational-looking one avoids grazing edges.
-  if (mesh.closed) out += "  inside_vector <0.2718, 0.8182, 0.5069>\n";
+  if (closed) out += "  inside_vector <0.2718, 0.8182, 0.5069>\n";
   out += "}\n";
 }
 
@@ -156,12 +157,25 @@ void append(std::string& out, std::string_view identifier, const SceneMesh& mesh
 
 void append_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
                   std::span<const TextureCoordinate> uv) {
-  append(out, identifier, mesh, uv, 0.0);
+  append(out, identifier, mesh, uv, 0.0, mesh.triangles, mesh.closed);
 }
 
 void append_shell_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
-                        double offset) {
-  append(out, identifier, mesh, {}, offset);
+                        double offset, ShellFaces faces) {
+  if (faces == ShellFaces::all) {
+    append(out, identifier, mesh, {}, offset, mesh.triangles, mesh.closed);
+    return;
+  }
+  std::vector<Triangle> upward;
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3& a = mesh.positions[t[0]];
+    const Vec3 n = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);
+    // The axis map reverses windings (axes.hpp): the vertex normals say which side is out.
+    const Vec3 mean = mesh.normals[t[0]] + mesh.normals[t[1]] + mesh.normals[t[2]];
+    const double up = (n.dot(mean) >= 0 ? n.y() : -n.y()) / std::max(n.norm(), 1e-300);
+    if (up > 0.1) upward.push_back(t);
+  }
+  append(out, identifier, mesh, {}, offset, upward, false);
 }
 
 }  // namespace toonwater::povgen

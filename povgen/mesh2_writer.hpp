@@ -26,9 +26,18 @@ namespace toonwater::povgen {
 void append_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
                   std::span<const TextureCoordinate> uv);
 
+// Which faces an outline shell keeps.
+enum class ShellFaces {
+  all,
+  // Faces whose normal points up (n·y > 0.1): the free surface of a closed liquid volume. Rays
+  // refracted through a transparent closed volume leave it through its floor and walls and would
+  // meet the inside of a closed shell there, painting the water in the line colour.
+  upward,
+};
+
 // Appends the outline shell of `mesh`: the same faces with every vertex moved by `offset` along
 // its normal (Raskar and Cohen 1999), normals unchanged, no texture coordinates.
 void append_shell_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
-                        double offset);
+                        double offset, ShellFaces faces = ShellFaces::all);
 
 }  // namespace toonwater::povgen

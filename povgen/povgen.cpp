@@ -59,11 +59,13 @@ double outline_width(const OutlineConfig& outline, const SceneMesh& mesh) {
 }
 
 std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
-                         const LightGeometry& light, double shell_offset) {
+                         const LightGeometry& light, double shell_offset,
+                         ShellFaces shell_faces) {
   std::string text = "// Written by toonwater povgen: meshes for scene.pov.\n";
   const auto uv = toon_coordinates(surface.mesh, light, surface.labels);
   append_mesh2(text, prefix + "_mesh", surface.mesh, uv);
-  if (shell_offset > 0) append_shell_mesh2(text, prefix + "_shell", surface.mesh, shell_offset);
+  if (shell_offset > 0)
+    append_shell_mesh2(text, prefix + "_shell", surface.mesh, shell_offset, shell_faces);
   return text;
 }
 
@@ -173,7 +175,10 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
 
     const double width = config.outline.enabled ? outline_width(config.outline, s.mesh) : 0;
     const auto start = Clock::now();
-    const std::string text = mesh_include(s, "Water", light, width);
+    // A see-through closed volume keeps the shell on its free surface only (ShellFaces).
+    const ShellFaces shell_faces =
+        s.mesh.closed && config.water.transmit > 0 ? ShellFaces::upward : ShellFaces::all;
+    const std::string text = mesh_include(s, "Water", light, width, shell_faces);
     report.write_seconds += seconds_since(start);
     write(water_include_name(written_frame), text);
 

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "povgen/config.hpp"
+#include "povgen/mesh2_writer.hpp"
 #include "povgen/scene_mesh.hpp"
 
 #include <atomic>
@@ -35,9 +36,10 @@ struct PreparedSurface {
 PreparedSurface prepare_surface(const TriangleMesh& input, Axis up, const FlowConfig* flow);
 
 // The mesh2 include text: `Prefix_mesh` with toon coordinates, and `Prefix_shell` when
-// `outline_width` > 0 (in world units).
+// `shell_offset` > 0 (in world units).
 std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
-                         const LightGeometry& light, double outline_width);
+                         const LightGeometry& light, double shell_offset,
+                         ShellFaces shell_faces = ShellFaces::all);
 
 double outline_width(const OutlineConfig& outline, const SceneMesh& mesh);
 

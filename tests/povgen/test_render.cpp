@@ -215,6 +215,41 @@ TEST(PovgenRender, SubmergedObjectMovesWhenTheIorChangesAndKeepsItsOutline) {
   EXPECT_GT(water.black, 5) << "the outline survives refraction";
 }
 
+// A see-through closed tank of water: the outline shell must not paint the water in the line
+// colour (rays refracted through the volume leave it through the floor and walls).
+TEST(PovgenRender, TransparentClosedWaterIsNotDarkenedByItsShell) {
+  ScratchDir dir;
+  TriangleMesh box;
+  for (int i = 0; i < 8; ++i)
+    box.positions.emplace_back(i & 1 ? 1.0 : -1.0, i & 2 ? 0.0 : -0.4, i & 4 ? 1.0 : -1.0);
+  // Outward-wound quads as two triangles each: -x, +x, -y, +y, -z, +z.
+  const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  for (const auto& q : quads) {
+    box.triangles.push_back({q[0], q[1], q[2]});
+    box.triangles.push_back({q[0], q[2], q[3]});
+  }
+  write_obj(dir / "tank.obj", box);
+  const Image img = render_scene(
+      dir, "tank",
+      std::vector<std::string>{"--water", (dir / "tank.obj").string(), "--set",
+                               "camera.location=[0, 2, 3.5]",
+                               "--set", "camera.look_at=[0, -0.2, 0]", "--set", "render.width=64",
+                               "--set", "render.height=48"} +
+          opaque_flat_water() +
+          std::vector<std::string>{"--set", "water.transmit=0.9", "--set", "render.background=[1, 0, 0]"});
+  int water = 0, dark = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const Rgb8 c = img.at(x, y);
+      if (near(c, {255, 0, 0}, 2)) continue;
+      ++water;
+      dark += c[0] < 100;  // the red background seen through the water has r >= 0.9 * 255
+    }
+  ASSERT_GT(water, 300);
+  EXPECT_LT(dark, water / 5) << dark << " of " << water << " water pixels in the line colour";
+  EXPECT_GT(dark, 0) << "the tank's rim is outlined";
+}
+
 TEST(PovgenRender, RidgeColourOnABumpAndNotOnFlatWater) {
   ScratchDir dir;
   write_obj(dir / "bump.obj", make_height_grid(61, 1.0, [](double x, double z) {
