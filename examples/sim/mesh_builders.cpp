@@ -70,7 +70,7 @@ TriangleMesh capsule(const Vec3& a, const Vec3& b, double radius, int segments) 
   const Vec3 axis = (b - a).normalized();
   const Vec3 helper = std::abs(axis.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
   const Vec3 u = axis.cross(helper).normalized();
-  const Vec3 w = axis.cross(u);  // (u, axis, w) right-handed like (x, y, −z) of uv_sphere
+  const Vec3 w = u.cross(axis);  // (u, axis, w) right-handed, like (x, y, z) in uv_sphere
   // Odd: no ring on the equator; the band between the two rings nearest it is the cylinder.
   const int rings = 2 * ((segments + 3) / 4) + 1;
   return lat_long(rings, segments, [&](double cos_polar, double azimuth) {
