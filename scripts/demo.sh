@@ -2,8 +2,9 @@
 # The main job, end to end on a fresh machine: set-up and build, then a cartoon water animation
 # made from nothing but toonwater itself —
 #   simulate   the wake example: a sphere crossing open water (toonwater simulate wake)
-#   analyze    curvature and flow regions of a frame (CSV, PLY) and curvature maps of every frame
-#   povgen     POV-Ray scenes with the Cartoon Water Shader (examples/wake/scene.toml)
+#   analyze    curvature and flow regions of the middle frame (CSV, PLY)
+#   povgen     POV-Ray scenes with the Cartoon Water Shader (examples/wake/scene.toml), and
+#              curvature maps of every frame on one shared colour range
 #   render     the frames with POV-Ray, on every core
 #   preview    an animated GIF of the frames (OpenImageIO's oiiotool)
 # Usage: scripts/demo.sh [OUT_DIR]            (default: ./out, git-ignored)
@@ -28,25 +29,21 @@ tw="$build_dir/cli/toonwater"
 
 demo="$out/wake"
 rm -rf "$demo"  # only this demo's own outputs: a shorter re-run leaves no stale frames
-mkdir -p "$demo/analysis" "$demo/maps"
+mkdir -p "$demo/analysis"
 
 step 2 "simulate the wake example: $frames frames"
 "$tw" simulate wake --frames "$frames" --out "$demo/sim"
 
-step 3 "analyze: curvature and flow regions, curvature maps"
+step 3 "analyze: curvature and flow regions of the middle frame"
 middle=$(printf 'water_%04d' $(((frames + 1) / 2)))
 "$tw" analyze "$demo/sim/$middle.obj" --csv "$demo/analysis/$middle.csv" \
   --ply "$demo/analysis/$middle.ply"
-for mesh in "$demo"/sim/water_*.obj; do
-  printf '\ranalyze --maps: %s   ' "$(basename "$mesh")" >&2
-  "$tw" analyze "$mesh" --maps "$demo/maps" 2>/dev/null
-done
-printf '\n' >&2
 
-step 4 "povgen: POV-Ray scenes at ${width}x${height}"
+step 4 "povgen: POV-Ray scenes at ${width}x${height}, curvature maps"
 cp "$root/examples/wake/scene.toml" "$demo/scene.toml"  # its mesh paths are relative to it
 "$tw" povgen --config "$demo/scene.toml" --water "$demo/sim/water_####.obj" \
-  --set "render.width=$width" --set "render.height=$height" --out "$demo/scene"
+  --set "render.width=$width" --set "render.height=$height" --out "$demo/scene" \
+  --maps "$demo/maps"
 
 step 5 "render with POV-Ray ($jobs frames at a time)"
 "$tw" render "$demo/scene" --jobs "$jobs"
