@@ -116,7 +116,7 @@ int position_decimals(const SceneMesh& mesh, double offset) {
 
 void append(std::string& out, std::string_view identifier, const SceneMesh& mesh,
             std::span<const TextureCoordinate> uv, double offset,
-            std::span<const Triangle> triangles, bool closed) {
+            std::span<const Triangle> triangles, bool closed, bool normals) {
   const std::size_t n = mesh.positions.size();
   out.reserve(out.size() + 256 + n * (uv.empty() ? 60 : 78) + mesh.triangles.size() * 24);
   out += "#declare ";
@@ -126,8 +126,9 @@ void append(std::string& out, std::string_view identifier, const SceneMesh& mesh
   block(out, "vertex_vectors", n, 32, [&](Writer& w, std::size_t i) {
     w.vector(mesh.positions[i] + offset * mesh.normals[i], decimals);
   });
-  block(out, "normal_vectors", n, 32,
-        [&](Writer& w, std::size_t i) { w.vector(mesh.normals[i], kUnitDecimals); });
+  if (normals)
+    block(out, "normal_vectors", n, 32,
+          [&](Writer& w, std::size_t i) { w.vector(mesh.normals[i], kUnitDecimals); });
   if (!uv.empty()) {
     if (uv.size() != n) throw std::logic_error("mesh2 writer: one uv per vertex expected");
     block(out, "uv_vectors", n, 20, [&](Writer& w, std::size_t i) {
@@ -157,25 +158,31 @@ void append(std::string& out, std::string_view identifier, const SceneMesh& mesh
 
 void append_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
                   std::span<const TextureCoordinate> uv) {
-  append(out, identifier, mesh, uv, 0.0, mesh.triangles, mesh.closed);
+  append(out, identifier, mesh, uv, 0.0, mesh.triangles, mesh.closed, /*normals=*/true);
 }
 
 void append_shell_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
                         double offset, ShellFaces faces) {
-  if (faces == ShellFaces::all) {
-    append(out, identifier, mesh, {}, offset, mesh.triangles, mesh.closed);
-    return;
-  }
-  std::vector<Triangle> upward;
+  // The shell is drawn flat, so it needs no normals; without them POV-Ray takes (a−b)×(c−b) of
+  // face <a,b,c> as the outward side. Each face is wound to agree with its vertex normals,
+  // which also drops a third of the shell's text and parse time.
+  std::vector<Triangle> oriented;
+  oriented.reserve(mesh.triangles.size());
   for (const Triangle& t : mesh.triangles) {
     const Vec3& a = mesh.positions[t[0]];
-    const Vec3 n = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);
-    // The axis map reverses windings (axes.hpp): the vertex normals say which side is out.
+    const Vec3& b = mesh.positions[t[1]];
+    const Vec3& c = mesh.positions[t[2]];
+    const Vec3 outward = (a - b).cross(c - b);
     const Vec3 mean = mesh.normals[t[0]] + mesh.normals[t[1]] + mesh.normals[t[2]];
-    const double up = (n.dot(mean) >= 0 ? n.y() : -n.y()) / std::max(n.norm(), 1e-300);
-    if (up > 0.1) upward.push_back(t);
+    const bool agrees = outward.dot(mean) >= 0;
+    if (faces == ShellFaces::upward) {
+      const double up = (agrees ? outward.y() : -outward.y()) / std::max(outward.norm(), 1e-300);
+      if (!(up > 0.1)) continue;
+    }
+    oriented.push_back(agrees ? t : Triangle{t[0], t[2], t[1]});
   }
-  append(out, identifier, mesh, {}, offset, upward, false);
+  append(out, identifier, mesh, {}, offset, oriented,
+         faces == ShellFaces::all && mesh.closed, /*normals=*/false);
 }
 
 }  // namespace toonwater::povgen

@@ -2,7 +2,7 @@
 //
 //   #declare Name = mesh2 {
 //     vertex_vectors { N, <x,y,z>, ... }
-//     normal_vectors { N, <x,y,z>, ... }    // indexed like the vertices (no normal_indices)
+//     normal_vectors { N, <x,y,z>, ... }    // indexed like the vertices; not in shells
 //     uv_vectors     { N, <u,v>, ... }      // optional, indexed like the vertices
 //     face_indices   { F, <a,b,c>, ... }
 //     inside_vector  <x,y,z>                // closed meshes only
@@ -36,7 +36,8 @@ enum class ShellFaces {
 };
 
 // Appends the outline shell of `mesh`: the same faces with every vertex moved by `offset` along
-// its normal (Raskar and Cohen 1999), normals unchanged, no texture coordinates.
+// its normal (Raskar and Cohen 1999), each face wound so that POV-Ray's face normal points
+// outward, without normals or texture coordinates (the shell is drawn flat).
 void append_shell_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
                         double offset, ShellFaces faces = ShellFaces::all);
 
