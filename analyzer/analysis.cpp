@@ -16,12 +16,12 @@ double seconds_since(Clock::time_point start) {
 
 }  // namespace
 
-Analysis analyze_mesh(const TriangleMesh& input, const AnalyzeOptions& options) {
+Analysis analyze_mesh(TriangleMesh input, const AnalyzeOptions& options) {
   Analysis a;
   a.input_vertices = input.positions.size();
 
   auto start = Clock::now();
-  WeldedMesh welded = weld_coincident_vertices(input);
+  WeldedMesh welded = weld_coincident_vertices(std::move(input));
   a.surface = std::move(welded.mesh);
   a.input_to_surface = std::move(welded.input_to_mesh);
   a.merged_vertices = welded.merged_vertex_count;

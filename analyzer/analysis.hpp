@@ -40,6 +40,7 @@ struct Analysis {
   StageTimes times;
 };
 
-Analysis analyze_mesh(const TriangleMesh& input, const AnalyzeOptions& options);
+// Takes the mesh by value: pass it with std::move when it is not needed afterwards.
+Analysis analyze_mesh(TriangleMesh input, const AnalyzeOptions& options);
 
 }  // namespace toonwater

@@ -1,4 +1,4 @@
-// write_file_atomically: writes ".NAME.tmp-PID-N" beside the target, closes it (checking every
+// AtomicFileWriter: writes ".NAME.tmp-PID-N" beside the target, closes it (checking every
 // step), then rename(2)s it over the target, which POSIX makes atomic within one file system —
 // hence the temporary file lives in the target's own directory. There is no fsync: the guarantee
 // is against failed and interrupted runs, not against power loss, and syncing large outputs would
@@ -18,7 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void fail(const fs::path& path, const std::string& what, int error) {
+[[noreturn]] void throw_output_error(const fs::path& path, const std::string& what, int error) {
   throw OutputError(path.string() + ": " + what + ": " + std::generic_category().message(error));
 }
 
@@ -37,7 +37,8 @@ int create_temporary(const fs::path& path, fs::path& temporary) {
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd >= 0) return fd;
     // A name left by an earlier process with the same pid: try the next one.
-    if (errno != EEXIST) fail(path, "cannot create a temporary file in " + directory.string(), errno);
+    if (errno != EEXIST)
+      throw_output_error(path, "cannot create a temporary file in " + directory.string(), errno);
   }
 }
 
@@ -53,23 +54,42 @@ bool write_all(int fd, std::string_view contents) {
 
 }  // namespace
 
+AtomicFileWriter::AtomicFileWriter(fs::path path) : path_(std::move(path)) {
+  if (!path_.has_filename()) throw OutputError(path_.string() + ": not a file name");
+  fd_ = create_temporary(path_, temporary_);
+}
+
+AtomicFileWriter::~AtomicFileWriter() {
+  if (fd_ >= 0) ::close(fd_);
+  if (!temporary_.empty()) ::unlink(temporary_.c_str());
+}
+
+void AtomicFileWriter::fail(const std::string& what, int error) {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  ::unlink(temporary_.c_str());
+  temporary_.clear();
+  throw_output_error(path_, what, error);
+}
+
+void AtomicFileWriter::write(std::string_view bytes) {
+  if (fd_ < 0) throw OutputError(path_.string() + ": written after it was committed");
+  if (!write_all(fd_, bytes)) fail("cannot write", errno);
+}
+
+void AtomicFileWriter::commit() {
+  if (fd_ < 0) throw OutputError(path_.string() + ": committed twice");
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) fail("cannot write", errno);
+  if (::rename(temporary_.c_str(), path_.c_str()) != 0) fail("cannot replace the file", errno);
+  temporary_.clear();
+}
+
 void write_file_atomically(const fs::path& path, std::string_view contents) {
-  if (!path.has_filename()) throw OutputError(path.string() + ": not a file name");
-  fs::path temporary;
-  const int fd = create_temporary(path, temporary);
-  const auto discard = [&](const std::string& what) {
-    const int error = errno;
-    ::unlink(temporary.c_str());
-    fail(path, what, error);
-  };
-  if (!write_all(fd, contents)) {
-    const int error = errno;
-    ::close(fd);
-    errno = error;
-    discard("cannot write");
-  }
-  if (::close(fd) != 0) discard("cannot write");
-  if (::rename(temporary.c_str(), path.c_str()) != 0) discard("cannot replace the file");
+  AtomicFileWriter file(path);
+  file.write(contents);
+  file.commit();
 }
 
 }  // namespace toonwater

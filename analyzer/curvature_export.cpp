@@ -1,5 +1,6 @@
 // CSV and PLY export of the curvature, one row per input vertex: input vertex i takes the values
-// of analysis row input_to_surface[i]. Each file is built in one string and written atomically.
+// of analysis row input_to_surface[i]. Each file is formatted in blocks of rows (the CSV's on
+// both cores) that go straight to an AtomicFileWriter.
 // Values that are not finite (which the analysis should never produce) are written as 0, and
 // PLY floats are clamped to the float range, so no output ever holds NaN or Inf.
 #include "analyzer/curvature_export.hpp"
@@ -19,10 +20,12 @@
 namespace toonwater {
 namespace {
 
-void check_belongs_to(const TriangleMesh& input, const Analysis& analysis) {
+void check_consistent(const Analysis& analysis) {
   const std::size_t rows = analysis.surface.positions.size();
   const CurvatureField& c = analysis.curvature;
-  const bool consistent = analysis.input_to_surface.size() == input.positions.size() &&
+  const bool consistent = std::all_of(analysis.input_to_surface.begin(),
+                                      analysis.input_to_surface.end(),
+                                      [rows](std::int32_t s) { return s >= 0 && static_cast<std::size_t>(s) < rows; }) &&
                           c.gaussian.size() == rows && c.mean.size() == rows &&
                           c.k1.size() == rows && c.k2.size() == rows && c.area.size() == rows &&
                           analysis.flow.label.size() == rows;
@@ -36,14 +39,14 @@ double finite_or_zero(double value) { return std::isfinite(value) ? value : 0.0;
 constexpr std::size_t max_csv_row_bytes = 8 * 24 + 4 + 9;
 
 // Appends the CSV rows of input vertices [begin, end) to `text`, which has room for them.
-void append_csv_rows(const TriangleMesh& input, const Analysis& analysis, std::size_t begin,
-                     std::size_t end, std::string& text) {
+void append_csv_rows(const Analysis& analysis, std::size_t begin, std::size_t end,
+                     std::string& text) {
   const CurvatureField& c = analysis.curvature;
   char row[max_csv_row_bytes];
   for (std::size_t v = begin; v < end; ++v) {
     const std::size_t s = analysis.input_to_surface[v];
-    const double values[8] = {input.positions[v].x(), input.positions[v].y(),
-                              input.positions[v].z(), c.gaussian[s], c.mean[s], c.k1[s],
+    const Vec3& p = analysis.surface.positions[s];
+    const double values[8] = {p.x(), p.y(), p.z(), c.gaussian[s], c.mean[s], c.k1[s],
                               c.k2[s], c.area[s]};
     char* out = row;
     for (const double value : values) {
@@ -71,30 +74,40 @@ char* put_little_endian(char* out, T value) {
   return out;
 }
 
+// Rows formatted and written per block: enough to keep both cores busy, small against the file.
+constexpr std::size_t rows_per_block = 1 << 16;
+
 }  // namespace
 
-std::string curvature_csv(const TriangleMesh& input, const Analysis& analysis) {
-  check_belongs_to(input, analysis);
-  const std::size_t n = input.positions.size();
-  // Shortest round-trip formatting dominates the cost, so the rows are split over the cores.
-  // The first part is the result: it has room for every row (pages never touched cost nothing)
-  // and takes the other parts' rows after its own, which saves a copy of its half.
-  std::vector<std::string> parts(worker_count(n));
-  parts[0].reserve(64 + n * max_csv_row_bytes);
-  parts[0] = "x,y,z,gaussian,mean,k1,k2,area,label\n";
-  parallel_chunks(n, parts.size(), [&](std::size_t part, std::size_t begin, std::size_t end) {
-    if (part != 0) parts[part].reserve((end - begin) * max_csv_row_bytes);
-    append_csv_rows(input, analysis, begin, end, parts[part]);
-  });
-  for (std::size_t part = 1; part < parts.size(); ++part) parts[0] += parts[part];
-  return std::move(parts[0]);
+void write_curvature_csv(const std::filesystem::path& path, const Analysis& analysis) {
+  check_consistent(analysis);
+  AtomicFileWriter file(path);
+  file.write("x,y,z,gaussian,mean,k1,k2,area,label\n");
+  const std::size_t n = analysis.input_to_surface.size();
+  // Shortest round-trip formatting dominates the cost, so each block is split over the cores.
+  std::vector<std::string> parts(worker_count(std::min(n, rows_per_block)));
+  for (std::size_t block = 0; block < n; block += rows_per_block) {
+    const std::size_t rows = std::min(rows_per_block, n - block);
+    parallel_chunks(rows, parts.size(), [&](std::size_t part, std::size_t begin, std::size_t end) {
+      parts[part].clear();
+      parts[part].reserve((end - begin) * max_csv_row_bytes);
+      append_csv_rows(analysis, block + begin, block + end, parts[part]);
+    });
+    for (const std::string& part : parts) file.write(part);
+  }
+  file.commit();
 }
 
-std::string curvature_ply(const TriangleMesh& input, const Analysis& analysis) {
-  check_belongs_to(input, analysis);
-  const std::size_t n = input.positions.size();
-  const std::size_t faces = input.triangles.size();
-  const std::string header =
+void write_curvature_ply(const std::filesystem::path& path,
+                         const std::vector<Triangle>& input_triangles, const Analysis& analysis) {
+  check_consistent(analysis);
+  const std::size_t n = analysis.input_to_surface.size();
+  for (const Triangle& t : input_triangles)
+    for (const std::int32_t index : t)
+      if (index < 0 || static_cast<std::size_t>(index) >= n)
+        throw std::invalid_argument("curvature export: a triangle indexes no input vertex");
+  AtomicFileWriter file(path);
+  file.write(
       "ply\n"
       "format binary_little_endian 1.0\n"
       "comment toonwater curvature per vertex; label: 1 ridge, -1 valley, 0 none\n"
@@ -102,37 +115,37 @@ std::string curvature_ply(const TriangleMesh& input, const Analysis& analysis) {
       "property float x\nproperty float y\nproperty float z\n"
       "property float gaussian\nproperty float mean\nproperty float k1\nproperty float k2\n"
       "property float area\nproperty float label\n"
-      "element face " + std::to_string(faces) + "\n"
+      "element face " + std::to_string(input_triangles.size()) + "\n"
       "property list uchar int vertex_indices\n"
-      "end_header\n";
+      "end_header\n");
   constexpr std::size_t vertex_bytes = 9 * 4;
   constexpr std::size_t face_bytes = 1 + 3 * 4;
-
-  std::string bytes(header.size() + n * vertex_bytes + faces * face_bytes, '\0');
-  char* out = std::copy(header.begin(), header.end(), bytes.data());
+  std::string block;
+  block.reserve(rows_per_block * vertex_bytes);
   const CurvatureField& c = analysis.curvature;
-  for (std::size_t v = 0; v < n; ++v) {
-    const std::size_t s = analysis.input_to_surface[v];
-    const double values[9] = {input.positions[v].x(), input.positions[v].y(),
-                              input.positions[v].z(), c.gaussian[s], c.mean[s], c.k1[s],
-                              c.k2[s], c.area[s], static_cast<double>(analysis.flow.label[s])};
-    for (const double value : values) out = put_little_endian(out, ply_float(value));
+  for (std::size_t first = 0; first < n; first += rows_per_block) {
+    block.assign(std::min(rows_per_block, n - first) * vertex_bytes, '\0');
+    char* out = block.data();
+    for (std::size_t v = first; v < first + block.size() / vertex_bytes; ++v) {
+      const std::size_t s = analysis.input_to_surface[v];
+      const Vec3& p = analysis.surface.positions[s];
+      const double values[9] = {p.x(), p.y(), p.z(), c.gaussian[s], c.mean[s], c.k1[s],
+                                c.k2[s], c.area[s], static_cast<double>(analysis.flow.label[s])};
+      for (const double value : values) out = put_little_endian(out, ply_float(value));
+    }
+    file.write(block);
   }
-  for (const Triangle& t : input.triangles) {
-    *out++ = 3;
-    for (const std::int32_t index : t) out = put_little_endian(out, index);
+  for (std::size_t first = 0; first < input_triangles.size(); first += rows_per_block) {
+    const std::size_t count = std::min(rows_per_block, input_triangles.size() - first);
+    block.assign(count * face_bytes, '\0');
+    char* out = block.data();
+    for (std::size_t f = first; f < first + count; ++f) {
+      *out++ = 3;
+      for (const std::int32_t index : input_triangles[f]) out = put_little_endian(out, index);
+    }
+    file.write(block);
   }
-  return bytes;
-}
-
-void write_curvature_csv(const std::filesystem::path& path, const TriangleMesh& input,
-                         const Analysis& analysis) {
-  write_file_atomically(path, curvature_csv(input, analysis));
-}
-
-void write_curvature_ply(const std::filesystem::path& path, const TriangleMesh& input,
-                         const Analysis& analysis) {
-  write_file_atomically(path, curvature_ply(input, analysis));
+  file.commit();
 }
 
 }  // namespace toonwater

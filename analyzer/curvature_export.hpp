@@ -2,23 +2,24 @@
 //   CSV  header "x,y,z,gaussian,mean,k1,k2,area,label", shortest round-trip decimal numbers;
 //   PLY  binary little-endian, the input mesh with float vertex properties of the same names
 //        (MeshLab and ParaView colour by them).
-// Both are written atomically (atomic_file.hpp) and never contain NaN or Inf.
+// Both are written atomically (atomic_file.hpp) in blocks, so memory does not grow with the
+// file, and never contain NaN or Inf.
 #pragma once
 
 #include "analyzer/analysis.hpp"
 #include "analyzer/mesh.hpp"
 
 #include <filesystem>
-#include <string>
+#include <vector>
 
 namespace toonwater {
 
-std::string curvature_csv(const TriangleMesh& input, const Analysis& analysis);
-std::string curvature_ply(const TriangleMesh& input, const Analysis& analysis);
+// CSV rows per input vertex; the positions are the surface's (welding merged only vertices at
+// exactly the same position, so they are the input's, bit for bit).
+void write_curvature_csv(const std::filesystem::path& path, const Analysis& analysis);
 
-void write_curvature_csv(const std::filesystem::path& path, const TriangleMesh& input,
-                         const Analysis& analysis);
-void write_curvature_ply(const std::filesystem::path& path, const TriangleMesh& input,
-                         const Analysis& analysis);
+// Binary PLY of the input mesh: `input_triangles` index input vertices, as read.
+void write_curvature_ply(const std::filesystem::path& path,
+                         const std::vector<Triangle>& input_triangles, const Analysis& analysis);
 
 }  // namespace toonwater

@@ -29,32 +29,35 @@ std::uint64_t position_hash(const Vec3& p) {
 
 }  // namespace
 
-WeldedMesh weld_coincident_vertices(const TriangleMesh& input) {
-  const std::size_t n = input.positions.size();
+WeldedMesh weld_coincident_vertices(TriangleMesh mesh) {
+  const std::size_t n = mesh.positions.size();
   if (n > static_cast<std::size_t>(INT32_MAX)) throw std::length_error("too many vertices to weld");
   const std::size_t capacity = std::bit_ceil(std::max<std::size_t>(2 * n, 16));
   const std::size_t mask = capacity - 1;
   std::vector<std::int32_t> slots(capacity, -1);  // welded vertex index, or -1 for empty
 
+  // Welded vertices are compacted to the front of the same array: a vertex's welded index is
+  // never above its input index, so no position is overwritten before it is read.
+  std::vector<Vec3>& positions = mesh.positions;
   WeldedMesh welded;
   welded.input_to_mesh.resize(n);
-  welded.mesh.positions.reserve(n);
+  std::size_t count = 0;
   for (std::size_t v = 0; v < n; ++v) {
-    const Vec3& p = input.positions[v];
+    const Vec3 p = positions[v];
     std::size_t slot = position_hash(p) & mask;
-    while (slots[slot] >= 0 && welded.mesh.positions[slots[slot]] != p) slot = (slot + 1) & mask;
+    while (slots[slot] >= 0 && positions[slots[slot]] != p) slot = (slot + 1) & mask;
     if (slots[slot] < 0) {
-      slots[slot] = static_cast<std::int32_t>(welded.mesh.positions.size());
-      welded.mesh.positions.push_back(p);
+      slots[slot] = static_cast<std::int32_t>(count);
+      positions[count++] = p;
     }
     welded.input_to_mesh[v] = slots[slot];
   }
-  welded.merged_vertex_count = n - welded.mesh.positions.size();
+  positions.resize(count);
+  welded.merged_vertex_count = n - count;
 
-  welded.mesh.triangles.resize(input.triangles.size());
-  for (std::size_t f = 0; f < input.triangles.size(); ++f)
-    for (int c = 0; c < 3; ++c)
-      welded.mesh.triangles[f][c] = welded.input_to_mesh[input.triangles[f][c]];
+  for (Triangle& t : mesh.triangles)
+    for (std::int32_t& corner : t) corner = welded.input_to_mesh[corner];
+  welded.mesh = std::move(mesh);
   return welded;
 }
 

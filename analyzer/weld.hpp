@@ -16,8 +16,9 @@ struct WeldedMesh {
   std::size_t merged_vertex_count = 0;      // input vertices that were merged into another
 };
 
-// Merges vertices whose positions are exactly equal (+0 and -0 compare equal). Faces keep their
-// order; a face whose corners become repeated is kept (the analyzer counts it as degenerate).
-WeldedMesh weld_coincident_vertices(const TriangleMesh& input);
+// Merges vertices whose positions are exactly equal (+0 and -0 compare equal), in place: pass
+// the mesh by std::move when it is not needed afterwards. Faces keep their order; a face whose
+// corners become repeated is kept (the analyzer counts it as degenerate).
+WeldedMesh weld_coincident_vertices(TriangleMesh mesh);
 
 }  // namespace toonwater

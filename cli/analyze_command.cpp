@@ -93,11 +93,14 @@ void run_analyze(const AnalyzeArgs& args) {
   options.flow.margin = args.roi_margin;
   options.estimator = args.estimator;
   options.smoothing_steps = args.smooth;
-  const Analysis analysis = analyze_mesh(input.mesh, options);
+  // The PLY repeats the input's faces; nothing else needs the input once it is analysed.
+  const std::vector<Triangle> input_triangles =
+      args.ply.empty() ? std::vector<Triangle>{} : input.mesh.triangles;
+  const Analysis analysis = analyze_mesh(std::move(input.mesh), options);
 
   start = std::chrono::steady_clock::now();
-  if (!args.csv.empty()) write_curvature_csv(args.csv, input.mesh, analysis);
-  if (!args.ply.empty()) write_curvature_ply(args.ply, input.mesh, analysis);
+  if (!args.csv.empty()) write_curvature_csv(args.csv, analysis);
+  if (!args.ply.empty()) write_curvature_ply(args.ply, input_triangles, analysis);
   std::optional<MapRanges> map_ranges;
   if (!args.maps.empty()) {
     MapOptions map_options;

@@ -72,6 +72,18 @@ float as_ply_float(double value) {
   return static_cast<float>(std::clamp(value, -double{FLT_MAX}, double{FLT_MAX}));
 }
 
+std::string csv_of(const Analysis& analysis) {
+  ScratchDir dir;
+  write_curvature_csv(dir / "c.csv", analysis);
+  return read_text(dir / "c.csv");
+}
+
+std::string ply_of(const std::vector<Triangle>& triangles, const Analysis& analysis) {
+  ScratchDir dir;
+  write_curvature_ply(dir / "c.ply", triangles, analysis);
+  return read_text(dir / "c.ply");
+}
+
 std::vector<std::string> split(const std::string& text, char separator) {
   std::vector<std::string> parts;
   std::stringstream stream(text);
@@ -81,7 +93,7 @@ std::vector<std::string> split(const std::string& text, char separator) {
 
 TEST(CurvatureExport, CsvRowsRoundTripBitForBit) {
   const Fixture f;
-  const std::string csv = curvature_csv(f.input, f.analysis);
+  const std::string csv = csv_of(f.analysis);
   ASSERT_FALSE(csv.empty());
   EXPECT_EQ(csv.back(), '\n');
   const std::vector<std::string> lines = split(csv, '\n');
@@ -106,7 +118,7 @@ TEST(CurvatureExport, CsvRowsRoundTripBitForBit) {
 }
 
 TEST(CurvatureExport, CsvOfManyVerticesKeepsInputOrder) {
-  // Enough rows for the formatting to be split over threads.
+  // Enough rows for the formatting to be split over threads and written in several blocks.
   TriangleMesh input;
   Analysis analysis;
   constexpr std::size_t n = 100000;
@@ -115,12 +127,13 @@ TEST(CurvatureExport, CsvOfManyVerticesKeepsInputOrder) {
     analysis.input_to_surface.push_back(static_cast<std::int32_t>(n - 1 - v));
   }
   input.triangles = {{0, 1, 2}};
-  analysis.surface.positions.resize(n);
+  for (std::size_t s = 0; s < n; ++s)
+    analysis.surface.positions.emplace_back(static_cast<double>(n - 1 - s), 0.5, -1.0);
   CurvatureField& c = analysis.curvature;
   for (std::size_t s = 0; s < n; ++s) c.gaussian.push_back(static_cast<double>(s) + 0.25);
   c.mean = c.k1 = c.k2 = c.area = std::vector<double>(n, 1.0);
   analysis.flow.label.assign(n, 0);
-  const std::vector<std::string> lines = split(curvature_csv(input, analysis), '\n');
+  const std::vector<std::string> lines = split(csv_of(analysis), '\n');
   ASSERT_EQ(lines.size(), n + 1);
   for (std::size_t v = 0; v < n; v += 997) {
     const std::vector<std::string> fields = split(lines[1 + v], ',');
@@ -133,7 +146,7 @@ TEST(CurvatureExport, PlyReadsBackWithOurReader) {
   const Fixture f;
   ScratchDir dir;
   const fs::path path = dir / "curvature.ply";
-  write_curvature_ply(path, f.input, f.analysis);
+  write_curvature_ply(path, f.input.triangles, f.analysis);
   const InputMesh back = read_mesh(path);
   ASSERT_EQ(back.mesh.positions.size(), f.input.positions.size());
   for (std::size_t v = 0; v < f.input.positions.size(); ++v)
@@ -146,7 +159,7 @@ TEST(CurvatureExport, PlyReadsBackWithOurReader) {
 
 TEST(CurvatureExport, PlyHeaderAndFloatValues) {
   const Fixture f;
-  const std::string ply = curvature_ply(f.input, f.analysis);
+  const std::string ply = ply_of(f.input.triangles, f.analysis);
   const std::string header =
       "ply\nformat binary_little_endian 1.0\n"
       "comment toonwater curvature per vertex; label: 1 ridge, -1 valley, 0 none\n"
@@ -173,17 +186,23 @@ TEST(CurvatureExport, PlyHeaderAndFloatValues) {
 TEST(CurvatureExport, WritesFilesAtomically) {
   const Fixture f;
   ScratchDir dir;
-  write_curvature_csv(dir / "c.csv", f.input, f.analysis);
-  EXPECT_EQ(read_text(dir / "c.csv"), curvature_csv(f.input, f.analysis));
-  EXPECT_THROW(write_curvature_csv(dir / "no" / "c.csv", f.input, f.analysis), OutputError);
+  write_file_atomically(dir / "c.csv", "an earlier good file\n");
+  write_curvature_csv(dir / "c.csv", f.analysis);
+  EXPECT_EQ(read_text(dir / "c.csv").rfind("x,y,z,gaussian,mean,k1,k2,area,label\n", 0), 0u);
+  EXPECT_THROW(write_curvature_csv(dir / "no" / "c.csv", f.analysis), OutputError);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);
 }
 
 TEST(CurvatureExport, RejectsAnAnalysisOfAnotherMesh) {
   Fixture f;
-  f.analysis.input_to_surface.pop_back();
-  EXPECT_THROW(curvature_csv(f.input, f.analysis), std::invalid_argument);
-  EXPECT_THROW(curvature_ply(f.input, f.analysis), std::invalid_argument);
+  Fixture g;
+  g.analysis.input_to_surface[0] = 4;  // there are 4 rows: 0..3
+  EXPECT_THROW(csv_of(g.analysis), std::invalid_argument);
+  f.analysis.input_to_surface.pop_back();  // input vertex 5 is gone, a triangle still uses it
+  EXPECT_THROW(ply_of(f.input.triangles, f.analysis), std::invalid_argument);
+  ScratchDir dir;
+  EXPECT_THROW(write_curvature_csv(dir / "c.csv", g.analysis), std::invalid_argument);
+  EXPECT_TRUE(fs::is_empty(dir.path())) << "no temporary file left behind";
 }
 
 }  // namespace
