@@ -138,7 +138,7 @@ class GzipStream {
   }
 
   const SourceFile& file_;
-  std::string_view input_;  // compressed bytes not yet given to inflate
+  std::string_view input_;  // compressed bytes inflate has not consumed yet
   std::uint64_t limit_;
   z_stream z_{};
   std::unique_ptr<char[]> buffer_;
