@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 namespace toonwater::test {
@@ -48,7 +49,10 @@ std::vector<std::string> operator+(std::vector<std::string> a, const std::vector
 
 bool orange(const Rgb8& c) { return c[0] > c[2] + 60 && c[0] > c[1] + 20; }
 
-TEST(PovgenRender, ThreeCrispBandsExactlyWhereTheThresholdsPutThem) {
+// `light` is the config's light setting (input axes, y up); `to_light(p)` the unit vector from a
+// surface point p (POV-Ray axes) to the light.
+void expect_three_crisp_bands(const std::string& light,
+                              const std::function<Vec3(const Vec3&)>& to_light) {
   ScratchDir dir;
   write_obj(dir / "water.obj", make_sphere(Vec3::Zero(), 1.0, 48, 96));
   const int W = 64, H = 48;
@@ -59,7 +63,7 @@ TEST(PovgenRender, ThreeCrispBandsExactlyWhereTheThresholdsPutThem) {
                                "--set", "water.bright=" + color(kBright), "--set",
                                "water.medium=" + color(kMedium), "--set", "water.dark=" + color(kDark),
                                "--set", "water.t_bright=0.6", "--set", "water.t_medium=0.0", "--set",
-                               "light.direction=[1, 1, 1]", "--set", "camera.location=[0, 0, 5]",
+                               light, "--set", "camera.location=[0, 0, 5]",
                                "--set", "camera.look_at=[0, 0, 0]", "--set", "camera.angle=40",
                                "--set", "render.width=64", "--set", "render.height=48"} +
           opaque_flat_water());
@@ -70,7 +74,7 @@ TEST(PovgenRender, ThreeCrispBandsExactlyWhereTheThresholdsPutThem) {
   const Rgb8 background = to_rgb8(1, 1, 1);
 
   // POV-Ray's frame: y-up input (x, y, z) -> (x, y, -z); camera at -5 z looking at +z.
-  const Vec3 eye(0, 0, -5), light = Vec3(1, 1, -1).normalized();
+  const Vec3 eye(0, 0, -5);
   const double aspect = double(W) / H;
   const double focal = 0.5 * aspect / std::tan(angle / 2 * std::numbers::pi / 180);
   int counts[4] = {0, 0, 0, 0}, checked = 0;
@@ -91,7 +95,7 @@ TEST(PovgenRender, ThreeCrispBandsExactlyWhereTheThresholdsPutThem) {
       }
       const double t = -b - std::sqrt(miss + 1.0);
       const Vec3 n = (eye + t * ray).normalized();
-      const double l_dot_n = light.dot(n);
+      const double l_dot_n = to_light(n).dot(n);  // on the unit sphere, the point is n
       if (std::abs(l_dot_n - t_bright) < 0.04 || std::abs(l_dot_n - t_medium) < 0.04) continue;
       const Rgb8 expected = l_dot_n > t_bright ? bright : l_dot_n > t_medium ? medium : dark;
       EXPECT_TRUE(near(c, expected)) << "pixel " << x << "," << y << " L.n " << l_dot_n;
@@ -99,6 +103,18 @@ TEST(PovgenRender, ThreeCrispBandsExactlyWhereTheThresholdsPutThem) {
     }
   EXPECT_GT(checked, 600);
   for (int band = 0; band < 3; ++band) EXPECT_GT(counts[band], 40) << "band " << band;
+}
+
+TEST(PovgenRender, ThreeCrispBandsWhereTheThresholdsPutThemForAParallelLight) {
+  expect_three_crisp_bands("light.direction=[1, 1, 1]",
+                           [](const Vec3&) { return Vec3(1, 1, -1).normalized(); });
+}
+
+TEST(PovgenRender, ThreeCrispBandsWhereTheThresholdsPutThemForAPointLight) {
+  // At (1.5, 1.5, 1.5) in y-up input axes: (1.5, 1.5, -1.5) in POV-Ray's.
+  expect_three_crisp_bands("light.position=[1.5, 1.5, 1.5]", [](const Vec3& p) {
+    return (Vec3(1.5, 1.5, -1.5) - p).normalized();
+  });
 }
 
 TEST(PovgenRender, OutlineAroundASphereIsARingOfTheExpectedWidth) {
