@@ -320,6 +320,47 @@ std::string pipeline_table(const std::vector<PipelineTiming>& rows, int width, i
   return md;
 }
 
+std::string render_quality_csv(const RenderQualityResult& r) {
+  std::string csv = "preset,width,height,seconds,rmse,band_mismatch\n";
+  for (const RenderQualitySample& p : r.presets)
+    csv += p.preset + "," + std::to_string(p.width) + "," + std::to_string(p.height) + "," +
+           format("%.6g", p.seconds) + "," + format("%.6g", p.rmse) + "," +
+           format("%.6g", p.band_mismatch) + "\n";
+  return csv;
+}
+
+std::string render_quality_plot(const RenderQualityResult& r) {
+  LogLogPlot plot{"Rendering error against POV-Ray time", "POV-Ray parse + trace (s)",
+                  "error against the reference render", {}};
+  PlotSeries rmse{"RMSE (RGB in [0, 1])", "#1f77b4", "", {}};
+  PlotSeries bands{"share of pixels in another band", "#d62728", "6,3", {}};
+  for (const RenderQualitySample& p : r.presets) {
+    rmse.points.emplace_back(p.seconds, p.rmse);
+    bands.points.emplace_back(p.seconds, p.band_mismatch);
+  }
+  plot.series = {rmse, bands};
+  return render_svg(plot);
+}
+
+std::string render_quality_section(const RenderQualityResult& r, const std::string& scene,
+                                   int width, int height) {
+  std::string md =
+      "Scene: povgen's default scene of the " + scene + " at " + std::to_string(width) + "×" +
+      std::to_string(height) + ". Presets (POV-Ray options after scene.ini): draft = half size, "
+      "no antialiasing; preview = full size, no antialiasing; final = full size, antialiasing "
+      "threshold 0.05, depth 3. Reference: full size, every pixel supersampled (threshold 0, "
+      "depth 4), " + format("%.2f", r.reference_seconds) + " s. A smaller image is compared "
+      "after pixel replication. Bands: the nearest of the reference's " +
+      std::to_string(r.reference_bands) + " flat colours (those covering at least 1% of it). "
+      "max_trace_level is povgen's in every preset.\n\n"
+      "| preset | size | POV-Ray (s) | RMSE | pixels in another band |\n|---|---|---:|---:|---:|\n";
+  for (const RenderQualitySample& p : r.presets)
+    md += "| " + p.preset + " | " + std::to_string(p.width) + "×" + std::to_string(p.height) +
+          " | " + format("%.2f", p.seconds) + " | " + format("%.4f", p.rmse) + " | " +
+          format("%.2f%%", 100.0 * p.band_mismatch) + " |\n";
+  return md + "\n![rendering error](render_error.svg)\n\n";
+}
+
 }  // namespace
 
 ReportResult write_report(const ReportOptions& options) {
@@ -338,14 +379,21 @@ ReportResult write_report(const ReportOptions& options) {
 
   const int width = options.size == ReportSize::quick ? 160 : 640;
   const int height = options.size == ReportSize::quick ? 120 : 480;
-  for (const PipelineInput& input : pipeline_inputs(options, work)) {
+  const std::vector<PipelineInput> inputs = pipeline_inputs(options, work);
+  for (const PipelineInput& input : inputs) {
     progress("pipeline: " + input.name + " (" + input.mesh.filename().string() + ")");
     const fs::path scene = work / ("scene_" + std::to_string(result.pipeline.size()));
     result.pipeline.push_back(time_pipeline(input, scene, width, height));
   }
+  progress("render quality: presets and reference render of the " + inputs.front().name);
+  result.render_quality = measure_render_quality(work / "scene_0", width, height);
 
   write_file_atomically(options.out_dir / "curvature_errors.csv", study_csv(result.study));
   write_file_atomically(options.out_dir / "pipeline.csv", pipeline_csv(result.pipeline));
+  write_file_atomically(options.out_dir / "render_quality.csv",
+                        render_quality_csv(result.render_quality));
+  write_file_atomically(options.out_dir / "render_error.svg",
+                        render_quality_plot(result.render_quality));
   std::string plots;
   for (const std::string& sampling : study_samplings) {
     for (bool mean : {true, false}) {
@@ -363,7 +411,7 @@ ReportResult write_report(const ReportOptions& options) {
   md += "Measured by `toonwater report` (" + std::string(size_name) + " run, " +
         std::to_string(std::thread::hardware_concurrency()) +
         " hardware threads). Raw numbers: [curvature_errors.csv](curvature_errors.csv), "
-        "[pipeline.csv](pipeline.csv).\n\n";
+        "[pipeline.csv](pipeline.csv), [render_quality.csv](render_quality.csv).\n\n";
   md += "## 1. Curvature error against run time\n\n"
         "Estimators (selected with `toonwater analyze --estimator one-ring|jet --smooth N`):\n"
         "`one-ring` — the paper's angle deficit and cotangent Laplacian (Meyer et al. 2002); "
@@ -384,8 +432,10 @@ ReportResult write_report(const ReportOptions& options) {
   for (const std::string& sampling : study_samplings)
     md += "**" + sampling + "**\n\n" + order_table(result.study, sampling) + "\n";
   md += "## 2. When each estimator is the better choice\n\n" + conclusions(result.study) + "\n";
-  md += "## 3. Rendering error against run time\n\nNot measured: povgen has no "
-        "`[render] quality` presets yet.\n\n";
+  md += "## 3. Rendering error against run time\n\n" +
+        render_quality_section(result.render_quality,
+                               inputs.front().name + " (" + std::to_string(result.pipeline.front().vertices) + " vertices)",
+                               width, height);
   md += "## 4. Table 1: time per frame\n\n" + pipeline_table(result.pipeline, width, height);
   if (!fs::exists(options.data_dir / "mantaflow-wake"))
     md += "\nThe sample simulation was not found in " + options.data_dir.string() +

@@ -2,12 +2,14 @@
 //   report.md              the report: tables, plots, and when each estimator is the better choice
 //   curvature_errors.csv   every sample of the curvature study (curvature_study.hpp)
 //   pipeline.csv           the Table 1 timings (pipeline_timing.hpp)
-//   error_{K,H}_{regular,jittered,noisy}.svg   error against run time, log–log
+//   render_quality.csv     render presets against a reference render (render_quality.hpp)
+//   error_{K,H}_{regular,jittered,noisy}.svg, render_error.svg   error against run time, log–log
 // Every number in them comes from this run.
 #pragma once
 
 #include "report/curvature_study.hpp"
 #include "report/pipeline_timing.hpp"
+#include "report/render_quality.hpp"
 
 #include <filesystem>
 #include <functional>
@@ -32,6 +34,7 @@ struct ReportOptions {
 struct ReportResult {
   std::vector<StudySample> study;
   std::vector<PipelineTiming> pipeline;
+  RenderQualityResult render_quality;  // of the first pipeline input's scene
 };
 
 ReportResult write_report(const ReportOptions& options);

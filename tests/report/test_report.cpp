@@ -1,5 +1,5 @@
 // toonwater report: the reduced run CI makes (--quick), read back from its CSV files, and the
-// SVG plot writer.
+// SVG plot writer. The quick run renders with POV-Ray at 160×120.
 #include "report/svg_plot.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -84,8 +84,21 @@ TEST(Report, QuickRunHasFiniteNumbersAndErrorsFallingOnRegularMeshes) {
     EXPECT_TRUE(std::isfinite(seconds) && seconds > 0.0) << c;
   }
 
+  // Render presets against the reference render: finite, and the final preset closer to the
+  // reference than the half-size, unantialiased draft.
+  const std::vector<Row> quality = read_csv(read_text(dir / "out" / "render_quality.csv"));
+  ASSERT_EQ(quality.size(), 4u);
+  EXPECT_EQ(quality[1][0], "draft");
+  EXPECT_EQ(quality[3][0], "final");
+  for (std::size_t i = 1; i < quality.size(); ++i)
+    for (std::size_t c = 1; c < 6; ++c) EXPECT_TRUE(std::isfinite(number(quality[i][c]))) << i << c;
+  EXPECT_EQ(number(quality[1][1]) * 2, number(quality[3][1]));
+  EXPECT_LT(number(quality[3][4]), number(quality[1][4]));  // RMSE
+  EXPECT_LT(number(quality[3][5]), number(quality[1][5]));  // pixels in another band
+  EXPECT_GT(number(quality[1][4]), 0.0);
+
   const std::string md = read_text(dir / "out" / "report.md");
-  for (const char* part : {"## 1.", "## 2.", "## 4.", "error_H_jittered.svg"})
+  for (const char* part : {"## 1.", "## 2.", "## 3.", "## 4.", "error_H_jittered.svg"})
     EXPECT_NE(md.find(part), std::string::npos) << part;
   const std::string svg = read_text(dir / "out" / "error_H_jittered.svg");
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
