@@ -243,6 +243,39 @@ TEST(PovgenScene, HostileNamesAndValuesNeverReachTheSceneRaw) {
       << bad.result.output;
 }
 
+TEST(PovgenScene, GlobSequencesStaticAndAnimatedObjectsMatchedByFrame) {
+  ScratchDir dir;
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 3 2\n";
+  for (int f : {7, 8, 9}) {
+    write_text(dir / ("wave" + std::to_string(f) + ".obj"), tri);
+    write_text(dir / ("boat_" + std::to_string(f) + ".obj"), tri);
+  }
+  write_text(dir / "rock.obj", tri);
+  const std::filesystem::path out = dir / "scene";
+  CommandResult r = run_toonwater({"povgen", "--water", (dir / "wave*.obj").string(), "--object",
+                                   (dir / "boat_*.obj").string(), "--object",
+                                   (dir / "rock.obj").string(), "--set", "render.frames=8-9",
+                                   "--out", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out / "water_0007.inc"));
+  for (const char* f : {"water_0008.inc", "water_0009.inc", "obj_boat_0008.inc", "obj_boat_0009.inc",
+                        "obj_rock.inc"})
+    EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
+  const std::string ini = read_text(out / "scene.ini");
+  EXPECT_NE(ini.find("Initial_Frame=8\nFinal_Frame=9"), std::string::npos) << ini;
+  const std::string pov = read_text(out / "scene.pov");
+  EXPECT_NE(pov.find("#include concat(\"obj_boat_\", str(frame_number, -4, 0), \".inc\")"),
+            std::string::npos);
+  EXPECT_NE(pov.find("#include \"obj_rock.inc\""), std::string::npos);
+
+  // An animated object must exist for every water frame.
+  std::filesystem::remove(dir / "boat_9.obj");
+  r = run_toonwater({"povgen", "--water", (dir / "wave*.obj").string(), "--object",
+                     (dir / "boat_*.obj").string(), "--out", (dir / "scene2").string()});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("no file for frame 9"), std::string::npos) << r.output;
+}
+
 TEST(PovgenScene, BadInputGetsAClearErrorAndNoScene) {
   ScratchDir dir;
   CommandResult r = run_toonwater({"povgen", "--water", (dir / "missing_####.obj").string(),
