@@ -118,7 +118,11 @@ std::string scene_pov(const SceneLayout& l) {
   std::string s;
   s += "// Written by toonwater povgen. Render every frame with `povray scene.ini` here.\n";
   s += "#version 3.7;\n#include \"toon.inc\"\n\n";
-  s += "global_settings { assumed_gamma 1.0 max_trace_level 10 }\n\n";
+  // Reflected, refracted and shell-crossing rays need depth; a pixel whose rays run out of it
+  // turns black, the line colour (povray-notes.md).
+  const bool secondary_rays = reflects || refracts || c.outline.enabled;
+  s += secondary_rays ? "global_settings { assumed_gamma 1.0 max_trace_level 10 }\n\n"
+                      : "global_settings { assumed_gamma 1.0 }\n\n";
   s += "// Meshes of the current frame\n";
   s += "#include concat(\"water_\", str(frame_number, -4, 0), \".inc\")\n";
   for (const ObjectPlacement& o : l.objects) {

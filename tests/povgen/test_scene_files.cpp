@@ -183,10 +183,10 @@ TEST(PovgenScene, MinimalSceneContainsOnlyWhatItNeeds) {
   ASSERT_EQ(g.result.exit_code, 0) << g.result.output;
   for (const char* absent : {"light_source", "reflection", "interior", "Toon_outline_shell",
                              "Toon_bands_with_flow", "Obj_", "no_reflection", "phong",
-                             "Toon_silhouette", "#include \"obj_"})
+                             "Toon_silhouette", "#include \"obj_", "max_trace_level"})
     EXPECT_EQ(g.pov.find(absent), std::string::npos) << absent;
   for (const char* present : {"#include \"toon.inc\"", "Toon_bands(", "Water_mesh", "camera",
-                              "background", "max_trace_level 10"})
+                              "background"})
     EXPECT_NE(g.pov.find(present), std::string::npos) << present;
   EXPECT_EQ(g.water_inc.find("Water_shell"), std::string::npos);
   EXPECT_EQ(g.water_inc.find("inside_vector"), std::string::npos);
@@ -209,7 +209,7 @@ TEST(PovgenScene, FullSceneHasEveryFeature) {
        {"light_source", "parallel", "reflection { 0.2 }", "interior { ior 1.33 }",
         "Toon_outline_shell(Water_shell", "Toon_bands_with_flow", "#include \"obj_ball.inc\"",
         "Obj_ball_mesh", "Toon_outline_shell(Obj_ball_shell", "no_reflection",
-        "Toon_silhouette(Obj_kite_mesh", "phong 0.5"})
+        "Toon_silhouette(Obj_kite_mesh", "phong 0.5", "max_trace_level 10"})
     EXPECT_NE(g.pov.find(present), std::string::npos) << present;
   // The submerged ball's shell takes the water's ior; the kite (above) has no shell at all.
   EXPECT_NE(g.pov.find("Toon_outline_shell(Obj_ball_shell, rgb <0, 0, 0>) interior { ior 1.33 }"),
