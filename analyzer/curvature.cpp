@@ -21,6 +21,7 @@
 #include "analyzer/curvature.hpp"
 
 #include "analyzer/parallel.hpp"
+#include "analyzer/vertex_normals.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -30,7 +31,6 @@
 namespace toonwater {
 namespace {
 
-constexpr double degenerate_area_ratio = 1e-12;
 constexpr double sliver_cotangent = 19.08113668772821;  // cot(3°)
 
 // 2^-e with e the binary exponent of the largest |coordinate|: multiplying by it is exact.
@@ -39,18 +39,6 @@ double power_of_two_scale(const std::vector<Vec3>& positions) {
   for (const Vec3& p : positions) largest = std::max(largest, p.cwiseAbs().maxCoeff());
   if (largest == 0.0 || !std::isfinite(largest)) return 1.0;
   return std::ldexp(1.0, -std::ilogb(largest));
-}
-
-// Polynomial atan2 for y >= 0, absolute error below 1e-5 rad: only the normals' angle weights
-// use it, where that error is invisible; the angle deficit is computed exactly (see below).
-double approximate_angle(double y, double x) {
-  const double ax = std::abs(x);
-  const double ratio = std::min(ax, y) / std::max({ax, y, std::numeric_limits<double>::min()});
-  const double r2 = ratio * ratio;
-  double angle = ratio * (0.99997726 + r2 * (-0.33262347 + r2 * (0.19354346 +
-                          r2 * (-0.11643287 + r2 * (0.05265332 - r2 * 0.01172120)))));
-  if (y > ax) angle = std::numbers::pi / 2 - angle;
-  return x < 0.0 ? std::numbers::pi - angle : angle;
 }
 
 // What one vertex gathers from its incident faces.
@@ -100,10 +88,10 @@ OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double 
     turn_re = next_re;
     turn_im = next_im;
 
-    const bool sliver = double_area <= degenerate_area_ratio * std::max({xa2, xb2, ab2}) ||
+    const double longest2 = std::max({xa2, xb2, ab2});
+    ring.normal += corner_normal_term(cross, double_area, dot_x, longest2);
+    const bool sliver = double_area <= degenerate_area_ratio * longest2 ||
                         std::max({dot_x, dot_a, dot_b}) > sliver_cotangent * double_area;
-    if (double_area > degenerate_area_ratio * std::max({xa2, xb2, ab2}))
-      ring.normal += approximate_angle(double_area, dot_x) / double_area * cross;
     if (sliver) {
       ring.at_sliver = true;
       ring.slivers += counts_here;
