@@ -95,7 +95,7 @@ std::optional<SurfaceCurvature> fit_jet(const TriangleMesh& mesh, std::int32_t v
     const Vec3 d = (mesh.positions[w] - p) / radius;
     const double x = d.dot(t1), y = d.dot(t2), height = d.dot(n);
     monomials << 1.0, x, y, x * x, x * y, y * y, x * x * x, x * x * y, x * y * y, y * y * y;
-    normal.noalias() += monomials * monomials.transpose();
+    normal.selfadjointView<Eigen::Lower>().rankUpdate(monomials);  // LDLT reads the lower half
     rhs += height * monomials;
   }
 
