@@ -51,10 +51,13 @@ PipelineTiming time_pipeline(const PipelineInput& input, const std::filesystem::
   povgen::RenderRequest render;
   render.scene_dir = work_dir;
   const povgen::RenderReport rendered = povgen::render_frames(render, {});
-  if (rendered.failures.empty() && rendered.rendered == 1)
-    t.povray = rendered.seconds;
+  // A single-frame povgen scene renders to frame.png (scene.ini's Output_File_Name).
+  if (!rendered.failures.empty())
+    t.povray_failure = rendered.failures[0].message;
+  else if (rendered.rendered != 1 || !std::filesystem::is_regular_file(work_dir / "frame.png"))
+    t.povray_failure = "POV-Ray wrote no image";
   else
-    t.povray_failure = rendered.failures.empty() ? "no frame rendered" : rendered.failures[0].message;
+    t.povray = rendered.seconds;
   return t;
 }
 

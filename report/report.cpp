@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <stdexcept>
 #include <thread>
 
 namespace toonwater::report {
@@ -369,6 +370,14 @@ ReportResult write_report(const ReportOptions& options) {
   };
   const fs::path work = options.out_dir / "work";
   fs::create_directories(work);
+  // Scratch meshes and scenes go, whether the run succeeds or throws.
+  struct RemoveOnExit {
+    fs::path path;
+    ~RemoveOnExit() {
+      std::error_code ignored;
+      fs::remove_all(path, ignored);
+    }
+  } remove_work{work};
 
   ReportResult result;
   StudyOptions study;
@@ -386,14 +395,20 @@ ReportResult write_report(const ReportOptions& options) {
     result.pipeline.push_back(time_pipeline(input, scene, width, height));
   }
   progress("render quality: presets and reference render of the " + inputs.front().name);
-  result.render_quality = measure_render_quality(work / "scene_0", width, height);
+  try {
+    result.render_quality = measure_render_quality(work / "scene_0", width, height);
+  } catch (const std::exception& e) {  // POV-Ray missing or failing: the rest still reports
+    result.render_quality_failure = e.what();
+  }
 
   write_file_atomically(options.out_dir / "curvature_errors.csv", study_csv(result.study));
   write_file_atomically(options.out_dir / "pipeline.csv", pipeline_csv(result.pipeline));
-  write_file_atomically(options.out_dir / "render_quality.csv",
-                        render_quality_csv(result.render_quality));
-  write_file_atomically(options.out_dir / "render_error.svg",
-                        render_quality_plot(result.render_quality));
+  if (result.render_quality) {
+    write_file_atomically(options.out_dir / "render_quality.csv",
+                          render_quality_csv(*result.render_quality));
+    write_file_atomically(options.out_dir / "render_error.svg",
+                          render_quality_plot(*result.render_quality));
+  }
   std::string plots;
   for (const std::string& sampling : study_samplings) {
     for (bool mean : {true, false}) {
@@ -432,16 +447,19 @@ ReportResult write_report(const ReportOptions& options) {
   for (const std::string& sampling : study_samplings)
     md += "**" + sampling + "**\n\n" + order_table(result.study, sampling) + "\n";
   md += "## 2. When each estimator is the better choice\n\n" + conclusions(result.study) + "\n";
-  md += "## 3. Rendering error against run time\n\n" +
-        render_quality_section(result.render_quality,
-                               inputs.front().name + " (" + std::to_string(result.pipeline.front().vertices) + " vertices)",
-                               width, height);
+  md += "## 3. Rendering error against run time\n\n";
+  if (!result.render_quality)
+    md += "Not measured: " + result.render_quality_failure + "\n\n";
+  else
+    md += render_quality_section(*result.render_quality,
+                                 inputs.front().name + " (" +
+                                     std::to_string(result.pipeline.front().vertices) + " vertices)",
+                                 width, height);
   md += "## 4. Table 1: time per frame\n\n" + pipeline_table(result.pipeline, width, height);
   if (!fs::exists(options.data_dir / "mantaflow-wake"))
     md += "\nThe sample simulation was not found in " + options.data_dir.string() +
           " (pass `--data DIR`).\n";
   write_file_atomically(options.out_dir / "report.md", md);
-  fs::remove_all(work);
   return result;
 }
 

@@ -13,6 +13,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,7 +35,8 @@ struct ReportOptions {
 struct ReportResult {
   std::vector<StudySample> study;
   std::vector<PipelineTiming> pipeline;
-  RenderQualityResult render_quality;  // of the first pipeline input's scene
+  std::optional<RenderQualityResult> render_quality;  // of the first pipeline input's scene
+  std::string render_quality_failure;                 // why it is empty
 };
 
 ReportResult write_report(const ReportOptions& options);
