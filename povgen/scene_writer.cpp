@@ -30,7 +30,10 @@ std::string triple(std::string s, double a, double b, double c) {
 }
 
 std::string vec(const Vec3& v) { return triple("", v.x(), v.y(), v.z()); }
-std::string rgb(const Color& c) { return triple("rgb ", c[0], c[1], c[2]); }
+// Colours in the config are as a person picks them on screen (sRGB); `srgb` makes POV-Ray turn
+// them into the linear values it computes with (assumed_gamma 1.0), and the PNG it writes is
+// sRGB again, so a flat band shows exactly the configured colour.
+std::string rgb(const Color& c) { return triple("srgb ", c[0], c[1], c[2]); }
 
 Color times(const Color& a, const Color& b) { return {a[0] * b[0], a[1] * b[1], a[2] * b[2]}; }
 

@@ -66,7 +66,7 @@ TriangleMesh make_sphere(const Vec3& centre, double radius, int rings, int segme
 
 Povray run_povray(const std::filesystem::path& dir, const std::string& extra) {
   const std::string command =
-      "cd '" + dir.string() + "' && povray scene.ini File_Gamma=1.0 +WT1 " + extra + " 2>&1";
+      "cd '" + dir.string() + "' && povray scene.ini +WT1 " + extra + " 2>&1";
   Povray result;
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) throw std::runtime_error("cannot run povray");

@@ -27,7 +27,8 @@ struct Povray {
   int exit_code = -1;
   std::string output;
 };
-// `cd dir && povray scene.ini File_Gamma=1.0 <extra>`: PNG values equal the SDL colours.
+// `cd dir && povray scene.ini <extra>`: the scene's colours are sRGB in and out, so PNG values
+// of flat colours equal the configured colours.
 Povray run_povray(const std::filesystem::path& dir, const std::string& extra = "");
 
 using Rgb8 = std::array<int, 3>;

@@ -212,7 +212,7 @@ TEST(PovgenScene, FullSceneHasEveryFeature) {
         "Toon_silhouette(Obj_kite_mesh", "phong 0.5", "max_trace_level 10"})
     EXPECT_NE(g.pov.find(present), std::string::npos) << present;
   // The submerged ball's shell takes the water's ior; the kite (above) has no shell at all.
-  EXPECT_NE(g.pov.find("Toon_outline_shell(Obj_ball_shell, rgb <0, 0, 0>) interior { ior 1.33 }"),
+  EXPECT_NE(g.pov.find("Toon_outline_shell(Obj_ball_shell, srgb <0, 0, 0>) interior { ior 1.33 }"),
             std::string::npos);
   EXPECT_EQ(g.pov.find("Obj_kite_shell"), std::string::npos);
   EXPECT_NE(g.water_inc.find("Water_shell"), std::string::npos);
