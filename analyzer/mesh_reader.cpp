@@ -191,7 +191,7 @@ InputMesh read_mesh(const std::filesystem::path& path) {
   const std::unique_ptr<char[]> bytes = load_file(file, size);
   file.bytes = std::string_view(bytes.get(), size);
   InputMesh result = read(file);
-  if (result.mesh.triangles.empty()) readers::fail(file, "contains no faces");
+  if (result.mesh.triangles.empty()) throw EmptyMeshError(file.name + ": contains no faces");
   return result;
 }
 

@@ -21,6 +21,13 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A well-formed file that holds no face (a simulation frame with no liquid, say). Sequence
+// tools catch it to skip the frame; everywhere else it is an InputError like any other.
+class EmptyMeshError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 struct InputMesh {
   // Vertices in file order (STL: one per facet corner, in file order), polygons triangulated as
   // fans in file order.

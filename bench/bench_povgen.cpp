@@ -39,7 +39,7 @@ void BM_PovgenFrame(benchmark::State& state) {
   const fs::path dir = scratch("frame");
   double analysis = 0, writing = 0;
   for (auto _ : state) {
-    const auto s = povgen::prepare_surface(mesh, Axis::z, &config.flow);
+    const auto s = povgen::prepare_surface(mesh, Axis::z, &config.flow, nullptr);
     const auto start = std::chrono::steady_clock::now();
     const std::string text = povgen::mesh_include(
         s, "Water", light, povgen::outline_width(config.outline, s.mesh));

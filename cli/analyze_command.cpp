@@ -5,6 +5,7 @@
 #include "analyzer/analysis.hpp"
 #include "analyzer/curvature_export.hpp"
 #include "analyzer/maps/map_writer.hpp"
+#include "analyzer/maps/sequence_maps.hpp"
 #include "analyzer/mesh_reader.hpp"
 
 #include <chrono>
@@ -107,7 +108,7 @@ void run_analyze(const AnalyzeArgs& args) {
     map_options.size = args.maps_size;
     if (args.maps_box.size() == 4)
       map_options.box = MapBox{args.maps_box[0], args.maps_box[1], args.maps_box[2], args.maps_box[3]};
-    map_ranges = write_frame_maps(args.maps, std::filesystem::path(args.mesh).stem().string(),
+    map_ranges = write_frame_maps(args.maps, frame_stem(args.mesh),
                                   analysis, args.up, map_options);
   }
   print_summary(args.mesh, analysis, read_seconds, seconds_since(start));

@@ -66,6 +66,8 @@ void run_povgen(const PovgenArgs& args) {
                r.frames, args.out.c_str(), r.vertices, r.degenerate_faces, r.replaced_normals,
                r.ridge_vertices, r.valley_vertices, r.read_seconds, r.analysis_seconds,
                r.write_seconds, args.out.c_str(), args.out.c_str());
+  for (const std::string& empty : r.empty_frames)
+    std::fprintf(stderr, "  warning: %s; that frame shows no water\n", empty.c_str());
   if (!args.maps.empty()) {
     std::vector<std::filesystem::path> frames;
     for (const auto& [number, path] : povgen::find_sequence(args.water, request.base_dir).frames)
@@ -73,7 +75,10 @@ void run_povgen(const PovgenArgs& args) {
     AnalyzeOptions options;
     options.flow.up = args.up;
     options.flow.k_threshold = config.flow.k_threshold;
-    const SequenceMaps maps = write_sequence_maps(frames, options, MapOptions{}, args.maps);
+    options.estimator = config.flow.estimator;
+    options.smoothing_steps = config.flow.smoothing;
+    const SequenceMaps maps =
+        write_sequence_maps(frames, options, MapOptions{}, args.maps, config.flow.coherence);
     std::fprintf(stderr, "  maps: %zu frame(s) -> %s, shared colour ranges K \u00b1%.6g, H \u00b1%.6g\n",
                  maps.frames, args.maps.c_str(), maps.ranges.gaussian, maps.ranges.mean);
   }

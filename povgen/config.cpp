@@ -160,12 +160,19 @@ void read_outline(const toml::table& t, OutlineConfig& c) {
 }
 
 void read_flow(const toml::table& t, FlowConfig& c) {
-  for_each_key(t, "flow", {"enabled", "k_threshold", "ridge_color", "valley_color"},
+  for_each_key(t, "flow",
+               {"enabled", "k_threshold", "ridge_color", "valley_color", "coherence", "estimator",
+                "smoothing"},
                [&](const std::string& n, const std::string& key, const toml::node& v) {
                  if (n == "enabled") c.enabled = read_bool(v, key);
                  if (n == "k_threshold") c.k_threshold = read_number_in(v, key, 1e-30, 1e30);
                  if (n == "ridge_color") c.ridge_color = read_color(v, key);
                  if (n == "valley_color") c.valley_color = read_color(v, key);
+                 if (n == "coherence") c.coherence = read_bool(v, key);
+                 if (n == "estimator")
+                   c.estimator = read_keyword<Estimator>(
+                       v, key, {{"one-ring", Estimator::one_ring}, {"jet", Estimator::jet}});
+                 if (n == "smoothing") c.smoothing = static_cast<int>(read_number_in(v, key, 0, 100));
                });
 }
 

@@ -9,6 +9,8 @@
 // writer maps them to POV-Ray's frame.
 #pragma once
 
+#include "analyzer/analysis.hpp"
+
 #include "analyzer/mesh.hpp"
 
 #include <array>
@@ -70,6 +72,9 @@ struct FlowConfig {
   std::optional<double> k_threshold;  // absolute T; default: the analyzer's scale-free T
   Color ridge_color{1.0, 1.0, 1.0};
   Color valley_color{0.04, 0.16, 0.42};
+  bool coherence = true;                   // carry regions from frame to frame (flow_coherence.hpp)
+  Estimator estimator = Estimator::one_ring;  // curvature estimator (analysis.hpp)
+  int smoothing = 0;                       // smoothing steps of the curvature field
 };
 
 enum class ReflectionTarget { concrete, abstract, none };

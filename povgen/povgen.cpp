@@ -4,11 +4,11 @@
 #include "analyzer/atomic_file.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "analyzer/topology.hpp"
+#include "analyzer/vertex_normals.hpp"
 #include "analyzer/weld.hpp"
 #include "povgen/mesh2_writer.hpp"
 #include "povgen/scene_writer.hpp"
 #include "povgen/sequence.hpp"
-#include "povgen/vertex_normals.hpp"
 
 #include <chrono>
 
@@ -31,23 +31,27 @@ struct ObjectSource {
 
 }  // namespace
 
-PreparedSurface prepare_surface(const TriangleMesh& input, Axis up, const FlowConfig* flow) {
+PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,
+                                FlowCoherence* coherence) {
   const auto start = Clock::now();
   PreparedSurface out;
   if (flow) {
     AnalyzeOptions options;
     options.flow.up = up;
     options.flow.k_threshold = flow->k_threshold;
-    const Analysis a = analyze_mesh(input, options);
+    options.estimator = flow->estimator;
+    options.smoothing_steps = flow->smoothing;
+    Analysis a = analyze_mesh(std::move(input), options);
+    if (coherence) coherence->apply(a.surface, a.curvature, a.flow);
     out.mesh = make_scene_mesh(a.surface, a.curvature.normal, is_closed(a.topology), up);
     out.labels = a.flow.label;
     out.ridge_vertices = a.flow.ridge_vertices;
     out.valley_vertices = a.flow.valley_vertices;
   } else {
-    WeldedMesh welded = weld_coincident_vertices(input);
+    WeldedMesh welded = weld_coincident_vertices(std::move(input));
     const MeshTopology topology = analyze_topology(welded.mesh);
     orient_consistently(welded.mesh, topology.vertex_faces);
-    const std::vector<Vec3> normals = angle_weighted_normals(welded.mesh);
+    const std::vector<Vec3> normals = angle_weighted_normals(welded.mesh, topology.vertex_faces);
     out.mesh = make_scene_mesh(welded.mesh, normals, is_closed(topology), up);
   }
   out.analysis_seconds = seconds_since(start);
@@ -56,6 +60,12 @@ PreparedSurface prepare_surface(const TriangleMesh& input, Axis up, const FlowCo
 
 double outline_width(const OutlineConfig& outline, const SceneMesh& mesh) {
   return outline.units == WidthUnits::world ? outline.width : outline.width * mesh.diagonal();
+}
+
+std::string empty_water_include() {
+  return "// Written by toonwater povgen: this frame's water mesh was empty.\n"
+         "#declare Water_mesh = union {}\n"
+         "#declare Water_shell = union {}\n";
 }
 
 std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
@@ -135,7 +145,7 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   };
   auto write_object = [&](std::size_t i, const fs::path& path, long frame) {
     const ObjectConfig& oc = *objects[i].placement.config;
-    const PreparedSurface s = prepare_surface(load(path).mesh, request.up, nullptr);
+    const PreparedSurface s = prepare_surface(load(path).mesh, request.up, nullptr, nullptr);
     const double width = config.outline.enabled && oc.outline ? outline_width(config.outline, s.mesh) : 0;
     const auto start = Clock::now();
     std::string text = mesh_include(s, "Obj_" + oc.name, light, width);
@@ -151,12 +161,33 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     if (!objects[i].placement.animated)
       static_bottom[i] = write_object(i, objects[i].sequence.frames.begin()->second, 0);
 
+  // Flow regions are carried from frame to frame so they do not flicker (flow_coherence.hpp).
+  FlowCoherence coherence;
   std::size_t done = 0;
   for (const auto& [frame, path] : water.frames) {
     if (stop && stop->load()) throw OutputError(request.out_dir.string() + ": interrupted");
     const long written_frame = layout.animation ? frame : 0;
-    const InputMesh input = load(path);
-    PreparedSurface s = prepare_surface(input.mesh, request.up, flow);
+    auto write_animated_objects = [&] {
+      for (std::size_t i = 0; i < objects.size(); ++i)
+        if (objects[i].placement.animated)
+          write_object(i, objects[i].sequence.frames.at(frame), written_frame);
+    };
+    InputMesh input;
+    try {
+      input = load(path);
+    } catch (const EmptyMeshError& empty) {
+      // A frame with no liquid: the scene still needs its include, with nothing in it.
+      if (water.frames.size() == 1) throw;
+      report.empty_frames.push_back(empty.what());
+      write(water_include_name(written_frame), empty_water_include());
+      write_animated_objects();
+      ++report.frames;
+      if (progress) progress(++done, water.frames.size());
+      continue;
+    }
+    const bool coherent = flow && flow->coherence && water.frames.size() > 1;
+    PreparedSurface s = prepare_surface(std::move(input.mesh), request.up, flow,
+                                        coherent ? &coherence : nullptr);
     report.analysis_seconds += s.analysis_seconds;
     report.vertices += s.mesh.positions.size();
     report.degenerate_faces += s.mesh.degenerate_faces;
@@ -181,10 +212,7 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     const std::string text = mesh_include(s, "Water", light, width, shell_faces);
     report.write_seconds += seconds_since(start);
     write(water_include_name(written_frame), text);
-
-    for (std::size_t i = 0; i < objects.size(); ++i)
-      if (objects[i].placement.animated)
-        write_object(i, objects[i].sequence.frames.at(frame), written_frame);
+    write_animated_objects();
     ++report.frames;
     if (progress) progress(++done, water.frames.size());
   }

@@ -9,6 +9,7 @@
 // All references inside are relative, so DIR can be moved. Every file is written atomically.
 #pragma once
 
+#include "analyzer/flow_coherence.hpp"
 #include "povgen/config.hpp"
 #include "povgen/mesh2_writer.hpp"
 #include "povgen/scene_mesh.hpp"
@@ -32,8 +33,13 @@ struct PreparedSurface {
 };
 
 // Welds and orients the input; computes curvature and flow labels only when `flow` is given,
-// angle-weighted normals otherwise.
-PreparedSurface prepare_surface(const TriangleMesh& input, Axis up, const FlowConfig* flow);
+// angle-weighted normals otherwise. With `coherence`, the labels are made coherent with the
+// frames it saw before (a sequence's frames in order).
+PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,
+                                FlowCoherence* coherence);
+
+// The include of a frame whose water mesh is empty: the declarations, holding nothing.
+std::string empty_water_include();
 
 // The mesh2 include text: `Prefix_mesh` with toon coordinates, and `Prefix_shell` when
 // `shell_offset` > 0 (in world units).
@@ -56,6 +62,7 @@ struct PovgenReport {
   std::size_t vertices = 0;  // water vertices, all frames
   std::size_t degenerate_faces = 0, replaced_normals = 0;
   std::size_t ridge_vertices = 0, valley_vertices = 0;
+  std::vector<std::string> empty_frames;  // "PATH: contains no faces", frames left without water
   double read_seconds = 0, analysis_seconds = 0, write_seconds = 0;
 };
 

@@ -1,24 +1,50 @@
 // Two-pass maps of a sequence (see sequence_maps.hpp).
 #include "analyzer/maps/sequence_maps.hpp"
 
+#include "analyzer/flow_coherence.hpp"
 #include "analyzer/maps/map_writer.hpp"
 #include "analyzer/mesh_reader.hpp"
 
+#include <optional>
+
 namespace toonwater {
+namespace {
+
+// The frame's analysis, or nothing for a frame whose mesh is empty (no liquid): it gets no map.
+std::optional<Analysis> analyze_frame(const std::filesystem::path& frame,
+                                      const AnalyzeOptions& analyze) {
+  try {
+    return analyze_mesh(read_mesh(frame).mesh, analyze);
+  } catch (const EmptyMeshError&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
+std::string frame_stem(const std::filesystem::path& frame) {
+  std::filesystem::path stem = frame.stem();
+  if (frame.extension() == ".gz") stem = stem.stem();
+  return stem.string();
+}
 
 SequenceMaps write_sequence_maps(const std::vector<std::filesystem::path>& frames,
                                  const AnalyzeOptions& analyze, const MapOptions& maps,
-                                 const std::filesystem::path& dir,
+                                 const std::filesystem::path& dir, bool coherent_labels,
                                  const std::function<void(std::size_t, std::size_t)>& progress) {
   MapPlanner planner(analyze.flow.up);
-  for (const auto& frame : frames) planner.add(analyze_mesh(read_mesh(frame).mesh, analyze));
+  for (const auto& frame : frames)
+    if (std::optional<Analysis> a = analyze_frame(frame, analyze)) planner.add(*a);
   SequenceMaps result;
   result.view = planner.view(maps);
   result.ranges = planner.ranges(maps.percentile);
+  FlowCoherence coherence;
   for (const auto& frame : frames) {
-    write_maps(dir, frame.stem().string(), analyze_mesh(read_mesh(frame).mesh, analyze),
-               result.view, result.ranges);
-    ++result.frames;
+    if (std::optional<Analysis> a = analyze_frame(frame, analyze)) {
+      if (coherent_labels) coherence.apply(a->surface, a->curvature, a->flow);
+      write_maps(dir, frame_stem(frame), *a, result.view, result.ranges);
+      ++result.frames;
+    }
     if (progress) progress(result.frames, frames.size());
   }
   return result;

@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <string>
 #include <functional>
 #include <vector>
 
@@ -21,11 +22,17 @@ struct SequenceMaps {
   std::size_t frames = 0;
 };
 
-// progress(done, total) is called after each written frame. Throws InputError for a frame that
-// cannot be read and OutputError for a map that cannot be written.
+// progress(done, total) is called after each frame. With `coherent_labels` the label maps show
+// the flow regions made coherent from frame to frame (flow_coherence.hpp), as povgen renders
+// them. A frame whose mesh is empty gets no maps. Throws InputError for a frame that cannot be
+// read and OutputError for a map that cannot be written.
 SequenceMaps write_sequence_maps(const std::vector<std::filesystem::path>& frames,
                                  const AnalyzeOptions& analyze, const MapOptions& maps,
-                                 const std::filesystem::path& dir,
+                                 const std::filesystem::path& dir, bool coherent_labels = true,
                                  const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+// The name a frame's maps take: the file name without its mesh extensions ("water_0001" for
+// water_0001.obj, "fluid_mesh_0001" for fluid_mesh_0001.bobj.gz).
+std::string frame_stem(const std::filesystem::path& frame);
 
 }  // namespace toonwater

@@ -291,5 +291,35 @@ TEST(PovgenScene, BadInputGetsAClearErrorAndNoScene) {
   EXPECT_FALSE(std::filesystem::exists(dir / "scene" / "scene.pov"));
 }
 
+// A frame with no liquid (an empty mesh) is reported and left without water; the sequence goes
+// on and still renders with one povray command. With --maps the empty frame gets no map.
+TEST(PovgenScene, EmptyFrameIsReportedAndTheSequenceGoesOn) {
+  ScratchDir dir;
+  write_obj(dir / "water_0001.obj", make_height_grid(5, 1.0, [](double, double) { return 0.0; }));
+  write_text(dir / "water_0002.obj", "# the liquid has left the domain\n");
+  write_obj(dir / "water_0003.obj", make_height_grid(5, 1.0, [](double, double) { return 0.0; }));
+  const std::filesystem::path out = dir / "scene", maps = dir / "maps";
+  const CommandResult r = run_toonwater({"povgen", "--water", (dir / "water_####.obj").string(),
+                                         "--set", "render.width=16", "--set", "render.height=12",
+                                         "--out", out.string(), "--maps", maps.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("water_0002.obj: contains no faces; that frame shows no water"),
+            std::string::npos) << r.output;
+  EXPECT_NE(read_text(out / "water_0002.inc").find("#declare Water_mesh = union {}"),
+            std::string::npos);
+  const Povray p = run_povray(out);
+  EXPECT_EQ(p.exit_code, 0) << p.output;
+  for (const char* frame : {"frame_1.png", "frame_2.png", "frame_3.png"})
+    EXPECT_TRUE(std::filesystem::exists(out / frame)) << frame;
+  EXPECT_TRUE(std::filesystem::exists(maps / "water_0001.exr"));
+  EXPECT_FALSE(std::filesystem::exists(maps / "water_0002.exr"));
+
+  // A single empty file is still an error: there is nothing to render.
+  const CommandResult single = run_toonwater(
+      {"povgen", "--water", (dir / "water_0002.obj").string(), "--out", (dir / "one").string()});
+  EXPECT_NE(single.exit_code, 0);
+  EXPECT_NE(single.output.find("contains no faces"), std::string::npos) << single.output;
+}
+
 }  // namespace
 }  // namespace toonwater::test
