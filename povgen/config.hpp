@@ -12,6 +12,7 @@
 #include "analyzer/analysis.hpp"
 
 #include "analyzer/mesh.hpp"
+#include "povgen/render_quality.hpp"
 
 #include <array>
 #include <filesystem>
@@ -96,7 +97,8 @@ struct FrameRange {
 struct RenderConfig {
   int width = 640;
   int height = 480;
-  bool antialias = true;
+  RenderQuality quality = RenderQuality::final;  // render_quality.hpp
+  bool antialias = true;  // false: off whatever the quality
   std::optional<FrameRange> frames;  // default: every frame found
   Color background{0.93, 0.96, 1.0};
 };

@@ -196,8 +196,14 @@ std::string scene_ini(const SceneLayout& l) {
   s += "Input_File_Name=\"scene.pov\"\n";
   s += l.animation ? "Output_File_Name=\"frame_\"\n" : "Output_File_Name=\"frame.png\"\n";
   s += "Output_File_Type=N\n";
-  s += "Width=" + std::to_string(r.width) + "\nHeight=" + std::to_string(r.height) + "\n";
-  s += r.antialias ? "Antialias=On\nAntialias_Threshold=0.3\n" : "Antialias=Off\n";
+  const RenderPreset& preset = render_preset(r.quality);
+  s += "Width=" + std::to_string(std::max(1, r.width / preset.divisor)) +
+       "\nHeight=" + std::to_string(std::max(1, r.height / preset.divisor)) + "\n";
+  if (r.antialias && preset.antialias_threshold)
+    s += "Antialias=On\nAntialias_Threshold=" + num(*preset.antialias_threshold) +
+         "\nAntialias_Depth=" + std::to_string(preset.antialias_depth) + "\n";
+  else
+    s += "Antialias=Off\n";
   s += "Display=Off\nPause_When_Done=Off\n";
   if (l.animation)
     s += "Initial_Frame=" + std::to_string(l.first_frame) +

@@ -99,15 +99,6 @@ std::size_t band(const Palette& palette, const std::array<float, 3>& c) {
 
 }  // namespace
 
-const std::vector<RenderPreset>& render_presets() {
-  static const std::vector<RenderPreset> presets = {
-      {"draft", 2, std::nullopt, 0},
-      {"preview", 1, std::nullopt, 0},
-      {"final", 1, 0.05, 3},
-  };
-  return presets;
-}
-
 const RenderPreset& reference_preset() {
   static const RenderPreset reference{"reference", 1, 0.0, 4};
   return reference;
@@ -120,7 +111,7 @@ RenderQualityResult measure_render_quality(const fs::path& scene_dir, int width,
   const Palette palette = flat_colours(reference.image);
   result.reference_bands = palette.size();
   const Image& ref = reference.image;
-  for (const RenderPreset& preset : render_presets()) {
+  for (const RenderPreset& preset : povgen::render_presets()) {
     const Rendered r = render(scene_dir, preset, width, height);
     double squared = 0.0;
     std::size_t mismatched = 0;

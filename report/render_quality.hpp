@@ -1,12 +1,7 @@
 // Rendering error against run time (issue 5, part 3): one povgen scene rendered by POV-Ray at
-// quality presets and compared with a high-quality reference render of the same scene.
-//
-//   preset     size          antialias
-//   draft      half          off
-//   preview    full          off
-//   final      full          on, threshold 0.05, depth 3 (POV-Ray's adaptive method 1; its
-//                            default 0.3 leaves the flat toon bands untouched)
-//   reference  full          on, threshold 0 (every pixel supersampled), depth 4
+// quality presets (povgen/render_quality.hpp: draft, preview, final, as `[render] quality`
+// offers them) and compared with a high-quality reference render of the same scene:
+//   reference  full size, antialiasing threshold 0 (every pixel supersampled), depth 4
 //
 // Errors against the reference, after upsampling a smaller image by pixel replication:
 // RMSE over the RGB channels in [0, 1], and the share of pixels whose band differs. A pixel's
@@ -16,6 +11,8 @@
 // max_trace_level stays povgen's: POV-Ray sets it in the scene, not on the command line.
 #pragma once
 
+#include "povgen/render_quality.hpp"
+
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -23,14 +20,7 @@
 
 namespace toonwater::report {
 
-struct RenderPreset {
-  std::string name;
-  int divisor;  // of the width and height
-  std::optional<double> antialias_threshold;
-  int antialias_depth;
-};
-
-const std::vector<RenderPreset>& render_presets();  // draft, preview, final
+using povgen::RenderPreset;
 const RenderPreset& reference_preset();
 
 struct RenderQualitySample {

@@ -291,6 +291,41 @@ TEST(PovgenScene, BadInputGetsAClearErrorAndNoScene) {
   EXPECT_FALSE(std::filesystem::exists(dir / "scene" / "scene.pov"));
 }
 
+// [render] quality picks the size and antialiasing written to scene.ini; antialias = false
+// turns antialiasing off whatever the quality.
+TEST(PovgenScene, RenderQualityPresetsReachSceneIni) {
+  ScratchDir dir;
+  write_obj(dir / "water.obj", make_height_grid(5, 1.0, [](double, double) { return 0.0; }));
+  auto ini = [&](const std::string& name, std::vector<std::string> sets) {
+    std::vector<std::string> args{"--water", (dir / "water.obj").string(), "--set",
+                                  "render.width=300", "--set", "render.height=200"};
+    for (const auto& s : sets) args.insert(args.end(), {"--set", s});
+    const CommandResult r = run_toonwater([&] {
+      std::vector<std::string> full{"povgen"};
+      full.insert(full.end(), args.begin(), args.end());
+      full.insert(full.end(), {"--out", (dir / name).string()});
+      return full;
+    }());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return read_text(dir / name / "scene.ini");
+  };
+  const std::string draft = ini("draft", {"render.quality=draft"});
+  EXPECT_NE(draft.find("Width=150\nHeight=100\nAntialias=Off\n"), std::string::npos) << draft;
+  const std::string preview = ini("preview", {"render.quality=preview"});
+  EXPECT_NE(preview.find("Width=300\nHeight=200\nAntialias=Off\n"), std::string::npos) << preview;
+  const std::string final_ini = ini("final", {});  // the default
+  EXPECT_NE(final_ini.find("Antialias=On\nAntialias_Threshold=0.05\nAntialias_Depth=3\n"),
+            std::string::npos) << final_ini;
+  const std::string forced_off = ini("off", {"render.quality=final", "render.antialias=false"});
+  EXPECT_NE(forced_off.find("Antialias=Off"), std::string::npos) << forced_off;
+
+  const CommandResult bad = run_toonwater({"povgen", "--water", (dir / "water.obj").string(),
+                                           "--set", "render.quality=ultra", "--out",
+                                           (dir / "bad").string()});
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("render.quality"), std::string::npos) << bad.output;
+}
+
 // A frame with no liquid (an empty mesh) is reported and left without water; the sequence goes
 // on and still renders with one povray command. With --maps the empty frame gets no map.
 TEST(PovgenScene, EmptyFrameIsReportedAndTheSequenceGoesOn) {
