@@ -177,10 +177,15 @@ void read_flow(const toml::table& t, FlowConfig& c) {
 }
 
 void read_render(const toml::table& t, RenderConfig& c) {
-  for_each_key(t, "render", {"width", "height", "antialias", "frames", "background"},
+  for_each_key(t, "render", {"width", "height", "quality", "antialias", "frames", "background"},
                [&](const std::string& n, const std::string& key, const toml::node& v) {
                  if (n == "width") c.width = static_cast<int>(read_number_in(v, key, 1, 16384));
                  if (n == "height") c.height = static_cast<int>(read_number_in(v, key, 1, 16384));
+                 if (n == "quality")
+                   c.quality = read_keyword<RenderQuality>(v, key,
+                                                           {{"draft", RenderQuality::draft},
+                                                            {"preview", RenderQuality::preview},
+                                                            {"final", RenderQuality::final}});
                  if (n == "antialias") c.antialias = read_bool(v, key);
                  if (n == "frames") c.frames = parse_frame_range(read_string(v, key), key);
                  if (n == "background") c.background = read_color(v, key);
