@@ -81,7 +81,7 @@ OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double 
     const double dot_b = xb.dot(ab);     // at b: between b→x and b→a
 
     // Written out: std::complex's operator* and abs guard against inf/NaN at several times the cost.
-    const double inverse_length = 1.0 / std::sqrt(dot_x * dot_x + double_area * double_area);
+    const double inverse_length = 1.0 / std::sqrt(xa2 * xb2);  // 1 / (|xa| |xb|)
     const double c = dot_x * inverse_length, s = double_area * inverse_length;
     const double next_re = turn_re * c - turn_im * s, next_im = turn_re * s + turn_im * c;
     turns += turn_im >= 0.0 && next_im < 0.0;
@@ -100,7 +100,8 @@ OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double 
 
     // Mixed Voronoi area (Meyer et al. 2002, Fig. 4).
     const double face_area = 0.5 * double_area;
-    const double cot_a = dot_a / double_area, cot_b = dot_b / double_area;
+    const double inverse_area = 1.0 / double_area;
+    const double cot_a = dot_a * inverse_area, cot_b = dot_b * inverse_area;
     if (dot_x < 0.0)
       ring.area += 0.5 * face_area;
     else if (dot_a < 0.0 || dot_b < 0.0)
