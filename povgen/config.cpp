@@ -2,9 +2,12 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -211,16 +214,86 @@ ObjectConfig read_object(const toml::table& t, const std::string& prefix) {
   return c;
 }
 
+// ---- what toml++ must not see ----
+// Two kinds of text break toml++ 3.3 (Debian 12's) instead of getting a parse error; both were
+// found by fuzzing (tests/fuzz):
+//  - a dotted key of some 10^5 components ("a.a.a... = 1", "[a.a.a...]"): toml++ nests a table
+//    per component and walks and frees the nesting recursively, which overflows the stack;
+//  - a non-ASCII character outside a string or comment, or inside a multi-line basic string:
+//    toml++'s whitespace test reaches __builtin_unreachable for many code points (é, for one),
+//    which is undefined behaviour (marzer/tomlplusplus issues 190 and 295).
+// A scene configuration needs neither: its keys nest three levels at most, and TOML keeps
+// non-ASCII text to strings and comments. So parse_toml first scans the text: strings (a quote
+// opens one only where TOML expects a key or a value) and comments are skipped, the dots of each
+// run of key components counted, and non-ASCII bytes rejected where toml++ would classify them.
+// As the scan cannot tell strings apart in text that is not TOML, toml++ then parses a copy with
+// every non-ASCII byte replaced by '?', which is valid only inside strings and comments: only
+// text that passes both reaches toml++ as it is. Values cannot nest deeper than toml++'s own
+// limit (TOML_MAX_NESTED_VALUES) with at most max_key_depth levels each.
+constexpr int max_key_depth = 16;
+
+// Throws ConfigError "WHERE:LINE: problem" for text toml++ must not parse.
+void check_before_parsing(std::string_view text, const std::string& where) {
+  std::size_t line = 1;
+  const auto reject = [&](const std::string& problem) {
+    throw ConfigError(where + ":" + std::to_string(line) + ": " + problem);
+  };
+  const auto is_ascii = [](char c) { return static_cast<unsigned char>(c) < 0x80; };
+  int dots = 0;
+  char last = '\n';  // the last character outside strings and comments, not counting blanks
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') ++line;
+    const bool opens_string = (c == '"' || c == '\'') &&
+                              std::string_view("\n\r.[{,=").find(last) != std::string_view::npos;
+    if (c != ' ' && c != '\t') last = c;
+    if (opens_string) {  // a string (perhaps a quoted key component): skip it
+      const std::size_t quotes = text.substr(i, 3) == std::string(3, c) ? 3 : 1;
+      const std::string_view close = text.substr(i, quotes);
+      std::size_t j = i + quotes;
+      for (; j < text.size() && text.substr(j, quotes) != close; ++j) {
+        if (c == '"' && quotes == 3 && !is_ascii(text[j]))
+          reject("non-ASCII text in a \"\"\" string (write it in \"...\" or '''...''')");
+        if (c == '"' && text[j] == '\\' && j + 1 < text.size()) ++j;  // an escaped character
+        if (text[j] == '\n') ++line;
+      }
+      i = j + quotes - 1;
+    } else if (c == '#') {  // a comment: on to the end of the line
+      i = std::min(text.find('\n', i), text.size()) - 1;
+    } else if (c == '.') {
+      if (++dots > max_key_depth)
+        reject("keys nest more than " + std::to_string(max_key_depth) + " levels deep");
+    } else if (!is_ascii(c)) {
+      reject("non-ASCII character outside a string or comment");
+    } else if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == ' ' ||
+                 c == '\t')) {
+      dots = 0;
+    }
+  }
+}
+
+// TOML text parsed by toml++ once nothing in it can break toml++ (see above). Throws ConfigError
+// or toml::parse_error.
+toml::table parse_toml(std::string_view text, std::string_view source) {
+  check_before_parsing(text, std::string(source));
+  std::string masked(text);
+  std::replace_if(masked.begin(), masked.end(),
+                  [](char c) { return static_cast<unsigned char>(c) >= 0x80; }, '?');
+  if (masked != text) static_cast<void>(toml::parse(masked, source));  // throws if not TOML
+  return toml::parse(text, source);
+}
+
 // ---- --set key=value ----
 
 toml::table parse_override_value(const std::string& value) {
   try {
-    return toml::parse("v = " + value);
+    return parse_toml("v = " + value, "--set");
   } catch (const toml::parse_error&) {
-    toml::table t;
-    t.insert("v", value);  // a bare word: a string
-    return t;
+  } catch (const ConfigError&) {
   }
+  toml::table t;
+  t.insert("v", value);  // a bare word: a string
+  return t;
 }
 
 void apply_override(toml::table& root, const std::string& assignment) {
@@ -233,7 +306,8 @@ void apply_override(toml::table& root, const std::string& assignment) {
   std::vector<std::string> parts;
   std::stringstream ss(key);
   for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
-  if (parts.size() < 2) fail(key, "is not a known key (use section.key, e.g. water.ior)");
+  if (parts.size() < 2 || parts.size() > 3)
+    fail(key, "is not a known key (use section.key, e.g. water.ior)");
 
   toml::table* table = &root;
   std::size_t i = 0;
@@ -290,7 +364,10 @@ SceneConfig load_config(const ConfigSources& sources) {
   fs::path config_dir = fs::current_path();
   if (sources.file) {
     try {
-      root = toml::parse_file(sources.file->string());
+      std::ifstream in(*sources.file, std::ios::binary);
+      const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+      if (!in) throw ConfigError(sources.file->string() + ": cannot read the file");
+      root = parse_toml(text, sources.file->string());
     } catch (const toml::parse_error& e) {
       std::ostringstream msg;
       msg << sources.file->string() << ":" << e.source().begin.line << ": "
@@ -339,6 +416,7 @@ SceneConfig load_config(const ConfigSources& sources) {
 
   // Object names become POV-Ray identifiers and file names: sanitised and made unique.
   std::set<std::string> used;
+  std::map<std::string, int> next_suffix;  // per base: n equal names cost O(n log n), not O(n²)
   for (auto& o : config.objects) {
     std::string base = o.name;
     if (base.empty()) {  // from the file name, without the pattern's # * ? and the digits
@@ -349,7 +427,8 @@ SceneConfig load_config(const ConfigSources& sources) {
     }
     base = sanitize_identifier(base);
     std::string name = base;
-    for (int n = 2; used.count(name); ++n) name = base + "_" + std::to_string(n);
+    for (int& n = next_suffix.try_emplace(base, 2).first->second; used.count(name); ++n)
+      name = base + "_" + std::to_string(n);
     used.insert(name);
     o.name = name;
   }
