@@ -3,6 +3,8 @@
 
 #include "povgen/render.hpp"
 
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
@@ -11,6 +13,9 @@
 
 namespace toonwater::cli {
 namespace {
+
+std::atomic<bool> stop_requested{false};
+extern "C" void request_stop(int) { stop_requested = true; }
 
 struct RenderArgs {
   std::string dir;
@@ -24,6 +29,11 @@ void run_render(const RenderArgs& args) {
   request.jobs = args.jobs > 0 ? args.jobs
                                : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (!args.frames.empty()) request.frames = povgen::parse_frame_range(args.frames, "--frames");
+  // Ctrl-C or SIGTERM stops the running povray processes and removes their partial output;
+  // frames already rendered stay.
+  request.stop = &stop_requested;
+  std::signal(SIGINT, request_stop);
+  std::signal(SIGTERM, request_stop);
   auto progress = [](std::size_t done, std::size_t total, double elapsed) {
     const double left = elapsed / static_cast<double>(done) * static_cast<double>(total - done);
     std::fprintf(stderr, "\rrender: frame %zu/%zu, %.1f s, about %.1f s left   ", done, total,

@@ -1,8 +1,10 @@
 #include "povgen/render.hpp"
 
+#include "analyzer/atomic_file.hpp"
 #include "analyzer/mesh_reader.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -22,6 +24,7 @@ namespace fs = std::filesystem;
 struct IniFrames {
   bool animation = false;
   long first = 0, last = 0;
+  std::string output_name = "frame";  // Output_File_Name, without its quotes
 };
 
 IniFrames read_ini_frames(const fs::path& ini) {
@@ -32,13 +35,41 @@ IniFrames read_ini_frames(const fs::path& ini) {
   for (std::string line; std::getline(in, line);) {
     if (line.rfind("Initial_Frame=", 0) == 0) f.first = std::stol(line.substr(14)), has_first = true;
     if (line.rfind("Final_Frame=", 0) == 0) f.last = std::stol(line.substr(12)), has_last = true;
+    if (line.rfind("Output_File_Name=\"", 0) == 0 && line.size() > 19 && line.back() == '"')
+      f.output_name = line.substr(18, line.size() - 19);
   }
   f.animation = has_first && has_last;
   return f;
 }
 
+bool stop_requested(const std::atomic<bool>* stop) { return stop && stop->load(); }
+
+// Waits for `pid`; once `stop` is set, terminates it (SIGTERM, then SIGKILL if it lingers).
+int wait_for(pid_t pid, const std::atomic<bool>* stop) {
+  using namespace std::chrono_literals;
+  int status = 0;
+  auto deadline = std::chrono::steady_clock::time_point::max();
+  for (;;) {
+    const pid_t r = ::waitpid(pid, &status, stop ? WNOHANG : 0);
+    if (r == pid) break;
+    if (r < 0 && errno != EINTR) return -1;
+    if (r == 0) {
+      const auto now = std::chrono::steady_clock::now();
+      if (stop_requested(stop) && deadline == std::chrono::steady_clock::time_point::max()) {
+        ::kill(pid, SIGTERM);
+        deadline = now + 10s;
+      } else if (now > deadline) {
+        ::kill(pid, SIGKILL);
+      }
+      std::this_thread::sleep_for(20ms);
+    }
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
 // Runs one povray process in `dir` with its output in `log`; returns its exit status.
-int run_povray(const fs::path& dir, const std::vector<std::string>& args, const fs::path& log) {
+int run_povray(const fs::path& dir, const std::vector<std::string>& args, const fs::path& log,
+               const std::atomic<bool>* stop) {
   std::vector<std::string> copies = args;
   std::vector<char*> argv;
   for (auto& a : copies) argv.push_back(a.data());
@@ -54,10 +85,21 @@ int run_povray(const fs::path& dir, const std::vector<std::string>& args, const 
     ::execvp(argv[0], argv.data());
     ::_exit(127);
   }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  return wait_for(pid, stop);
+}
+
+// Renames the images POV-Ray wrote into `work` to `dir`; an error message, or "" on success.
+std::string publish_images(const fs::path& work, const fs::path& dir, const fs::path& log) {
+  std::error_code ec;
+  std::size_t images = 0;
+  for (const auto& entry : fs::directory_iterator(work, ec)) {
+    if (entry.path() == log || !entry.is_regular_file()) continue;
+    fs::rename(entry.path(), dir / entry.path().filename(), ec);
+    if (ec) return "cannot move " + entry.path().string() + " into place: " + ec.message();
+    ++images;
   }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  if (ec) return "cannot list " + work.string() + ": " + ec.message();
+  return images == 0 ? "POV-Ray wrote no image" : "";
 }
 
 std::string read_all(const fs::path& p) {
@@ -113,23 +155,39 @@ RenderReport render_frames(const RenderRequest& request, const RenderProgressFn&
   std::atomic<std::size_t> next{0};
   std::size_t done = 0;
   auto worker = [&] {
-    for (std::size_t i; (i = next++) < frames.size();) {
+    for (std::size_t i; !stop_requested(request.stop) && (i = next++) < frames.size();) {
       const long frame = frames[i];
-      std::vector<std::string> args{request.povray, "scene.ini", threads};
+      // The frame's image and log go to a temporary directory first (see render.hpp).
+      const std::string work_name =
+          ".render-" + std::to_string(frame) + ".tmp-" + std::to_string(::getpid());
+      const fs::path work = dir / work_name, log = work / "render.log";
+      const fs::path kept_log = dir / ("render_" + std::to_string(frame) + ".log");
+      std::error_code ec;
+      fs::remove_all(work, ec);
+      fs::create_directory(work, ec);
+      std::vector<std::string> args{request.povray, "scene.ini", threads,
+                                    "+O" + work_name + "/" + ini.output_name};
       if (ini.animation) {
         args.push_back("+SF" + std::to_string(frame));
         args.push_back("+EF" + std::to_string(frame));
       }
       args.insert(args.end(), request.extra_arguments.begin(), request.extra_arguments.end());
-      const fs::path log = dir / ("render_" + std::to_string(frame) + ".log");
-      const int status = run_povray(dir, args, log);
       std::string failure;
-      if (status == 127) failure = "cannot run '" + request.povray + "' (is POV-Ray installed?)";
+      const int status = ec ? -1 : run_povray(dir, args, log, request.stop);
+      if (stop_requested(request.stop)) {
+        fs::remove_all(work, ec);  // interrupted: nothing of this frame stays
+        break;
+      }
+      if (ec) failure = "cannot create " + work.string() + ": " + ec.message();
+      else if (status == 127) failure = "cannot run '" + request.povray + "' (is POV-Ray installed?)";
       else if (status != 0) failure = povray_error_message(read_all(log));
-      if (failure.empty()) fs::remove(log);
+      else failure = publish_images(work, dir, log);
+      if (failure.empty()) fs::remove(kept_log, ec);
+      else fs::rename(log, kept_log, ec);
+      fs::remove_all(work, ec);
       std::lock_guard lock(mutex);
       if (failure.empty()) ++report.rendered;
-      else report.failures.push_back({frame, failure + " (log: " + log.filename().string() + ")"});
+      else report.failures.push_back({frame, failure + " (log: " + kept_log.filename().string() + ")"});
       ++done;
       if (progress)
         progress(done, frames.size(),
@@ -141,6 +199,9 @@ RenderReport render_frames(const RenderRequest& request, const RenderProgressFn&
     for (int j = 1; j < jobs; ++j) pool.emplace_back(worker);
     worker();
   }
+  if (stop_requested(request.stop))
+    throw OutputError(dir.string() + ": interrupted after " + std::to_string(report.rendered) +
+                      " of " + std::to_string(frames.size()) + " frame(s)");
   std::sort(report.failures.begin(), report.failures.end(),
             [](const FrameFailure& a, const FrameFailure& b) { return a.frame < b.frame; });
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,11 +1,13 @@
 // toonwater render: runs POV-Ray on the frames of a povgen scene directory, several frames at
 // once (frames are independent), each as `povray scene.ini +SFn +EFn` in the directory.
 // A frame fails when POV-Ray exits non-zero or writes no image; the failure carries POV-Ray's
-// own error message.
+// own error message. Each frame renders into a hidden temporary directory in DIR and its image
+// is renamed into DIR once POV-Ray has finished, so DIR never holds a partial image.
 #pragma once
 
 #include "povgen/config.hpp"
 
+#include <atomic>
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -21,6 +23,10 @@ struct RenderRequest {
   std::optional<FrameRange> frames;          // default: all frames in scene.ini
   std::string povray = "povray";             // the executable, looked up on PATH
   std::vector<std::string> extra_arguments;  // passed to every povray run
+  // When it becomes true (a signal handler sets it), running povray processes are terminated,
+  // no further frame starts, and render_frames throws OutputError("... interrupted"); images
+  // already renamed into DIR stay, nothing partial or temporary is left.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 struct FrameFailure {
@@ -38,6 +44,7 @@ struct RenderReport {
 using RenderProgressFn = std::function<void(std::size_t, std::size_t, double)>;
 
 // Throws InputError when the directory holds no povgen scene or the range is outside it.
+// Throws OutputError when `request.stop` interrupted the run.
 RenderReport render_frames(const RenderRequest& request, const RenderProgressFn& progress);
 
 // The error lines of a POV-Ray log: lines mentioning an error, else its last line.
