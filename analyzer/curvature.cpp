@@ -116,19 +116,23 @@ OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double 
   return ring;
 }
 
-void set_principal(CurvatureField& field, std::size_t v) {
-  const double root = std::sqrt(std::max(field.mean[v] * field.mean[v] - field.gaussian[v], 0.0));
-  field.k1[v] = field.mean[v] + root;
-  field.k2[v] = field.mean[v] - root;
-}
-
 void set_undefined(CurvatureField& field, std::size_t v) {
-  field.gaussian[v] = field.mean[v] = field.k1[v] = field.k2[v] = 0.0;
+  set_curvature(field, v, 0.0, 0.0);
   field.status[v] = CurvatureStatus::undefined;
 }
 
-// Boundary and non-manifold vertices take the mean of their computed neighbours.
-void extrapolate(const TriangleMesh& mesh, const VertexFaces& vf, CurvatureField& field) {
+}  // namespace
+
+void set_curvature(CurvatureField& field, std::size_t v, double gaussian, double mean) {
+  field.gaussian[v] = gaussian;
+  field.mean[v] = mean;
+  const double root = std::sqrt(std::max(mean * mean - gaussian, 0.0));
+  field.k1[v] = mean + root;
+  field.k2[v] = mean - root;
+}
+
+void extrapolate_from_neighbours(const TriangleMesh& mesh, const VertexFaces& vf,
+                                 CurvatureField& field) {
   for (std::size_t v = 0; v < field.status.size(); ++v) {
     if (field.status[v] != CurvatureStatus::extrapolated) continue;
     double gaussian = 0.0, mean = 0.0;
@@ -143,17 +147,16 @@ void extrapolate(const TriangleMesh& mesh, const VertexFaces& vf, CurvatureField
         ++count;
       }
     }
-    if (count == 0) {
+    if (count == 0)
       set_undefined(field, v);
-      continue;
-    }
-    field.gaussian[v] = gaussian / count;
-    field.mean[v] = mean / count;
-    set_principal(field, v);
+    else
+      set_curvature(field, v, gaussian / count, mean / count);
   }
+  field.undefined_vertices = static_cast<std::size_t>(
+      std::count(field.status.begin(), field.status.end(), CurvatureStatus::undefined));
+  field.extrapolated_vertices = static_cast<std::size_t>(
+      std::count(field.status.begin(), field.status.end(), CurvatureStatus::extrapolated));
 }
-
-}  // namespace
 
 CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& topology) {
   const std::size_t n = mesh.positions.size();
@@ -197,19 +200,13 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
         set_undefined(field, v);
         continue;
       }
-      field.gaussian[v] = gaussian;
-      field.mean[v] = mean;
+      set_curvature(field, v, gaussian, mean);
       field.status[v] = CurvatureStatus::computed;
-      set_principal(field, v);
     }
   });
   for (std::size_t count : slivers) field.sliver_faces += count;
   for (const Triangle& t : mesh.triangles) field.sliver_faces += has_repeated_corner(t);
-  extrapolate(mesh, topology.vertex_faces, field);
-  field.undefined_vertices = static_cast<std::size_t>(
-      std::count(field.status.begin(), field.status.end(), CurvatureStatus::undefined));
-  field.extrapolated_vertices = static_cast<std::size_t>(
-      std::count(field.status.begin(), field.status.end(), CurvatureStatus::extrapolated));
+  extrapolate_from_neighbours(mesh, topology.vertex_faces, field);
   return field;
 }
 

@@ -48,4 +48,12 @@ struct CurvatureField {
 // `mesh` should be consistently oriented (orient_consistently) for the signs to mean anything.
 CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& topology);
 
+// Shared by the estimators.
+// Sets K and H of vertex v and the principal curvatures k1,2 = H ± sqrt(max(H² − K, 0)).
+void set_curvature(CurvatureField& field, std::size_t v, double gaussian, double mean);
+// Vertices whose status is `extrapolated` take the mean K and H of their `computed` neighbours;
+// those with none become `undefined` (all zero). Then counts both kinds in the field.
+void extrapolate_from_neighbours(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
+                                 CurvatureField& field);
+
 }  // namespace toonwater

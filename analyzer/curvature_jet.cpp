@@ -120,39 +120,6 @@ std::optional<SurfaceCurvature> fit_jet(const TriangleMesh& mesh, std::int32_t v
   return SurfaceCurvature{gaussian, mean};
 }
 
-void set_values(CurvatureField& field, std::size_t v, double gaussian, double mean) {
-  field.gaussian[v] = gaussian;
-  field.mean[v] = mean;
-  const double root = std::sqrt(std::max(mean * mean - gaussian, 0.0));
-  field.k1[v] = mean + root;
-  field.k2[v] = mean - root;
-}
-
-// Vertices without a fit of their own take the mean of their fitted neighbours.
-void extrapolate(const TriangleMesh& mesh, const VertexFaces& vf, CurvatureField& field) {
-  for (std::size_t v = 0; v < field.status.size(); ++v) {
-    if (field.status[v] != CurvatureStatus::extrapolated) continue;
-    double gaussian = 0.0, mean = 0.0;
-    int count = 0;
-    for (std::int32_t f : vf.of(static_cast<std::int32_t>(v))) {
-      for (std::int32_t w : mesh.triangles[f]) {
-        // Neighbours appear in two faces each; counting them twice keeps the mean unchanged.
-        if (static_cast<std::size_t>(w) == v || field.status[w] != CurvatureStatus::computed)
-          continue;
-        gaussian += field.gaussian[w];
-        mean += field.mean[w];
-        ++count;
-      }
-    }
-    if (count == 0) {
-      set_values(field, v, 0.0, 0.0);
-      field.status[v] = CurvatureStatus::undefined;
-    } else {
-      set_values(field, v, gaussian / count, mean / count);
-    }
-  }
-}
-
 }  // namespace
 
 CurvatureField compute_curvature_jet(const TriangleMesh& mesh, const MeshTopology& topology) {
@@ -165,7 +132,7 @@ CurvatureField compute_curvature_jet(const TriangleMesh& mesh, const MeshTopolog
       const auto vertex = static_cast<std::int32_t>(v);
       const VertexKind kind = topology.kind[v];
       if (kind == VertexKind::isolated || field.normal[v].isZero()) {
-        set_values(field, v, 0.0, 0.0);
+        set_curvature(field, v, 0.0, 0.0);
         field.status[v] = CurvatureStatus::undefined;
         continue;
       }
@@ -175,18 +142,14 @@ CurvatureField compute_curvature_jet(const TriangleMesh& mesh, const MeshTopolog
         jet = fit_jet(mesh, vertex, field.normal[v], ring);
       }
       if (jet) {
-        set_values(field, v, jet->gaussian, jet->mean);
+        set_curvature(field, v, jet->gaussian, jet->mean);
         field.status[v] = CurvatureStatus::computed;
       } else {
         field.status[v] = CurvatureStatus::extrapolated;
       }
     }
   });
-  extrapolate(mesh, topology.vertex_faces, field);
-  field.undefined_vertices = static_cast<std::size_t>(
-      std::count(field.status.begin(), field.status.end(), CurvatureStatus::undefined));
-  field.extrapolated_vertices = static_cast<std::size_t>(
-      std::count(field.status.begin(), field.status.end(), CurvatureStatus::extrapolated));
+  extrapolate_from_neighbours(mesh, topology.vertex_faces, field);
   return field;
 }
 
