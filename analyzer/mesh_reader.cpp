@@ -114,6 +114,17 @@ double parse_coordinate(const SourceFile& file, std::size_t line, std::string_vi
   return *value;
 }
 
+Vec3 read_point(const SourceFile& file, std::size_t line, Fields& fields) {
+  double xyz[3];
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::string_view field = fields.next();
+    if (field.empty())
+      fail_at_line(file, line, "vertex has " + std::to_string(axis) + " coordinates, expected 3");
+    xyz[axis] = parse_coordinate(file, line, field);
+  }
+  return {xyz[0], xyz[1], xyz[2]};
+}
+
 std::size_t capped_reserve(std::uint64_t declared, std::size_t remaining_bytes,
                            std::size_t min_record_bytes) {
   return static_cast<std::size_t>(

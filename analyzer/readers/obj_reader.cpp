@@ -19,14 +19,7 @@ bool continues_on_next_line(std::string_view content) {
 }
 
 void read_vertex(const SourceFile& file, std::size_t line, Fields& fields, TriangleMesh& mesh) {
-  double xyz[3];
-  for (int axis = 0; axis < 3; ++axis) {
-    const std::string_view field = fields.next();
-    if (field.empty())
-      fail_at_line(file, line,
-                   "vertex has " + std::to_string(axis) + " coordinates, expected 3");
-    xyz[axis] = parse_coordinate(file, line, field);
-  }
+  const Vec3 point = read_point(file, line, fields);
   // Optional w or colour: numbers, not used.
   constexpr int max_optional_values = 4;
   int optional_values = 0;
@@ -37,7 +30,7 @@ void read_vertex(const SourceFile& file, std::size_t line, Fields& fields, Trian
   }
   if (mesh.positions.size() == max_vertex_count)
     fail_at_line(file, line, "more vertices than a mesh can index (2^31 - 1)");
-  mesh.positions.emplace_back(xyz[0], xyz[1], xyz[2]);
+  mesh.positions.push_back(point);
 }
 
 // The vertex index of a face corner "a", "a/b", "a/b/c" or "a//c". The texture and normal

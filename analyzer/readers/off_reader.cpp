@@ -76,18 +76,11 @@ OffCounts read_header(const SourceFile& file, LineReader& lines) {
 }
 
 void read_vertex(const SourceFile& file, std::size_t line, Fields& fields, TriangleMesh& mesh) {
-  double xyz[3];
-  for (int axis = 0; axis < 3; ++axis) {
-    const std::string_view field = fields.next();
-    if (field.empty())
-      fail_at_line(file, line,
-                   "vertex has " + std::to_string(axis) + " coordinates, expected 3");
-    xyz[axis] = parse_coordinate(file, line, field);
-  }
+  const Vec3 point = read_point(file, line, fields);
   // Normal, colour or texture coordinates ([ST][C][N]OFF): numbers, not used.
   for (std::string_view field = fields.next(); !field.empty(); field = fields.next())
     if (!parse_double(field)) fail_at_line(file, line, "malformed number " + quote(field));
-  mesh.positions.emplace_back(xyz[0], xyz[1], xyz[2]);
+  mesh.positions.push_back(point);
 }
 
 void read_face(const SourceFile& file, std::size_t line, Fields& fields,

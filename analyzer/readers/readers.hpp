@@ -74,6 +74,9 @@ std::optional<std::int64_t> parse_integer(std::string_view field);
 // A vertex coordinate of a text format: a finite number, or an error at `line`.
 double parse_coordinate(const SourceFile& file, std::size_t line, std::string_view field);
 
+// The next three fields as a finite point; "vertex has N coordinates, expected 3" when short.
+Vec3 read_point(const SourceFile& file, std::size_t line, Fields& fields);
+
 // How many records to reserve room for when a header declares `declared` of them: never more than
 // the remaining bytes could hold at `min_record_bytes` each, so a hostile header cannot make the
 // reader allocate memory the file does not back.

@@ -103,19 +103,12 @@ InputMesh read_ascii(const SourceFile& file) {
       loop.clear();
     } else if (keyword == "vertex") {
       if (!in_loop) unexpected();
-      double xyz[3];
-      for (int axis = 0; axis < 3; ++axis) {
-        const std::string_view field = fields.next();
-        if (field.empty())
-          fail_at_line(file, number,
-                       "vertex has " + std::to_string(axis) + " coordinates, expected 3");
-        xyz[axis] = parse_coordinate(file, number, field);
-      }
+      const Vec3 point = read_point(file, number, fields);
       if (!fields.at_end()) fail_at_line(file, number, "too many values on a vertex line");
       if (mesh.positions.size() == max_vertex_count)
         fail_at_line(file, number, "more vertices than a mesh can index (2^31 - 1)");
       loop.push_back(static_cast<std::int32_t>(mesh.positions.size()));
-      mesh.positions.emplace_back(xyz[0], xyz[1], xyz[2]);
+      mesh.positions.push_back(point);
     } else if (keyword == "endloop") {
       if (!in_loop) unexpected();
       if (loop.size() < 3)
