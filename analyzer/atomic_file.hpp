@@ -32,9 +32,16 @@ class AtomicFileWriter {
   std::filesystem::path path_;
   std::filesystem::path temporary_;
   int fd_ = -1;
+  int slot_ = -1;  // in the table remove_temporaries_on_signals() reads
 };
 
 // Replaces `path` with `contents` atomically (AtomicFileWriter in one piece).
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents);
+
+// Installs handlers for SIGINT, SIGTERM and SIGHUP that delete the temporary files of the
+// AtomicFileWriters in progress, then let the signal end the process as it would have: an
+// interrupted run leaves no temporary file. main() installs them first; povgen and render replace
+// them while they stop gracefully between frames.
+void remove_temporaries_on_signals();
 
 }  // namespace toonwater

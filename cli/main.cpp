@@ -8,6 +8,7 @@
 #include <iostream>
 
 int main(int argc, char** argv) {
+  toonwater::remove_temporaries_on_signals();  // an interrupted run leaves no temporary file
   CLI::App app{"toonwater: cartoon water from fluid-simulation meshes, rendered with POV-Ray"};
   app.require_subcommand(1);
   // Parse errors in one line, like every other error (CLI11 adds a second by default).

@@ -2,6 +2,7 @@
 //                  [--set key=value]... [--up x|y|z] --out DIR
 #include "cli/commands.hpp"
 
+#include "analyzer/atomic_file.hpp"
 #include "analyzer/maps/sequence_maps.hpp"
 #include "povgen/povgen.hpp"
 #include "povgen/sequence.hpp"
@@ -58,6 +59,9 @@ void run_povgen(const PovgenArgs& args) {
     if (done == total) std::fputc('\n', stderr);
   };
   const povgen::PovgenReport r = povgen::generate_scene(config, request, progress, &povgen_stop_requested);
+  // From here on a signal ends the run at once (removing any temporary file), as before povgen.
+  remove_temporaries_on_signals();
+  if (povgen_stop_requested) throw OutputError(args.out + ": interrupted");
   std::fprintf(stderr,
                "povgen: %zu frame(s) -> %s (%zu water vertices, %zu degenerate faces left out, "
                "%zu normals replaced, ridge %zu, valley %zu)\n"

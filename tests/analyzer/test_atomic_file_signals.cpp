@@ -1,0 +1,63 @@
+// remove_temporaries_on_signals (analyzer/atomic_file.hpp): a process ended by SIGINT, SIGTERM
+// or SIGHUP while AtomicFileWriters are writing leaves their targets as they were and no
+// temporary file. Each case runs in a child process that signals itself mid-write.
+#include "analyzer/atomic_file.hpp"
+#include "tests/support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace toonwater::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> names_in(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+class AtomicFileSignals : public ::testing::TestWithParam<int> {};
+
+TEST_P(AtomicFileSignals, InterruptedWritesLeaveTheTargetsAndNoTemporary) {
+  ScratchDir dir;
+  write_text(dir / "a.csv", "good a\n");
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    remove_temporaries_on_signals();
+    write_file_atomically(dir / "done.csv", "complete\n");  // finished before the signal
+    AtomicFileWriter a(dir / "a.csv");
+    AtomicFileWriter b(dir / "b.ply");
+    a.write("partial");
+    b.write("partial");
+    ::raise(GetParam());
+    ::_exit(0);  // not reached: the signal ends the process
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the signal ends the process as it would have";
+  EXPECT_EQ(WTERMSIG(status), GetParam());
+  EXPECT_EQ(names_in(dir.path()), (std::vector<std::string>{"a.csv", "done.csv"}));
+  EXPECT_EQ(read_text(dir / "a.csv"), "good a\n");
+  EXPECT_EQ(read_text(dir / "done.csv"), "complete\n");
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals, AtomicFileSignals, ::testing::Values(SIGINT, SIGTERM, SIGHUP),
+                         [](const ::testing::TestParamInfo<int>& signal) {
+                           return std::string(sigabbrev_np(signal.param));
+                         });
+
+}  // namespace
+}  // namespace toonwater::test
