@@ -11,6 +11,7 @@ packages=(
   libopenimageio-dev openimageio-tools fonts-dejavu-core
   povray
   libgtest-dev libbenchmark-dev
+  clang-14 libclang-rt-14-dev  # fuzzing (scripts/fuzz.sh)
 )
 
 missing=()

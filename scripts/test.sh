@@ -1,7 +1,47 @@
 #!/usr/bin/env bash
-# Set-up (idempotent) followed by the whole test suite.
+# Set-up (idempotent), then every check CI runs, in this order:
+#   tests     the normal build and the whole test suite                      (./build)
+#   sanitize  the whole test suite again under ASan + UBSan                   (./build-asan)
+#   fuzz      every libFuzzer target for FUZZ_SECONDS (default 60) each       (./build-fuzz)
+# TOONWATER_CHECKS picks steps (default: all three), e.g. TOONWATER_CHECKS=tests for a quick run.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-"$root/scripts/setup.sh"
 build_dir=${TOONWATER_BUILD_DIR:-$root/build}
-ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)"
+asan_build_dir=${TOONWATER_ASAN_BUILD_DIR:-$root/build-asan}
+checks=${TOONWATER_CHECKS:-tests sanitize fuzz}
+
+run_tests() {
+  ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)"
+}
+
+# Every sanitizer report fails its test: UBSan aborts (-fno-sanitize-recover), ASan reports
+# leaks at exit, and both print a stack trace.
+run_sanitized_tests() {
+  cmake -S "$root" -B "$asan_build_dir" -DTOONWATER_SANITIZE=ON \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTOONWATER_BUILD_BENCHMARKS=OFF >/dev/null
+  cmake --build "$asan_build_dir" -j "$(nproc)"
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    ctest --test-dir "$asan_build_dir" --output-on-failure -j "$(nproc)"
+}
+
+run_fuzzers() {
+  "$root/scripts/fuzz.sh"
+}
+
+# step NAME FUNCTION: runs one check and reports how long it took.
+step() {
+  local start=$SECONDS
+  echo "test.sh: $1" >&2
+  "$2"
+  echo "test.sh: $1 passed in $((SECONDS - start)) s" >&2
+}
+
+"$root/scripts/setup.sh"
+for check in $checks; do
+  case $check in
+    tests) step "tests" run_tests ;;
+    sanitize) step "tests under ASan + UBSan" run_sanitized_tests ;;
+    fuzz) step "fuzzing" run_fuzzers ;;
+    *) echo "test.sh: unknown check '$check' (tests, sanitize, fuzz)" >&2; exit 2 ;;
+  esac
+done
