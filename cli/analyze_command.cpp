@@ -1,5 +1,6 @@
 // toonwater analyze MESH [--csv FILE] [--ply FILE] [options]
 #include "cli/commands.hpp"
+#include "cli/transform_options.hpp"
 
 #include "analyzer/affine_transform.hpp"
 #include "analyzer/analysis.hpp"
@@ -22,9 +23,7 @@ namespace {
 
 struct AnalyzeArgs {
   std::string mesh;
-  std::vector<double> transform;   // 3x4 [A | b] row by row
-  std::optional<double> scale;     // or x -> scale x + translate
-  std::vector<double> translate;
+  TransformArgs transform;
   std::string csv;
   std::string ply;
   std::string maps;                // directory for the curvature maps
@@ -66,19 +65,8 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
                a.times.curvature, a.times.flow, write_seconds);
 }
 
-// The map from file to world coordinates the options give, checked before the mesh is read.
-std::optional<AffineTransform> input_transform(const AnalyzeArgs& args) {
-  if (args.transform.size() == 12)
-    return affine_from_rows(std::span<const double, 12>(args.transform));
-  if (!args.scale && args.translate.empty()) return std::nullopt;
-  const Vec3 translation = args.translate.size() == 3
-                               ? Vec3(args.translate[0], args.translate[1], args.translate[2])
-                               : Vec3::Zero();
-  return scale_then_translate(args.scale.value_or(1.0), translation);
-}
-
 void run_analyze(const AnalyzeArgs& args) {
-  const std::optional<AffineTransform> transform = input_transform(args);
+  const std::optional<AffineTransform> transform = transform_from(args.transform);
   auto start = std::chrono::steady_clock::now();
   InputMesh input = read_mesh(args.mesh);
   if (transform) apply_transform(*transform, input.mesh);
@@ -125,20 +113,7 @@ void add_analyze_command(CLI::App& app) {
       "analyze", "Compute per-vertex curvature and water-flow regions of a surface mesh");
   cmd->add_option("mesh", args->mesh, "Surface mesh: OBJ, OFF, PLY, STL or Mantaflow .bobj.gz")
       ->required();
-  CLI::Option* transform =
-      cmd->add_option("--transform", args->transform,
-                      "Map the mesh to world coordinates by x -> A x + b, given as the 3x4 matrix "
-                      "[A | b] row by row: a00,a01,a02,b0,a10,a11,a12,b1,a20,a21,a22,b2")
-          ->expected(12)
-          ->delimiter(',');
-  cmd->add_option("--scale", args->scale,
-                  "S in the map x -> S x + T to world coordinates (Mantaflow: the domain's size)")
-      ->excludes(transform);
-  cmd->add_option("--translate", args->translate,
-                  "T in the map x -> S x + T, as X,Y,Z (Mantaflow: the domain's centre)")
-      ->expected(3)
-      ->delimiter(',')
-      ->excludes(transform);
+  add_transform_options(*cmd, args->transform);
   cmd->add_option("--csv", args->csv, "Write x,y,z,gaussian,mean,k1,k2,area,label per vertex");
   cmd->add_option("--ply", args->ply, "Write a binary PLY with the curvature as vertex properties");
   cmd->add_option("--maps", args->maps,

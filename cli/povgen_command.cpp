@@ -1,6 +1,7 @@
 // toonwater povgen --water PATTERN [--object PATTERN]... [--config scene.toml]
 //                  [--set key=value]... [--up x|y|z] --out DIR
 #include "cli/commands.hpp"
+#include "cli/transform_options.hpp"
 
 #include "analyzer/atomic_file.hpp"
 #include "analyzer/maps/sequence_maps.hpp"
@@ -31,6 +32,7 @@ struct PovgenArgs {
   std::string out;
   Axis up = Axis::y;
   std::string maps;  // curvature maps of the water frames, one shared colour range
+  TransformArgs water_transform;
 };
 
 void run_povgen(const PovgenArgs& args) {
@@ -42,6 +44,7 @@ void run_povgen(const PovgenArgs& args) {
 
   povgen::PovgenRequest request;
   request.water_pattern = args.water;
+  request.water_transform = transform_from(args.water_transform);
   request.base_dir = std::filesystem::current_path();
   request.up = args.up;
   request.out_dir = args.out;
@@ -82,7 +85,8 @@ void run_povgen(const PovgenArgs& args) {
     options.estimator = config.flow.estimator;
     options.smoothing_steps = config.flow.smoothing;
     const SequenceMaps maps =
-        write_sequence_maps(frames, options, MapOptions{}, args.maps, config.flow.coherence);
+        write_sequence_maps(frames, options, MapOptions{}, args.maps, config.flow.coherence,
+                            request.water_transform ? &*request.water_transform : nullptr);
     std::fprintf(stderr, "  maps: %zu frame(s) -> %s, shared colour ranges K \u00b1%.6g, H \u00b1%.6g\n",
                  maps.frames, args.maps.c_str(), maps.ranges.gaussian, maps.ranges.mean);
   }
@@ -106,6 +110,7 @@ void add_povgen_command(CLI::App& app) {
                   "Also write top-down curvature maps of the water frames into this directory, "
                   "with one colour range shared by all frames");
   const std::map<std::string, Axis> axes{{"x", Axis::x}, {"y", Axis::y}, {"z", Axis::z}};
+  add_transform_options(*cmd, args->water_transform);  // applies to the water meshes
   cmd->add_option("--up", args->up, "Up axis of the input (Blender writes z)")
       ->transform(CLI::CheckedTransformer(axes, CLI::ignore_case))
       ->default_str("y");

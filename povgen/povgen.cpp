@@ -175,6 +175,7 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     InputMesh input;
     try {
       input = load(path);
+      if (request.water_transform) apply_transform(*request.water_transform, input.mesh);
     } catch (const EmptyMeshError& empty) {
       // A frame with no liquid: the scene still needs its include, with nothing in it.
       if (water.frames.size() == 1) throw;

@@ -9,6 +9,7 @@
 // All references inside are relative, so DIR can be moved. Every file is written atomically.
 #pragma once
 
+#include "analyzer/affine_transform.hpp"
 #include "analyzer/flow_coherence.hpp"
 #include "povgen/config.hpp"
 #include "povgen/mesh2_writer.hpp"
@@ -19,6 +20,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +53,7 @@ double outline_width(const OutlineConfig& outline, const SceneMesh& mesh);
 
 struct PovgenRequest {
   std::string water_pattern;
+  std::optional<AffineTransform> water_transform;  // file to world coordinates of the water
   std::filesystem::path base_dir;  // patterns on the command line are relative to it
   Axis up = Axis::y;
   std::filesystem::path out_dir;

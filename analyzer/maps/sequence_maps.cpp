@@ -12,9 +12,12 @@ namespace {
 
 // The frame's analysis, or nothing for a frame whose mesh is empty (no liquid): it gets no map.
 std::optional<Analysis> analyze_frame(const std::filesystem::path& frame,
-                                      const AnalyzeOptions& analyze) {
+                                      const AnalyzeOptions& analyze,
+                                      const AffineTransform* transform) {
   try {
-    return analyze_mesh(read_mesh(frame).mesh, analyze);
+    InputMesh input = read_mesh(frame);
+    if (transform) apply_transform(*transform, input.mesh);
+    return analyze_mesh(std::move(input.mesh), analyze);
   } catch (const EmptyMeshError&) {
     return std::nullopt;
   }
@@ -31,16 +34,17 @@ std::string frame_stem(const std::filesystem::path& frame) {
 SequenceMaps write_sequence_maps(const std::vector<std::filesystem::path>& frames,
                                  const AnalyzeOptions& analyze, const MapOptions& maps,
                                  const std::filesystem::path& dir, bool coherent_labels,
+                                 const AffineTransform* transform,
                                  const std::function<void(std::size_t, std::size_t)>& progress) {
   MapPlanner planner(analyze.flow.up);
   for (const auto& frame : frames)
-    if (std::optional<Analysis> a = analyze_frame(frame, analyze)) planner.add(*a);
+    if (std::optional<Analysis> a = analyze_frame(frame, analyze, transform)) planner.add(*a);
   SequenceMaps result;
   result.view = planner.view(maps);
   result.ranges = planner.ranges(maps.percentile);
   FlowCoherence coherence;
   for (const auto& frame : frames) {
-    if (std::optional<Analysis> a = analyze_frame(frame, analyze)) {
+    if (std::optional<Analysis> a = analyze_frame(frame, analyze, transform)) {
       if (coherent_labels) coherence.apply(a->surface, a->curvature, a->flow);
       write_maps(dir, frame_stem(frame), *a, result.view, result.ranges);
       ++result.frames;

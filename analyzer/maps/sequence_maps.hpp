@@ -5,6 +5,7 @@
 // the frame file's stem.
 #pragma once
 
+#include "analyzer/affine_transform.hpp"
 #include "analyzer/analysis.hpp"
 #include "analyzer/maps/map_planner.hpp"
 
@@ -26,9 +27,11 @@ struct SequenceMaps {
 // the flow regions made coherent from frame to frame (flow_coherence.hpp), as povgen renders
 // them. A frame whose mesh is empty gets no maps. Throws InputError for a frame that cannot be
 // read and OutputError for a map that cannot be written.
+// `transform`, when given, maps each frame from file to world coordinates first.
 SequenceMaps write_sequence_maps(const std::vector<std::filesystem::path>& frames,
                                  const AnalyzeOptions& analyze, const MapOptions& maps,
                                  const std::filesystem::path& dir, bool coherent_labels = true,
+                                 const AffineTransform* transform = nullptr,
                                  const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 // The name a frame's maps take: the file name without its mesh extensions ("water_0001" for

@@ -291,6 +291,26 @@ TEST(PovgenScene, BadInputGetsAClearErrorAndNoScene) {
   EXPECT_FALSE(std::filesystem::exists(dir / "scene" / "scene.pov"));
 }
 
+// --scale/--translate (or --transform) map the water from file to world coordinates, as for
+// Mantaflow caches; a singular map is refused before anything is read or written.
+TEST(PovgenScene, WaterTransformMapsFileToWorldCoordinates) {
+  ScratchDir dir;
+  write_text(dir / "w.obj", "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 2 3 4\n");
+  const CommandResult r = run_toonwater({"povgen", "--water", (dir / "w.obj").string(), "--scale",
+                                         "2", "--translate", "10,0,0", "--set",
+                                         "flow.enabled=false", "--out", (dir / "s").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // y up: (x, y, z) -> POV-Ray (x, y, -z).
+  EXPECT_NE(read_text(dir / "s" / "water_0000.inc").find("<10,0,0>, <12,0,0>, <12,0,-2>, <10,0,-2>"),
+            std::string::npos);
+  const CommandResult singular =
+      run_toonwater({"povgen", "--water", (dir / "w.obj").string(), "--scale", "0", "--out",
+                     (dir / "bad").string()});
+  EXPECT_NE(singular.exit_code, 0);
+  EXPECT_NE(singular.output.find("singular"), std::string::npos) << singular.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad"));
+}
+
 // [render] quality picks the size and antialiasing written to scene.ini; antialias = false
 // turns antialiasing off whatever the quality.
 TEST(PovgenScene, RenderQualityPresetsReachSceneIni) {

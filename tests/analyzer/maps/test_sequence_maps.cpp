@@ -32,7 +32,7 @@ TEST(SequenceMaps, FramesShareViewAndRange) {
   options.flow.up = Axis::z;
   std::size_t calls = 0;
   const SequenceMaps maps = write_sequence_maps(
-      {dir / "water_0001.obj", dir / "water_0002.obj"}, options, MapOptions{}, dir / "maps", true,
+      {dir / "water_0001.obj", dir / "water_0002.obj"}, options, MapOptions{}, dir / "maps", true, nullptr,
       [&](std::size_t done, std::size_t total) {
         EXPECT_EQ(done, ++calls);
         EXPECT_EQ(total, 2u);
