@@ -4,6 +4,7 @@
 // counts and gzip bombs allocate nothing large; and analyze and povgen take numbered sequences.
 #include "analyzer/analytic_surfaces.hpp"
 #include "analyzer/mesh_reader.hpp"
+#include "tests/support/largest_allocation.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -22,21 +23,6 @@
 #include <string>
 #include <vector>
 
-// The largest single allocation since the last reset: hostile files must not cause big ones.
-namespace {
-std::atomic<std::size_t> largest_allocation{0};
-}  // namespace
-
-// Not inlined, so that GCC does not pair the malloc and free inside with new and delete.
-[[gnu::noinline]] void* operator new(std::size_t size) {
-  std::size_t seen = largest_allocation.load(std::memory_order_relaxed);
-  while (size > seen && !largest_allocation.compare_exchange_weak(seen, size)) {
-  }
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-[[gnu::noinline]] void operator delete(void* p) noexcept { std::free(p); }
-[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace toonwater {
 namespace {
@@ -44,6 +30,8 @@ namespace {
 namespace fs = std::filesystem;
 using test::read_text;
 using test::run_toonwater;
+using test::largest_allocation;
+using test::reset_largest_allocation;
 using test::ScratchDir;
 using test::write_text;
 
@@ -247,10 +235,10 @@ TEST_F(BobjReader, HostileCountsAllocateOnlyWhatTheDataHolds) {
   triangles.put(std::int32_t{0}).put(std::numeric_limits<std::int32_t>::max());
   triangles.put(Triangle{0, 1, 2});
 
-  largest_allocation = 0;
+  reset_largest_allocation();
   expect_error(gzip(vertices.bytes()), {"the data ends in vertex 3 of 2147483647"});
   expect_error(gzip(triangles.bytes()), {"the data ends in triangle 1 of 2147483647"});
-  EXPECT_LT(largest_allocation.load(), std::size_t{1} << 20);
+  EXPECT_LT(largest_allocation(), std::size_t{1} << 20);
 }
 
 TEST_F(BobjReader, GzipBombIsRefusedEarly) {
@@ -261,10 +249,10 @@ TEST_F(BobjReader, GzipBombIsRefusedEarly) {
   const std::string bomb = gzip(header.bytes() + std::string(std::size_t{32} << 20, '\0'), 9);
   ASSERT_LT(bomb.size(), std::size_t{64} << 10);
 
-  largest_allocation = 0;
+  reset_largest_allocation();
   expect_error(bomb, {"inflates to more than 64 times its size", "gzip bomb"});
   // Nothing beyond 64 times the file's size is inflated, so positions stay under 128 times it.
-  EXPECT_LT(largest_allocation.load(), 128 * bomb.size());
+  EXPECT_LT(largest_allocation(), 128 * bomb.size());
 }
 
 // ---- Sequences through the command line ---------------------------------------------------

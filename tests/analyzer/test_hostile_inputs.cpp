@@ -1,9 +1,10 @@
 // Huge and hostile mesh files: counts in headers that the data does not back (2^31 vertices,
 // 2^32 facets, list counts of 2^31), faces with 10^6 corners. The reader must fail with a clear
 // message or read what is there, and never allocate from an unchecked count: this executable
-// replaces operator new to record the largest single allocation, which must stay proportional to
-// the file's real size.
+// records the largest single allocation (tests/support/largest_allocation.hpp), which must stay
+// proportional to the file's real size.
 #include "analyzer/mesh_reader.hpp"
+#include "tests/support/largest_allocation.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -16,24 +17,6 @@
 #include <new>
 #include <string>
 
-namespace {
-std::atomic<std::size_t> largest_allocation{0};
-
-void* allocate(std::size_t size) {
-  std::size_t seen = largest_allocation.load(std::memory_order_relaxed);
-  while (size > seen && !largest_allocation.compare_exchange_weak(seen, size)) {
-  }
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-}  // namespace
-
-void* operator new(std::size_t size) { return allocate(size); }
-void* operator new[](std::size_t size) { return allocate(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace toonwater::test {
 namespace {
@@ -46,14 +29,14 @@ struct Outcome {
 
 Outcome read(const ScratchDir& dir, const std::string& name, const std::string& bytes) {
   write_text(dir / name, bytes);
-  largest_allocation = 0;
+  reset_largest_allocation();
   Outcome out;
   try {
     out.triangles = read_mesh(dir / name).mesh.triangles.size();
   } catch (const InputError& e) {
     out.error = e.what();
   }
-  out.largest = largest_allocation;
+  out.largest = largest_allocation();
   return out;
 }
 
@@ -139,7 +122,7 @@ TEST(HostileInputs, FaceWithAMillionCornersIsReadInMemoryProportionalToIt) {
   ScratchDir dir;
   constexpr int corners = 1000000;
   std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf";
-  for (int i = 0; i < corners; ++i) obj += " " + std::to_string(1 + i % 3);
+  for (int i = 0; i < corners; ++i) (obj += ' ') += std::to_string(1 + i % 3);
   obj += "\n";
   const Outcome o = read(dir, "fan.obj", obj);
   EXPECT_EQ(o.error, "");
@@ -147,7 +130,7 @@ TEST(HostileInputs, FaceWithAMillionCornersIsReadInMemoryProportionalToIt) {
   EXPECT_LT(o.largest, allowance(obj));
 
   std::string off = "OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n" + std::to_string(corners);
-  for (int i = 0; i < corners; ++i) off += " " + std::to_string(i % 3);
+  for (int i = 0; i < corners; ++i) (off += ' ') += std::to_string(i % 3);
   off += "\n";
   const Outcome fan = read(dir, "fan.off", off);
   EXPECT_EQ(fan.error, "");

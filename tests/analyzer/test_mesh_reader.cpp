@@ -2,6 +2,7 @@
 // kind of bad input throws one line naming the file and the line (text) or record (binary).
 #include "analyzer/mesh_reader.hpp"
 
+#include "tests/support/largest_allocation.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -16,26 +17,13 @@
 #include <string>
 #include <vector>
 
-// The largest single allocation since the last reset: hostile headers must not cause big ones.
-namespace {
-std::atomic<std::size_t> largest_allocation{0};
-}  // namespace
-
-// Not inlined, so that GCC does not pair the malloc and free inside with new and delete.
-[[gnu::noinline]] void* operator new(std::size_t size) {
-  std::size_t seen = largest_allocation.load(std::memory_order_relaxed);
-  while (size > seen && !largest_allocation.compare_exchange_weak(seen, size)) {
-  }
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-[[gnu::noinline]] void operator delete(void* p) noexcept { std::free(p); }
-[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace toonwater {
 namespace {
 
 namespace fs = std::filesystem;
+using test::largest_allocation;
+using test::reset_largest_allocation;
 using test::ScratchDir;
 using test::write_text;
 
@@ -255,10 +243,10 @@ TEST_F(MeshReader, OffErrorsNameFileAndLine) {
 }
 
 TEST_F(MeshReader, HostileOffCountsAreRefusedWithoutAllocating) {
-  largest_allocation = 0;
+  reset_largest_allocation();
   expect_line_error("huge.off", "OFF\n2147483647 2147483647 0\n0 0 0\n", 3,
                     "file ends after 1 of 2147483647 vertices");
-  EXPECT_LT(largest_allocation.load(), std::size_t{1} << 20);
+  EXPECT_LT(largest_allocation(), std::size_t{1} << 20);
   expect_line_error("huger.off", "OFF\n2147483648 1 0\n0 0 0\n", 2, "exceeds what a mesh can index");
 }
 
@@ -398,17 +386,17 @@ TEST_F(MeshReader, PlyHeaderAndAsciiErrorsNameTheLine) {
 }
 
 TEST_F(MeshReader, HostilePlyCountsAreRefusedWithoutAllocating) {
-  largest_allocation = 0;
+  reset_largest_allocation();
   std::string text = triangle_ply_header;
   text.replace(text.find("vertex 3"), 8, "vertex 2000000000");
   text.replace(text.find("face 1"), 6, "face 2000000000");
   expect_error("huge.ply", text + std::string(64, '\0'), {"truncated", "vertex 5 of 2000000000"});
-  EXPECT_LT(largest_allocation.load(), std::size_t{1} << 20);
+  EXPECT_LT(largest_allocation(), std::size_t{1} << 20);
   // A face claiming 255 corners in a file that holds two indices.
   std::string face = triangle_ply(0.0f, 2);
   face[face.size() - 13] = static_cast<char>(255);
   expect_error("corners.ply", face, {"truncated", "face 0 of 1"});
-  EXPECT_LT(largest_allocation.load(), std::size_t{1} << 20);
+  EXPECT_LT(largest_allocation(), std::size_t{1} << 20);
 }
 
 // ---- STL --------------------------------------------------------------------------------------
