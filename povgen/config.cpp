@@ -130,9 +130,14 @@ void read_light(const toml::table& t, LightConfig& c) {
 
 void read_water(const toml::table& t, WaterConfig& c) {
   for_each_key(t, "water",
-               {"bright", "medium", "dark", "t_bright", "t_medium", "ka", "kd", "ks",
+               {"shading", "bright", "medium", "dark", "t_bright", "t_medium", "ka", "kd", "ks",
                 "specular_color", "phong_size", "reflection", "transmit", "ior"},
                [&](const std::string& n, const std::string& key, const toml::node& v) {
+                 if (n == "shading")
+                   c.shading = read_keyword<WaterShading>(v, key,
+                                                          {{"toon", WaterShading::toon},
+                                                           {"gaussian", WaterShading::gaussian},
+                                                           {"mean", WaterShading::mean}});
                  if (n == "bright") c.bright = read_color(v, key);
                  if (n == "medium") c.medium = read_color(v, key);
                  if (n == "dark") c.dark = read_color(v, key);

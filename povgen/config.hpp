@@ -28,7 +28,7 @@ class ConfigError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-using Color = std::array<double, 3>;  // linear rgb in [0, 1]
+using Color = std::array<double, 3>;  // sRGB in [0, 1], as picked on screen
 
 struct CameraConfig {
   std::optional<Vec3> location;  // default: framed on the water's bounding box
@@ -43,7 +43,13 @@ struct LightConfig {
 };
 
 // Cartoon Water Shader (paper eq. 2-3).
+// How the water is drawn: the Cartoon Water Shader, or coloured by its Gaussian or mean
+// curvature with the curvature maps' diverging colour map (analyzer/maps/colormap.hpp) over
+// a range shared by the whole sequence — a view of surfaces that are not height fields.
+enum class WaterShading { toon, gaussian, mean };
+
 struct WaterConfig {
+  WaterShading shading = WaterShading::toon;
   Color bright{0.72, 0.90, 1.00};
   Color medium{0.30, 0.63, 0.90};
   Color dark{0.10, 0.33, 0.65};

@@ -10,7 +10,9 @@
 #include "povgen/scene_writer.hpp"
 #include "povgen/sequence.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace toonwater::povgen {
 namespace {
@@ -32,7 +34,7 @@ struct ObjectSource {
 }  // namespace
 
 PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,
-                                FlowCoherence* coherence) {
+                                FlowCoherence* coherence, WaterShading shading) {
   const auto start = Clock::now();
   PreparedSurface out;
   if (flow) {
@@ -41,12 +43,18 @@ PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* f
     options.flow.k_threshold = flow->k_threshold;
     options.estimator = flow->estimator;
     options.smoothing_steps = flow->smoothing;
+    options.flow_regions = shading == WaterShading::toon;
     Analysis a = analyze_mesh(std::move(input), options);
-    if (coherence) coherence->apply(a.surface, a.curvature, a.flow);
     out.mesh = make_scene_mesh(a.surface, a.curvature.normal, is_closed(a.topology), up);
-    out.labels = a.flow.label;
-    out.ridge_vertices = a.flow.ridge_vertices;
-    out.valley_vertices = a.flow.valley_vertices;
+    if (shading == WaterShading::toon) {
+      if (coherence) coherence->apply(a.surface, a.curvature, a.flow);
+      out.labels = a.flow.label;
+      out.ridge_vertices = a.flow.ridge_vertices;
+      out.valley_vertices = a.flow.valley_vertices;
+    } else {
+      out.view_values =
+          shading == WaterShading::gaussian ? a.curvature.gaussian : a.curvature.mean;
+    }
   } else {
     WeldedMesh welded = weld_coincident_vertices(std::move(input));
     const MeshTopology topology = analyze_topology(welded.mesh);
@@ -72,7 +80,9 @@ std::string mesh_include(const PreparedSurface& surface, const std::string& pref
                          const LightGeometry& light, double shell_offset,
                          ShellFaces shell_faces) {
   std::string text = "// Written by toonwater povgen: meshes for scene.pov.\n";
-  const auto uv = toon_coordinates(surface.mesh, light, surface.labels);
+  const auto uv = surface.view_values.empty()
+                      ? toon_coordinates(surface.mesh, light, surface.labels)
+                      : value_coordinates(surface.view_values, surface.view_range);
   append_mesh2(text, prefix + "_mesh", surface.mesh, uv);
   if (shell_offset > 0)
     append_shell_mesh2(text, prefix + "_shell", surface.mesh, shell_offset, shell_faces);
@@ -123,7 +133,10 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   }
 
   fs::create_directories(request.out_dir);
-  const FlowConfig* flow = config.flow.enabled ? &config.flow : nullptr;
+  // A curvature view needs the analysis whether or not flow regions are drawn.
+  const WaterShading shading = config.water.shading;
+  const FlowConfig* flow =
+      config.flow.enabled || shading != WaterShading::toon ? &config.flow : nullptr;
   const LightGeometry light = light_geometry(config.light, request.up);
   PovgenReport report;
   report.first_frame = layout.first_frame;
@@ -161,6 +174,34 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     if (!objects[i].placement.animated)
       static_bottom[i] = write_object(i, objects[i].sequence.frames.begin()->second, 0);
 
+  // A curvature view's colour range is the sequence's: the 98th percentile of |value| over
+  // all frames (at most 100k samples a frame), found in a first pass.
+  double view_range = 0;
+  if (shading != WaterShading::toon) {
+    std::vector<double> magnitudes;
+    for (const auto& [frame, path] : water.frames) {
+      InputMesh input;
+      try {
+        input = read_mesh(path);
+      } catch (const EmptyMeshError&) {
+        continue;
+      }
+      if (request.water_transform) apply_transform(*request.water_transform, input.mesh);
+      const PreparedSurface p =
+          prepare_surface(std::move(input.mesh), request.up, flow, nullptr, shading);
+      const std::size_t stride = std::max<std::size_t>(1, p.view_values.size() / 100000);
+      for (std::size_t v = 0; v < p.view_values.size(); v += stride)
+        magnitudes.push_back(std::abs(p.view_values[v]));
+    }
+    if (!magnitudes.empty()) {
+      const auto at = magnitudes.begin() + static_cast<std::ptrdiff_t>(
+                                               0.98 * static_cast<double>(magnitudes.size() - 1));
+      std::nth_element(magnitudes.begin(), at, magnitudes.end());
+      view_range = *at;
+    }
+    if (!(view_range > 0.0)) view_range = 1.0;  // a flat surface: everything at the middle colour
+  }
+
   // Flow regions are carried from frame to frame so they do not flicker (flow_coherence.hpp).
   FlowCoherence coherence;
   std::size_t done = 0;
@@ -188,7 +229,8 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     }
     const bool coherent = flow && flow->coherence && water.frames.size() > 1;
     PreparedSurface s = prepare_surface(std::move(input.mesh), request.up, flow,
-                                        coherent ? &coherence : nullptr);
+                                        coherent ? &coherence : nullptr, shading);
+    s.view_range = view_range;
     report.analysis_seconds += s.analysis_seconds;
     report.vertices += s.mesh.positions.size();
     report.degenerate_faces += s.mesh.degenerate_faces;

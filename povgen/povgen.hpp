@@ -30,6 +30,8 @@ namespace toonwater::povgen {
 struct PreparedSurface {
   SceneMesh mesh;
   std::vector<std::int8_t> labels;  // per vertex; empty without flow regions
+  std::vector<double> view_values;  // per vertex K or H for a curvature view; else empty
+  double view_range = 0;            // the sequence's colour range of view_values
   std::size_t ridge_vertices = 0, valley_vertices = 0;
   double analysis_seconds = 0;  // weld, topology, normals (and curvature and flow when asked)
 };
@@ -37,8 +39,11 @@ struct PreparedSurface {
 // Welds and orients the input; computes curvature and flow labels only when `flow` is given,
 // angle-weighted normals otherwise. With `coherence`, the labels are made coherent with the
 // frames it saw before (a sequence's frames in order).
+// With a curvature `shading`, keeps the per-vertex K or H for the view (curvature is computed
+// for it even without flow).
 PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,
-                                FlowCoherence* coherence);
+                                FlowCoherence* coherence,
+                                WaterShading shading = WaterShading::toon);
 
 // The include of a frame whose water mesh is empty: the declarations, holding nothing.
 std::string empty_water_include();

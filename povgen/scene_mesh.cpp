@@ -88,4 +88,13 @@ std::vector<TextureCoordinate> toon_coordinates(const SceneMesh& mesh, const Lig
   return uv;
 }
 
+std::vector<TextureCoordinate> value_coordinates(std::span<const double> values, double range) {
+  std::vector<TextureCoordinate> uv(values.size());
+  for (std::size_t v = 0; v < values.size(); ++v) {
+    const double t = range > 0.0 ? std::clamp(values[v] / range, -1.0, 1.0) : 0.0;
+    uv[v] = {static_cast<float>(0.5 + 0.4999 * (std::isfinite(t) ? t : 0.0)), 0.5f};
+  }
+  return uv;
+}
+
 }  // namespace toonwater::povgen

@@ -49,4 +49,8 @@ using TextureCoordinate = std::array<float, 2>;
 std::vector<TextureCoordinate> toon_coordinates(const SceneMesh& mesh, const LightGeometry& light,
                                                 std::span<const std::int8_t> labels);
 
+// (u, 0.5) per vertex with u = 0.5 + 0.4999 * clamp(value / range, −1, 1): a curvature value
+// for the curvature view's colour map (range > 0).
+std::vector<TextureCoordinate> value_coordinates(std::span<const double> values, double range);
+
 }  // namespace toonwater::povgen

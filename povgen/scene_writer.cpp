@@ -1,5 +1,7 @@
 #include "povgen/scene_writer.hpp"
 
+#include "analyzer/maps/colormap.hpp"
+
 #include "povgen/axes.hpp"
 
 #include <charconv>
@@ -76,6 +78,19 @@ void camera(std::string& s, const SceneLayout& l) {
        "\n  right x * image_width / image_height\n  angle " + num(c.angle) + "\n}\n\n";
 }
 
+// The diverging colour map of the curvature maps (analyzer/maps/colormap.hpp) as a POV-Ray
+// colour map over u in [0, 1]: u = 0.5 + 0.4999 t for t in [−1, 1], sampled every 0.1 in t.
+std::string curvature_view_pigment() {
+  std::string s = "pigment { uv_mapping gradient x color_map {";
+  for (int step = -10; step <= 10; ++step) {
+    const double t = step / 10.0;
+    const Rgb8 c = diverging_colour(t);
+    s += "\n      [" + num(0.5 + 0.4999 * t) + " color " +
+         rgb({c[0] / 255.0, c[1] / 255.0, c[2] / 255.0}) + "]";
+  }
+  return s + " } }";
+}
+
 std::string finish(const SceneConfig& c, bool water) {
   const WaterConfig& w = c.water;
   std::string s = "finish { Toon_flat_shading(" + num(w.ka) + ", <1, 1, 1>, " + num(w.kd) +
@@ -116,8 +131,10 @@ std::string frame_image_name(const SceneLayout& l, long frame) {
 std::string scene_pov(const SceneLayout& l) {
   const SceneConfig& c = *l.config;
   const WaterConfig& w = c.water;
-  const bool refracts = w.transmit > 0;
-  const bool reflects = w.reflection > 0;
+  // A curvature view is opaque and flat: it shows the curvature, not the water's optics.
+  const bool curvature_view = w.shading != WaterShading::toon;
+  const bool refracts = !curvature_view && w.transmit > 0;
+  const bool reflects = !curvature_view && w.reflection > 0;
   std::string s;
   s += "// Written by toonwater povgen. Render every frame with `povray scene.ini` here.\n";
   s += "#version 3.7;\n#include \"toon.inc\"\n\n";
@@ -153,15 +170,23 @@ std::string scene_pov(const SceneLayout& l) {
   }
   s += "background { color " + rgb(c.render.background) + " }\n\n";
 
-  s += "// Water: Cartoon Water Shader\nobject {\n  Water_mesh\n  texture {\n    ";
-  const std::string bands = rgb(w.bright) + ", " + rgb(w.medium) + ", " + rgb(w.dark) + ", " +
-                            num(w.t_bright) + ", " + num(w.t_medium);
-  if (c.flow.enabled)
-    s += "Toon_bands_with_flow(" + bands + ",\n      " + rgb(c.flow.valley_color) + ", " +
-         rgb(c.flow.ridge_color) + ", " + num(w.transmit) + ")";
-  else
-    s += "Toon_bands(" + bands + ", " + num(w.transmit) + ")";
-  s += "\n    " + finish(c, true) + "\n  }\n";
+  if (curvature_view) {
+    s += "// Water coloured by its " +
+         std::string(w.shading == WaterShading::gaussian ? "Gaussian" : "mean") +
+         " curvature: u = 0.5 + 0.4999 * value / range, the curvature maps' colours\n";
+    s += "object {\n  Water_mesh\n  texture {\n    " + curvature_view_pigment() +
+         "\n    finish { emission 1 diffuse 0 ambient 0 }\n  }\n";
+  } else {
+    s += "// Water: Cartoon Water Shader\nobject {\n  Water_mesh\n  texture {\n    ";
+    const std::string bands = rgb(w.bright) + ", " + rgb(w.medium) + ", " + rgb(w.dark) + ", " +
+                              num(w.t_bright) + ", " + num(w.t_medium);
+    if (c.flow.enabled)
+      s += "Toon_bands_with_flow(" + bands + ",\n      " + rgb(c.flow.valley_color) + ", " +
+           rgb(c.flow.ridge_color) + ", " + num(w.transmit) + ")";
+    else
+      s += "Toon_bands(" + bands + ", " + num(w.transmit) + ")";
+    s += "\n    " + finish(c, true) + "\n  }\n";
+  }
   if (refracts) s += "  interior { ior " + num(w.ior) + " }\n";
   s += "}\n";
   // The water's shell lies above its surface: rays the water reflects would meet its inside.

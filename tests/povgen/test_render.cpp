@@ -1,6 +1,8 @@
 // povgen scenes rendered with POV-Ray at tiny sizes, pixels read back with OpenImageIO.
 // Colours are sRGB in the config and in the PNG, so flat pixels are the configured colours × 255.
 #include "tests/povgen/povgen_test_util.hpp"
+
+#include "analyzer/maps/colormap.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -391,6 +393,47 @@ TEST(PovgenRender, MantaflowWakeSequence) {
     EXPECT_GT(outline, 10) << frame << ": outlines drawn";
     EXPECT_GT(watery, 100) << frame << ": water bands drawn";
   }
+}
+
+// water.shading = "mean" | "gaussian": the water coloured by its curvature with the curvature
+// maps' diverging colour map, from the scene's camera — a view of surfaces that are not height
+// fields. A sphere's H is the same everywhere, so at the sequence's 98th percentile range every
+// water pixel is the colour map's positive end; a saddle's K < 0 shows blue.
+TEST(PovgenRender, CurvatureViewUsesTheMapsColours) {
+  ScratchDir dir;
+  write_obj(dir / "ball.obj", make_sphere(Vec3::Zero(), 1.0, 24, 48));
+  const std::vector<std::string> plain{"--set", "render.width=48", "--set", "render.height=36",
+                                       "--set", "render.antialias=false", "--set",
+                                       "render.background=[1,1,1]", "--set",
+                                       "outline.enabled=false"};
+  const Image mean = render_scene(
+      dir, "mean", std::vector<std::string>{"--water", (dir / "ball.obj").string(), "--set",
+                                            "water.shading=mean"} + plain);
+  const toonwater::Rgb8 end = diverging_colour(1.0);
+  const Rgb8 positive_end{end[0], end[1], end[2]};
+  int ball = 0, at_end = 0;
+  for (int y = 0; y < mean.height; ++y)
+    for (int x = 0; x < mean.width; ++x) {
+      const Rgb8 c = mean.at(x, y);
+      if (near(c, to_rgb8(1, 1, 1), 2)) continue;
+      ++ball;
+      at_end += near(c, positive_end, 3);
+    }
+  ASSERT_GT(ball, 100);
+  EXPECT_GT(at_end, ball * 9 / 10);
+  const std::string pov = read_text(dir / "mean" / "scene.pov");
+  EXPECT_EQ(pov.find("Toon_bands"), std::string::npos) << "a view draws no bands";
+  EXPECT_EQ(pov.find("interior"), std::string::npos) << "nor refraction";
+
+  write_obj(dir / "saddle.obj",
+            make_height_grid(31, 1.0, [](double x, double z) { return 0.3 * (x * x - z * z); }));
+  const Image gaussian = render_scene(
+      dir, "gaussian",
+      std::vector<std::string>{"--water", (dir / "saddle.obj").string(), "--set",
+                               "water.shading=gaussian", "--set", "camera.location=[0, 3, 0.01]",
+                               "--set", "camera.look_at=[0, 0, 0]"} + plain);
+  const Rgb8 centre = gaussian.at(gaussian.width / 2, gaussian.height / 2);
+  EXPECT_GT(centre[2], centre[0] + 40) << "K < 0 is blue";
 }
 
 }  // namespace
