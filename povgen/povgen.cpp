@@ -156,6 +156,12 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     report.read_seconds += seconds_since(start);
     return m;
   };
+  // A water frame in world coordinates; throws EmptyMeshError for a frame with no liquid.
+  auto load_water = [&](const fs::path& path) {
+    InputMesh m = load(path);
+    if (request.water_transform) apply_transform(*request.water_transform, m.mesh);
+    return m;
+  };
   auto write_object = [&](std::size_t i, const fs::path& path, long frame) {
     const ObjectConfig& oc = *objects[i].placement.config;
     const PreparedSurface s = prepare_surface(load(path).mesh, request.up, nullptr, nullptr);
@@ -182,11 +188,10 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     for (const auto& [frame, path] : water.frames) {
       InputMesh input;
       try {
-        input = read_mesh(path);
+        input = load_water(path);
       } catch (const EmptyMeshError&) {
         continue;
       }
-      if (request.water_transform) apply_transform(*request.water_transform, input.mesh);
       const PreparedSurface p =
           prepare_surface(std::move(input.mesh), request.up, flow, nullptr, shading);
       const std::size_t stride = std::max<std::size_t>(1, p.view_values.size() / 100000);
@@ -215,8 +220,7 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     };
     InputMesh input;
     try {
-      input = load(path);
-      if (request.water_transform) apply_transform(*request.water_transform, input.mesh);
+      input = load_water(path);
     } catch (const EmptyMeshError& empty) {
       // A frame with no liquid: the scene still needs its include, with nothing in it.
       if (water.frames.size() == 1) throw;
