@@ -43,6 +43,7 @@ Analysis analyze_mesh(TriangleMesh input, const AnalyzeOptions& options) {
     a.flow = find_flow_regions(a.surface, a.topology.vertex_faces, a.curvature, options.flow);
   } else {
     a.flow.label.assign(a.surface.positions.size(), FlowLabel::none);
+    a.flow.field.assign(a.surface.positions.size(), 0.0);
   }
   a.times.flow = seconds_since(start);
   return a;

@@ -28,15 +28,15 @@ void check_consistent(const Analysis& analysis) {
                                       [rows](std::int32_t s) { return s >= 0 && static_cast<std::size_t>(s) < rows; }) &&
                           c.gaussian.size() == rows && c.mean.size() == rows &&
                           c.k1.size() == rows && c.k2.size() == rows && c.area.size() == rows &&
-                          analysis.flow.label.size() == rows;
+                          analysis.flow.label.size() == rows && analysis.flow.field.size() == rows;
   if (!consistent)
     throw std::invalid_argument("curvature export: the analysis does not belong to the mesh");
 }
 
 double finite_or_zero(double value) { return std::isfinite(value) ? value : 0.0; }
 
-// Eight shortest round-trip doubles (at most 24 characters each), a label and separators.
-constexpr std::size_t max_csv_row_bytes = 8 * 24 + 4 + 9;
+// Nine shortest round-trip doubles (at most 24 characters each), a label and separators.
+constexpr std::size_t max_csv_row_bytes = 9 * 24 + 4 + 10;
 
 // Appends the CSV rows of input vertices [begin, end) to `text`, which has room for them.
 void append_csv_rows(const Analysis& analysis, std::size_t begin, std::size_t end,
@@ -54,6 +54,8 @@ void append_csv_rows(const Analysis& analysis, std::size_t begin, std::size_t en
       *out++ = ',';
     }
     out = std::to_chars(out, row + max_csv_row_bytes, int{analysis.flow.label[s]}).ptr;
+    *out++ = ',';
+    out = std::to_chars(out, row + max_csv_row_bytes, finite_or_zero(analysis.flow.field[s])).ptr;
     *out++ = '\n';
     text.append(row, out);
   }
@@ -82,7 +84,7 @@ constexpr std::size_t rows_per_block = 1 << 16;
 void write_curvature_csv(const std::filesystem::path& path, const Analysis& analysis) {
   check_consistent(analysis);
   AtomicFileWriter file(path);
-  file.write("x,y,z,gaussian,mean,k1,k2,area,label\n");
+  file.write("x,y,z,gaussian,mean,k1,k2,area,label,flow\n");
   const std::size_t n = analysis.input_to_surface.size();
   // Shortest round-trip formatting dominates the cost, so each block is split over the cores.
   std::vector<std::string> parts(worker_count(std::min(n, rows_per_block)));
@@ -110,15 +112,16 @@ void write_curvature_ply(const std::filesystem::path& path,
   file.write(
       "ply\n"
       "format binary_little_endian 1.0\n"
-      "comment toonwater curvature per vertex; label: 1 ridge, -1 valley, 0 none\n"
+      "comment toonwater curvature per vertex; label: 1 ridge, -1 valley, 0 none; flow: the "
+      "signed flow field, regions where |flow| >= 1\n"
       "element vertex " + std::to_string(n) + "\n"
       "property float x\nproperty float y\nproperty float z\n"
       "property float gaussian\nproperty float mean\nproperty float k1\nproperty float k2\n"
-      "property float area\nproperty float label\n"
+      "property float area\nproperty float label\nproperty float flow\n"
       "element face " + std::to_string(input_triangles.size()) + "\n"
       "property list uchar int vertex_indices\n"
       "end_header\n");
-  constexpr std::size_t vertex_bytes = 9 * 4;
+  constexpr std::size_t vertex_bytes = 10 * 4;
   constexpr std::size_t face_bytes = 1 + 3 * 4;
   std::string block;
   block.reserve(rows_per_block * vertex_bytes);
@@ -129,8 +132,9 @@ void write_curvature_ply(const std::filesystem::path& path,
     for (std::size_t v = first; v < first + block.size() / vertex_bytes; ++v) {
       const std::size_t s = analysis.input_to_surface[v];
       const Vec3& p = analysis.surface.positions[s];
-      const double values[9] = {p.x(), p.y(), p.z(), c.gaussian[s], c.mean[s], c.k1[s],
-                                c.k2[s], c.area[s], static_cast<double>(analysis.flow.label[s])};
+      const double values[10] = {p.x(), p.y(), p.z(), c.gaussian[s], c.mean[s], c.k1[s],
+                                 c.k2[s], c.area[s], static_cast<double>(analysis.flow.label[s]),
+                                 analysis.flow.field[s]};
       for (const double value : values) out = put_little_endian(out, ply_float(value));
     }
     file.write(block);

@@ -1,5 +1,7 @@
 // Curvature as data, one row per input vertex in input order:
-//   CSV  header "x,y,z,gaussian,mean,k1,k2,area,label", shortest round-trip decimal numbers;
+//   CSV  header "x,y,z,gaussian,mean,k1,k2,area,label,flow", shortest round-trip decimal
+//        numbers (label: 1 ridge, −1 valley, 0 none; flow: the signed flow field s of
+//        flow_regions.hpp, a region where |s| >= 1);
 //   PLY  binary little-endian, the input mesh with float vertex properties of the same names
 //        (MeshLab and ParaView colour by them).
 // Both are written atomically (atomic_file.hpp) in blocks, so memory does not grow with the

@@ -1,6 +1,6 @@
-// Jacobi smoothing of K and H; formula in curvature_smoothing.hpp. Each step reads the previous
-// step's values and writes a second buffer, so the vertices split over the cores with no shared
-// writes and the result does not depend on the vertex order.
+// Jacobi smoothing of vertex fields; formula in curvature_smoothing.hpp. Each step reads the
+// previous step's values and writes a second buffer, so the vertices split over the cores with no
+// shared writes and the result does not depend on the vertex order.
 #include "analyzer/curvature_smoothing.hpp"
 
 #include "analyzer/parallel.hpp"
@@ -11,36 +11,41 @@
 
 namespace toonwater {
 
-void smooth_curvature(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
-                      CurvatureField& field, int steps) {
+void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
+                         std::span<const double> vertex_area, std::span<const std::uint8_t> member,
+                         std::vector<double>& values, int steps) {
   if (steps <= 0) return;
-  const std::size_t n = field.gaussian.size();
-  std::vector<double> gaussian(n), mean(n);
+  const std::size_t n = values.size();
+  std::vector<double> next(n);
   const std::size_t workers = worker_count(n);
   for (int step = 0; step < steps; ++step) {
     parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
-        gaussian[v] = field.gaussian[v];
-        mean[v] = field.mean[v];
-        if (field.status[v] == CurvatureStatus::undefined) continue;
-        double weight = 0.0, weighted_gaussian = 0.0, weighted_mean = 0.0;
+        next[v] = values[v];
+        if (!member[v]) continue;
+        double weight = 0.0, weighted = 0.0;
         for (std::int32_t f : vertex_faces.of(static_cast<std::int32_t>(v))) {
           for (std::int32_t c : mesh.triangles[f]) {
-            if (field.status[c] == CurvatureStatus::undefined) continue;
-            weight += field.area[c];
-            weighted_gaussian += field.area[c] * field.gaussian[c];
-            weighted_mean += field.area[c] * field.mean[c];
+            if (!member[c]) continue;
+            weight += vertex_area[c];
+            weighted += vertex_area[c] * values[c];
           }
         }
-        if (weight > 0.0) {
-          gaussian[v] = weighted_gaussian / weight;
-          mean[v] = weighted_mean / weight;
-        }
+        if (weight > 0.0) next[v] = weighted / weight;
       }
     });
-    std::swap(gaussian, field.gaussian);
-    std::swap(mean, field.mean);
+    std::swap(next, values);
   }
+}
+
+void smooth_curvature(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
+                      CurvatureField& field, int steps) {
+  if (steps <= 0) return;
+  const std::size_t n = field.gaussian.size();
+  std::vector<std::uint8_t> defined(n);
+  for (std::size_t v = 0; v < n; ++v) defined[v] = field.status[v] != CurvatureStatus::undefined;
+  smooth_vertex_field(mesh, vertex_faces, field.area, defined, field.gaussian, steps);
+  smooth_vertex_field(mesh, vertex_faces, field.area, defined, field.mean, steps);
   for (std::size_t v = 0; v < n; ++v) {
     const double root =
         std::sqrt(std::max(field.mean[v] * field.mean[v] - field.gaussian[v], 0.0));

@@ -73,17 +73,14 @@ std::int32_t PointGrid::closest(const Vec3& p) const {
   return best;
 }
 
-FlowFrame flow_frame(const TriangleMesh& surface, const CurvatureField& curvature,
-                     const FlowRegions& flow) {
+FlowFrame flow_frame(const TriangleMesh& surface, const CurvatureField&, const FlowRegions& flow) {
   FlowFrame frame;
   frame.edge_length = flow.median_edge_length;
   for (std::size_t v = 0; v < surface.positions.size(); ++v) {
     if (flow.free_surface.empty() || !flow.free_surface[v]) continue;
     frame.positions.push_back(surface.positions[v]);
-    frame.gaussian.push_back(curvature.gaussian[v]);
-    frame.mean.push_back(curvature.mean[v]);
+    frame.field.push_back(flow.smoothed_field.empty() ? 0.0 : flow.smoothed_field[v]);
     frame.label.push_back(flow.label[v]);
-    frame.age.push_back(flow.label[v] != FlowLabel::none ? 1 : 0);
   }
   return frame;
 }
@@ -110,53 +107,32 @@ void FlowCoherence::apply(const TriangleMesh& surface, const CurvatureField& cur
     last_flicker_ = 0.0;
     return;
   }
+  const std::size_t n = surface.positions.size();
   const PointGrid grid(previous_.positions, options_.max_distance * flow.median_edge_length);
-  const double t_on = flow.threshold, t_off = options_.off_fraction * flow.threshold;
   const double b = options_.blend;
+  std::vector<double> blended(n, 0.0);
+  std::vector<std::int32_t> predecessor(n, -1);
   FlowFrame next;
   next.edge_length = flow.median_edge_length;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (flow.free_surface.empty() || !flow.free_surface[v]) continue;
+    const std::int32_t p = grid.closest(surface.positions[v]);
+    predecessor[v] = p;
+    const double s = flow.smoothed_field.empty() ? 0.0 : flow.smoothed_field[v];
+    blended[v] = p >= 0 ? (1 - b) * s + b * previous_.field[p] : s;
+    next.positions.push_back(surface.positions[v]);
+    next.field.push_back(blended[v]);
+  }
+  label_flow_field(surface, curvature.area, std::move(blended), flow);
+
   double changed = 0.0, total = 0.0;
-  flow.ridge_vertices = flow.valley_vertices = 0;
-
-  for (std::size_t v = 0; v < surface.positions.size(); ++v) {
-    if (flow.free_surface.empty() || !flow.free_surface[v]) {
-      flow.label[v] = FlowLabel::none;
-      continue;
-    }
-    const Vec3& x = surface.positions[v];
-    const std::int32_t p = grid.closest(x);
-    const bool carried = p >= 0;
-    const double gaussian = carried ? (1 - b) * curvature.gaussian[v] + b * previous_.gaussian[p]
-                                    : curvature.gaussian[v];
-    const double mean =
-        carried ? (1 - b) * curvature.mean[v] + b * previous_.mean[p] : curvature.mean[v];
-    const std::int8_t before = carried ? previous_.label[p] : std::int8_t{FlowLabel::none};
-    const std::int32_t before_age = carried ? previous_.age[p] : 0;
-    const std::int8_t sign = mean > 0.0 ? FlowLabel::ridge : mean < 0.0 ? FlowLabel::valley : FlowLabel::none;
-
-    std::int8_t label = FlowLabel::none;
-    const bool eligible = curvature.status[v] != CurvatureStatus::undefined &&
-                          !flow.region_of_interest.empty() && flow.region_of_interest.contains(x);
-    if (eligible) {
-      const bool holds = before != FlowLabel::none &&
-                         (before_age < options_.min_lifetime ||
-                          (std::abs(gaussian) > t_off && sign == before));
-      if (holds)
-        label = before;
-      else if (std::abs(gaussian) > t_on)
-        label = sign;
-    }
-    flow.label[v] = label;
-    flow.ridge_vertices += label == FlowLabel::ridge;
-    flow.valley_vertices += label == FlowLabel::valley;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (flow.free_surface.empty() || !flow.free_surface[v]) continue;
+    const std::int32_t p = predecessor[v];
+    const std::int8_t before = p >= 0 ? previous_.label[p] : std::int8_t{FlowLabel::none};
     total += curvature.area[v];
-    if (label != before) changed += curvature.area[v];
-
-    next.positions.push_back(x);
-    next.gaussian.push_back(gaussian);
-    next.mean.push_back(mean);
-    next.label.push_back(label);
-    next.age.push_back(label == FlowLabel::none ? 0 : label == before ? before_age + 1 : 1);
+    if (flow.label[v] != before) changed += curvature.area[v];
+    next.label.push_back(flow.label[v]);
   }
   last_flicker_ = total > 0.0 ? changed / total : 0.0;
   previous_ = std::move(next);

@@ -1,13 +1,21 @@
 // Temporal coherence of the water-flow regions over a frame sequence.
 //
-// Simulation meshes change topology every frame (marching cubes), so per-frame labels flicker.
-// Each frame's free-surface vertices find their closest free-surface vertex of the previous
-// frame (a uniform grid with cells of `max_distance`), and
-//   K̃ = (1 − b) K + b K̃_prev,  H̃ = (1 − b) H + b H̃_prev       (exponential blend, b = blend)
-// drives the labels with hysteresis, in the spirit of DeCarlo et al., "Interactive rendering of
-// suggestive contours with temporal coherence" (NPAR 2004): a vertex whose predecessor was
-// labelled keeps the label while |K̃| > T_off = off_fraction · T and H̃ keeps its sign, or until
-// the label is `min_lifetime` frames old; otherwise it switches on where |K̃| > T_on = T.
+// Simulation meshes change topology every frame (marching cubes), so the field of one frame
+// cannot simply be compared with the last one's vertex by vertex. Each frame's free-surface
+// vertices find their closest free-surface vertex of the previous frame (a uniform grid with
+// cells of `max_distance` edge lengths) and blend the flow field s (flow_regions.hpp) with it,
+//   s̃ = (1 − b) s + b s̃_prev                      (exponential blend, b = blend),
+// in the spirit of DeCarlo et al., "Interactive rendering of suggestive contours with temporal
+// coherence" (NPAR 2004), who fade lines in and out by strength. The specks and labels are then
+// taken from s̃ as for a single frame (label_flow_field).
+//
+// Everything stays continuous in time: s̃ moves by a fraction of its change each frame, so a
+// region boundary (the iso-line s̃ = ±1 inside the triangles) slides and never jumps; a region
+// that appears is hidden while its area is below A_min and then grows from its peak; one that
+// dies shrinks the same way. No label is held for a number of frames and no second threshold
+// holds a region once its field has gone: both froze regions that the water had left, and
+// with a continuous field a value hovering at the threshold moves a boundary by a fraction of a
+// triangle, not a label by a vertex.
 //
 // Flicker is measured as the share of free-surface area (mixed Voronoi areas) whose label
 // differs from its closest predecessor's.
@@ -23,18 +31,15 @@
 namespace toonwater {
 
 struct CoherenceOptions {
-  double blend = 0.7;          // weight of the carried-over (already blended) curvature
-  double off_fraction = 0.6;   // T_off = off_fraction · T_on
-  int min_lifetime = 3;        // frames a label lasts at least once switched on
-  double max_distance = 2.0;   // in median edge lengths: farther vertices have no predecessor
+  double blend = 0.5;         // weight of the carried-over (already blended) field: lag b/(1 − b) frames
+  double max_distance = 2.0;  // in median edge lengths: farther vertices have no predecessor
 };
 
 // A frame's free surface as the next frame needs it.
 struct FlowFrame {
   std::vector<Vec3> positions;
-  std::vector<double> gaussian, mean;  // blended
+  std::vector<double> field;  // s̃: blended, before the specks are faded
   std::vector<std::int8_t> label;
-  std::vector<std::int32_t> age;       // frames the label has been on
   double edge_length = 0.0;
 };
 
@@ -61,8 +66,8 @@ class FlowCoherence {
  public:
   explicit FlowCoherence(CoherenceOptions options = {}) : options_(options) {}
 
-  // Replaces flow.label (and the ridge/valley counts) by coherent labels for this frame and
-  // remembers the frame. The first frame's labels are left as they are.
+  // Replaces flow.field, flow.label and the counts by coherent ones for this frame and
+  // remembers the frame. The first frame's are left as they are.
   void apply(const TriangleMesh& surface, const CurvatureField& curvature, FlowRegions& flow);
 
   // Flicker of the frame last passed to apply(), against the frame before it: the share of

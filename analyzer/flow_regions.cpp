@@ -1,6 +1,8 @@
-// Water-flow regions (You, Park, Choi, Noh, §2.3); the rules are stated in flow_regions.hpp.
+// Water-flow regions; the field, its threshold and the steps are stated in flow_regions.hpp.
 #include "analyzer/flow_regions.hpp"
 
+#include "analyzer/curvature_smoothing.hpp"
+#include "analyzer/disjoint_sets.hpp"
 #include "analyzer/free_surface.hpp"
 
 #include <algorithm>
@@ -8,6 +10,17 @@
 #include <limits>
 
 namespace toonwater {
+
+// Chosen on real simulation output and analytic ripples (README, "Water-flow regions"): with
+// mean, a long crest is drawn where its radius of curvature 1/(2H) is below L/4 (the wake and
+// bow wave of a Mantaflow basin, a ripple ring 0.5 % of the scene's size high and 15 % long on
+// its crest and trough circles; calm water and the marching-cubes noise on it are not); with
+// paper, the value that labels about the same share of the Mantaflow basin as the paper's rule
+// (T = 0.01/ℓ²) did at its resolution.
+FlowDefaults flow_defaults(FlowCriterion criterion) {
+  if (criterion == FlowCriterion::mean) return {2.0, 2, 0.002};
+  return {30.0, 0, 0.0};
+}
 
 double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {
   const std::size_t edge_count = 3 * mesh.triangles.size();
@@ -29,36 +42,78 @@ double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {
 
 namespace {
 
-// Bounding box of the free-surface vertices displaced from the rest level, grown by `margin`.
-Box3 displaced_region(const TriangleMesh& mesh, const std::vector<std::uint8_t>& free_surface, int up,
-                      double rest_height, double tolerance, double margin) {
-  Box3 box;
-  box.min = Vec3::Constant(std::numeric_limits<double>::infinity());
-  box.max = -box.min;
-  bool any = false;
-  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-    if (!free_surface[v] || std::abs(mesh.positions[v][up] - rest_height) <= tolerance) continue;
-    box.min = box.min.cwiseMin(mesh.positions[v]);
-    box.max = box.max.cwiseMax(mesh.positions[v]);
-    any = true;
-  }
-  if (!any) return Box3{};
-  box.min.array() -= margin;
-  box.max.array() += margin;
-  return box;
+// The sign of s as a region sees it: ±1 inside a region, 0 outside.
+std::int8_t region_sign(double s) {
+  return s >= 1.0 ? FlowLabel::ridge : s <= -1.0 ? FlowLabel::valley : FlowLabel::none;
+}
+
+// How much of a region's field survives the speck fading: 1 from 2 A_min up; below, a factor
+// that brings the peak |s| from where it is (at 2 A_min) down to just under 1 (at A_min), where
+// the region is no longer drawn.
+double speck_factor(double area, double peak, double min_area) {
+  if (!(area < 2.0 * min_area)) return 1.0;
+  constexpr double just_below_one = 0.999;
+  const double hidden = just_below_one / peak;
+  const double grown = std::clamp((area - min_area) / min_area, 0.0, 1.0);
+  return hidden + (1.0 - hidden) * grown;
 }
 
 }  // namespace
 
+void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_area,
+                      std::vector<double> field, FlowRegions& flow) {
+  const std::size_t n = field.size();
+  flow.label.assign(n, FlowLabel::none);
+  flow.ridge_vertices = flow.valley_vertices = flow.regions = flow.specks_faded = 0;
+  flow.region_of_interest = Box3{};
+
+  // Regions: vertices of one sign joined along the edges between them.
+  DisjointSets sets(n);
+  for (const Triangle& t : mesh.triangles)
+    for (int c = 0; c < 3; ++c) {
+      const std::int32_t a = t[c], b = t[(c + 1) % 3];
+      const std::int8_t sign = region_sign(field[a]);
+      if (sign != FlowLabel::none && sign == region_sign(field[b])) sets.join(a, b);
+    }
+  std::vector<double> region_area(n, 0.0), region_peak(n, 0.0);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (region_sign(field[v]) == FlowLabel::none) continue;
+    const std::int32_t r = sets.root(static_cast<std::int32_t>(v));
+    region_area[r] += vertex_area[v];
+    region_peak[r] = std::max(region_peak[r], std::abs(field[v]));
+  }
+  std::vector<double> factor(n, 1.0);
+  for (std::size_t r = 0; r < n; ++r) {
+    if (region_peak[r] == 0.0) continue;
+    factor[r] = speck_factor(region_area[r], region_peak[r], flow.min_region_area);
+    flow.specks_faded += factor[r] < 1.0;
+    flow.regions += factor[r] * region_peak[r] >= 1.0;
+  }
+
+  Box3& box = flow.region_of_interest;
+  box.min = Vec3::Constant(std::numeric_limits<double>::infinity());
+  box.max = -box.min;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (region_sign(field[v]) != FlowLabel::none)
+      field[v] *= factor[sets.root(static_cast<std::int32_t>(v))];
+    const std::int8_t label = region_sign(field[v]);
+    flow.label[v] = label;
+    if (label == FlowLabel::none) continue;
+    flow.ridge_vertices += label == FlowLabel::ridge;
+    flow.valley_vertices += label == FlowLabel::valley;
+    box.min = box.min.cwiseMin(mesh.positions[v]);
+    box.max = box.max.cwiseMax(mesh.positions[v]);
+  }
+  if (flow.ridge_vertices + flow.valley_vertices == 0) box = Box3{};
+  flow.field = std::move(field);
+}
+
 FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
                               const CurvatureField& curvature, const FlowOptions& options) {
-  const int up = static_cast<int>(options.up);
+  const std::size_t n = mesh.positions.size();
   FlowRegions flow;
-  flow.label.assign(mesh.positions.size(), FlowLabel::none);
+  flow.criterion = options.criterion;
   flow.median_edge_length = median_edge_length(mesh);
-  const double edge = flow.median_edge_length;
-  flow.threshold = options.k_threshold.value_or(
-      edge > 0.0 ? options.k_threshold_relative / (edge * edge) : 0.0);
 
   FreeSurfaceOptions surface_options;
   surface_options.up = options.up;
@@ -66,37 +121,52 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   surface_options.rest_height = options.rest_height;
   surface_options.max_depth = options.max_depth;
   surface_options.min_patch_vertices = options.min_patch_vertices;
-  FreeSurface surface = select_free_surface(mesh, vertex_faces, edge, surface_options);
+  FreeSurface surface =
+      select_free_surface(mesh, vertex_faces, flow.median_edge_length, surface_options);
   flow.free_surface = std::move(surface.selected);
   flow.free_surface_vertices = surface.vertices;
   flow.free_surface_patches_dropped = surface.patches_dropped;
   flow.rest_height = surface.rest_height;
-  const std::vector<std::uint8_t>& free_surface = flow.free_surface;
-  if (options.region_of_interest) {
-    flow.region_of_interest =
-        displaced_region(mesh, free_surface, up, flow.rest_height,
-                         options.displacement_tolerance * edge, options.margin * edge);
-  } else if (!mesh.positions.empty()) {
-    flow.region_of_interest.min = flow.region_of_interest.max = mesh.positions[0];
-    for (const Vec3& p : mesh.positions) {
-      flow.region_of_interest.min = flow.region_of_interest.min.cwiseMin(p);
-      flow.region_of_interest.max = flow.region_of_interest.max.cwiseMax(p);
-    }
-  }
-  if (flow.threshold <= 0.0 || flow.region_of_interest.empty()) return flow;
 
-  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-    if (!free_surface[v] || curvature.status[v] == CurvatureStatus::undefined) continue;
-    if (std::abs(curvature.gaussian[v]) <= flow.threshold) continue;
-    if (!flow.region_of_interest.contains(mesh.positions[v])) continue;
-    if (curvature.mean[v] > 0.0) {
-      flow.label[v] = FlowLabel::ridge;
-      ++flow.ridge_vertices;
-    } else if (curvature.mean[v] < 0.0) {
-      flow.label[v] = FlowLabel::valley;
-      ++flow.valley_vertices;
-    }
+  // The vertices that carry the field: free surface, curvature defined, and not on the free
+  // surface's border, where marching cubes rounds the water into a wall (a fillet one or two
+  // cells wide, as curved as a crest but no flow line).
+  std::vector<std::uint8_t> member(n, 0);
+  double surface_area = 0.0;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (!flow.free_surface[v] || curvature.status[v] == CurvatureStatus::undefined) continue;
+    surface_area += curvature.area[v];
+    bool inside = true;
+    for (std::int32_t f : vertex_faces.of(static_cast<std::int32_t>(v)))
+      for (std::int32_t w : mesh.triangles[f]) inside = inside && flow.free_surface[w];
+    member[v] = inside;
   }
+  flow.scale_length = std::sqrt(surface_area);
+  const double length = flow.scale_length;
+  const FlowDefaults defaults = flow_defaults(options.criterion);
+  const double c = options.threshold_relative.value_or(defaults.threshold_relative);
+  flow.threshold = options.threshold.value_or(
+      length > 0.0 ? (options.criterion == FlowCriterion::mean ? c / length : c / (length * length))
+                   : 0.0);
+  flow.min_region_area = options.min_region_area.value_or(defaults.min_region_relative * surface_area);
+
+  std::vector<double> field(n, 0.0);
+  if (flow.threshold > 0.0 && std::isfinite(flow.threshold)) {
+    for (std::size_t v = 0; v < n; ++v) {
+      if (!member[v]) continue;
+      const double mean = curvature.mean[v];
+      const double s = options.criterion == FlowCriterion::mean
+                           ? mean / flow.threshold
+                           : std::copysign(std::abs(curvature.gaussian[v]), mean) / flow.threshold;
+      // Only H = 0 exactly (or −0) gives the paper's field the sign of zero: it is not a region.
+      field[v] = options.criterion == FlowCriterion::paper && mean == 0.0 ? 0.0 : s;
+      if (!std::isfinite(field[v])) field[v] = 0.0;
+    }
+    smooth_vertex_field(mesh, vertex_faces, curvature.area, member, field,
+                        options.smoothing_steps.value_or(defaults.smoothing_steps));
+  }
+  flow.smoothed_field = field;
+  label_flow_field(mesh, curvature.area, std::move(field), flow);
   return flow;
 }
 

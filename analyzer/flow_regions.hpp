@@ -1,35 +1,75 @@
-// Water-flow regions (You, Park, Choi, Noh, "Toon Rendering of Water Animation", §2.3):
-//   ridge  where |K| > T and H > 0,
-//   valley where |K| > T and H < 0,
-// marked only on the free surface (free_surface.hpp: not on the walls, floor and corners of a
-// closed liquid volume, nor on the fillets where they meet the water or the floor of a cavity
-// under a floating object) and only inside a region of interest: the bounding box of the
-// free-surface vertices displaced from the water's rest level, grown by a margin.
+// Water-flow regions: where an animator draws the crests (ridges) and troughs (valleys) of the
+// water, after You, Park, Choi, Noh, "Toon Rendering of Water Animation" (§2.3).
 //
-// Scale-free defaults: lengths are measured in median edge lengths ℓ, and the default threshold
-// is T = c / ℓ² (K has units 1/length²), so the same scene in millimetres or in metres gets the
-// same regions.
+// Each free-surface vertex gets a continuous signed flow field s, positive on ridges; a region
+// is where |s| >= 1. Two criteria:
+//   mean   (default)  s = H / T          T in 1/length
+//   paper             s = sign(H)·|K| / T  T in 1/length²   (the paper's ridge |K| > T, H > 0)
+// Why H by default: on a crest or trough that is round in plan (a ripple ring) one principal
+// curvature is about 0, so K = k1·k2 vanishes on the very circle an animator draws and |K| can
+// at best catch the flanks of steep waves; H = (k1 + k2)/2 is largest there, and its sign tells
+// crest (H > 0, normals up) from trough. H is also near 0 on a saddle where a crest crosses a
+// trough, so the sign never flips on a region that is drawn.
+//
+// The threshold is tied to the scene, never to the mesh: T = c / L (mean) or c / L² (paper),
+// with L = sqrt(free-surface area) (the mixed Voronoi areas summed). A converged surface
+// keeps its regions under refinement and the same scene in millimetres or metres gets the same
+// vertices, as K ∝ 1/s² and H ∝ 1/s.
+//
+// Then, in this order:
+//   1. smoothing: `smoothing_steps` Jacobi steps of the area-weighted one-ring mean of s over
+//      the free surface (curvature_smoothing.hpp), which damps the vertex-to-vertex noise of the
+//      cotangent curvature on marching-cubes meshes;
+//   2. over a sequence, blending with the previous frame (flow_coherence.hpp);
+//   3. specks: a region (connected free-surface vertices with s >= 1, or s <= −1) whose area is
+//      below A_min fades out: s is scaled down until its peak is below 1 (so it is not drawn),
+//      and regions between A_min and 2 A_min are scaled part way, so a region that grows
+//      appears gradually and never pops. A_min is in scene units², 0.002 L² by default;
+//   4. labels: +1 where s >= 1, −1 where s <= −1, else 0.
+// The field written out (texture coordinates, CSV, PLY) is the one labels are taken from, so
+// POV-Ray, interpolating s inside each triangle and cutting it at ±1 per pixel, draws smooth
+// region boundaries that agree with the labels at the vertices.
+//
+// Labels are set only on the free surface (free_surface.hpp). The paper restricts its work to a
+// region of interest around displaced water; here the whole free surface costs a few
+// milliseconds, so no region is ever cut off: `region_of_interest` reports the bounding box of
+// the regions (flow_lines.hpp traces inside it only).
 #pragma once
 
 #include "analyzer/curvature.hpp"
 #include "analyzer/mesh.hpp"
+#include "analyzer/topology.hpp"
 
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace toonwater {
 
+enum class FlowCriterion : std::uint8_t { mean, paper };
+
+// The criterion's defaults: c in T = c / L (mean) or c / L² (paper), L = sqrt(free-surface
+// area); smoothing steps; A_min / L².
+struct FlowDefaults {
+  double threshold_relative;
+  int smoothing_steps;
+  double min_region_relative;
+};
+FlowDefaults flow_defaults(FlowCriterion criterion);
+
 struct FlowOptions {
   Axis up = Axis::y;
-  std::optional<double> k_threshold;       // absolute T; overrides k_threshold_relative
-  double k_threshold_relative = 0.01;      // c in T = c / ℓ²
-  bool region_of_interest = true;          // false: label every free-surface vertex
-  std::optional<double> rest_height;       // default: median height of the upward-facing vertices
-  double displacement_tolerance = 0.5;     // in ℓ: |height − rest| above this is "displaced"
-  double margin = 3.0;                     // in ℓ: growth of the displaced vertices' box
+  FlowCriterion criterion = FlowCriterion::mean;
+  std::optional<double> threshold;           // absolute T; overrides threshold_relative
+  std::optional<double> threshold_relative;  // c; default: default_threshold_relative(criterion)
+  // Unset, these take the criterion's defaults: for mean 2 steps and A_min = 0.002 L²; for
+  // paper none and none, so that it stays the paper's rule.
+  std::optional<int> smoothing_steps;        // Jacobi steps over the free surface
+  std::optional<double> min_region_area;     // absolute A_min (scene units²)
   // Free-surface selection: see free_surface.hpp.
+  std::optional<double> rest_height;       // default: median height of the largest patch
   double min_up_component = 0.5;           // a free-surface face has n·up above this (slope < 60°)
   double max_depth = 2.0;                  // in ℓ: patches deeper below the rest level are dropped
   std::size_t min_patch_vertices = 16;     // smaller detached patches (droplets) carry no flow
@@ -47,16 +87,23 @@ struct Box3 {
 enum FlowLabel : std::int8_t { valley = -1, none = 0, ridge = 1 };
 
 struct FlowRegions {
+  std::vector<double> field;       // per vertex: s (0 off the free surface); regions at |s| >= 1
+  std::vector<double> smoothed_field;  // s after step 1, before coherence and fading
   std::vector<std::int8_t> label;  // per vertex: FlowLabel
+  FlowCriterion criterion = FlowCriterion::mean;
   double threshold = 0.0;          // T actually used
+  double scale_length = 0.0;       // L = sqrt(free-surface area)
+  double min_region_area = 0.0;    // A_min actually used
   double median_edge_length = 0.0;
   double rest_height = 0.0;
-  Box3 region_of_interest;         // empty when nothing is displaced
+  Box3 region_of_interest;         // bounding box of the regions; empty when there are none
   std::vector<std::uint8_t> free_surface;  // per vertex: 1 on the free surface (free_surface.hpp)
   std::size_t free_surface_vertices = 0;
   std::size_t free_surface_patches_dropped = 0;
   std::size_t ridge_vertices = 0;
   std::size_t valley_vertices = 0;
+  std::size_t regions = 0;         // drawn regions (connected, one sign)
+  std::size_t specks_faded = 0;    // regions below 2 A_min, faded in part or whole
 };
 
 // Median edge length, from a deterministic sample of at most `max_samples` edges.
@@ -64,5 +111,10 @@ double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples = 10
 
 FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
                               const CurvatureField& curvature, const FlowOptions& options);
+
+// Steps 3 and 4 of the header on `field` (s before the fading, after coherence for example):
+// fades the specks, then sets flow.field, the labels, the counts and the region of interest.
+void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_area,
+                      std::vector<double> field, FlowRegions& flow);
 
 }  // namespace toonwater

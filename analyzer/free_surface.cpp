@@ -1,11 +1,11 @@
 // Free-surface selection; the rules are stated in free_surface.hpp.
 #include "analyzer/free_surface.hpp"
 
+#include "analyzer/disjoint_sets.hpp"
 #include "analyzer/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 namespace toonwater {
 namespace {
@@ -69,23 +69,18 @@ struct Patches {
 };
 
 Patches find_patches(const TriangleMesh& mesh, const std::vector<std::uint8_t>& upward) {
-  std::vector<std::int32_t> parent(mesh.positions.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](std::int32_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
+  DisjointSets sets(mesh.positions.size());
   for (const Triangle& t : mesh.triangles)
     for (int c = 0; c < 3; ++c) {
       const std::int32_t a = t[c], b = t[(c + 1) % 3];
-      if (upward[a] && upward[b]) parent[root(a)] = root(b);
+      if (upward[a] && upward[b]) sets.join(a, b);
     }
   Patches patches;
   patches.of_vertex.assign(mesh.positions.size(), -1);
   std::vector<std::int32_t> index_of_root(mesh.positions.size(), -1);
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
     if (!upward[v]) continue;
-    std::int32_t& index = index_of_root[root(static_cast<std::int32_t>(v))];
+    std::int32_t& index = index_of_root[sets.root(static_cast<std::int32_t>(v))];
     if (index < 0) index = static_cast<std::int32_t>(patches.count++);
     patches.of_vertex[v] = index;
   }

@@ -30,12 +30,12 @@ struct AnalyzeArgs {
   std::optional<int> maps_size;    // pixels along the longer side
   std::vector<double> maps_box;    // u_min, v_min, u_max, v_max
   Axis up = Axis::y;
+  FlowCriterion criterion = FlowCriterion::mean;
   std::optional<double> k_threshold;
-  double k_threshold_relative = FlowOptions{}.k_threshold_relative;
+  std::optional<double> k_threshold_relative;
+  std::optional<int> flow_smooth;
+  std::optional<double> min_region;
   std::optional<double> rest_height;
-  bool no_roi = false;
-  double roi_tolerance = FlowOptions{}.displacement_tolerance;
-  double roi_margin = FlowOptions{}.margin;
   Estimator estimator = Estimator::one_ring;
   int smooth = 0;
 };
@@ -52,16 +52,19 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
                "%s: %zu vertices (%zu welded), %zu faces\n"
                "  boundary %zu, non-manifold %zu, isolated %zu vertices; degenerate or sliver "
                "faces %zu, flipped faces %zu; curvature extrapolated at %zu, undefined at %zu\n"
-               "  flow: T = %.6g (median edge %.6g), rest height %.6g, free surface %zu vertices "
-               "(%zu patches dropped), ridge %zu, valley %zu\n"
+               "  flow (%s): T = %.6g (scene length %.6g), rest height %.6g, free surface %zu "
+               "vertices (%zu patches dropped), %zu regions (%zu specks faded below %.6g), "
+               "ridge %zu, valley %zu\n"
                "  time: read %.3f s, weld %.3f s, topology %.3f s, curvature %.3f s, "
                "flow %.3f s, write %.3f s\n",
                mesh_path.c_str(), a.input_vertices, a.merged_vertices, a.surface.triangles.size(),
                t.boundary_vertices, t.nonmanifold_vertices, t.isolated_vertices,
                a.curvature.sliver_faces, a.flipped_faces, a.curvature.extrapolated_vertices,
                a.curvature.undefined_vertices,
-               f.threshold, f.median_edge_length, f.rest_height, f.free_surface_vertices,
-               f.free_surface_patches_dropped, f.ridge_vertices, f.valley_vertices, read_seconds, a.times.weld, a.times.topology,
+               f.criterion == FlowCriterion::mean ? "mean" : "paper", f.threshold, f.scale_length,
+               f.rest_height, f.free_surface_vertices, f.free_surface_patches_dropped, f.regions,
+               f.specks_faded, f.min_region_area, f.ridge_vertices, f.valley_vertices,
+               read_seconds, a.times.weld, a.times.topology,
                a.times.curvature, a.times.flow, write_seconds);
 }
 
@@ -74,12 +77,12 @@ void run_analyze(const AnalyzeArgs& args) {
 
   AnalyzeOptions options;
   options.flow.up = args.up;
-  options.flow.k_threshold = args.k_threshold;
-  options.flow.k_threshold_relative = args.k_threshold_relative;
+  options.flow.criterion = args.criterion;
+  options.flow.threshold = args.k_threshold;
+  options.flow.threshold_relative = args.k_threshold_relative;
+  options.flow.smoothing_steps = args.flow_smooth;
+  options.flow.min_region_area = args.min_region;
   options.flow.rest_height = args.rest_height;
-  options.flow.region_of_interest = !args.no_roi;
-  options.flow.displacement_tolerance = args.roi_tolerance;
-  options.flow.margin = args.roi_margin;
   options.estimator = args.estimator;
   options.smoothing_steps = args.smooth;
   // The PLY repeats the input's faces; nothing else needs the input once it is analysed.
@@ -114,7 +117,7 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("mesh", args->mesh, "Surface mesh: OBJ, OFF, PLY, STL or Mantaflow .bobj.gz")
       ->required();
   add_transform_options(*cmd, args->transform);
-  cmd->add_option("--csv", args->csv, "Write x,y,z,gaussian,mean,k1,k2,area,label per vertex");
+  cmd->add_option("--csv", args->csv, "Write x,y,z,gaussian,mean,k1,k2,area,label,flow per vertex");
   cmd->add_option("--ply", args->ply, "Write a binary PLY with the curvature as vertex properties");
   cmd->add_option("--maps", args->maps,
                   "Write top-down curvature maps (EXR + PNG previews) into this directory");
@@ -129,25 +132,31 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--up", args->up, "Up axis of the input (Blender writes z)")
       ->transform(CLI::CheckedTransformer(axes, CLI::ignore_case))
       ->default_str("y");
+  const std::map<std::string, FlowCriterion> criteria{{"mean", FlowCriterion::mean},
+                                                      {"paper", FlowCriterion::paper}};
+  cmd->add_option("--criterion", args->criterion,
+                  "Flow regions on the mean curvature H (crests and troughs, round ones "
+                  "included) or the paper's |K| with the sign of H")
+      ->transform(CLI::CheckedTransformer(criteria, CLI::ignore_case))
+      ->default_str("mean");
   cmd->add_option("--k-threshold", args->k_threshold,
-                  "Absolute threshold T on |K| (1/length^2); overrides --k-threshold-relative")
+                  "Absolute threshold T: on H (1/length) with mean, on |K| (1/length^2) with "
+                  "paper; overrides --k-threshold-relative")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--k-threshold-relative", args->k_threshold_relative,
-                  "c in T = c / (median edge length)^2")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+                  "c in T = c / L (mean; default 2) or c / L^2 (paper; default 30), L the square "
+                  "root of the free surface's area")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--flow-smooth", args->flow_smooth,
+                  "Smoothing steps of the flow field over the free surface (default: 2 with mean, "
+                  "0 with paper)")
+      ->check(CLI::Range(0, 1000));
+  cmd->add_option("--min-region", args->min_region,
+                  "Smallest flow region drawn, in scene units^2 (default: 0.002 L^2 with mean, 0 "
+                  "with paper); smaller ones fade out")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--rest-height", args->rest_height,
                   "Water rest level along the up axis (default: median height of the free surface)");
-  cmd->add_flag("--no-roi", args->no_roi,
-                "Mark flow regions on the whole free surface, not only around displaced water");
-  cmd->add_option("--roi-tolerance", args->roi_tolerance,
-                  "Displacement from the rest level that counts, in median edge lengths")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  cmd->add_option("--roi-margin", args->roi_margin,
-                  "Growth of the displaced vertices' bounding box, in median edge lengths")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
   const std::map<std::string, Estimator> estimators{{"one-ring", Estimator::one_ring},
                                                     {"jet", Estimator::jet}};
   cmd->add_option("--estimator", args->estimator,

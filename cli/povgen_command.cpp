@@ -79,11 +79,8 @@ void run_povgen(const PovgenArgs& args) {
     std::vector<std::filesystem::path> frames;
     for (const auto& [number, path] : povgen::find_sequence(args.water, request.base_dir).frames)
       frames.push_back(path);
-    AnalyzeOptions options;
-    options.flow.up = args.up;
-    options.flow.k_threshold = config.flow.k_threshold;
-    options.estimator = config.flow.estimator;
-    options.smoothing_steps = config.flow.smoothing;
+    const AnalyzeOptions options =
+        povgen::analysis_options(config.flow, args.up, povgen::WaterShading::toon);
     const SequenceMaps maps =
         write_sequence_maps(frames, options, MapOptions{}, args.maps, config.flow.coherence,
                             request.water_transform ? &*request.water_transform : nullptr);

@@ -169,18 +169,32 @@ void read_outline(const toml::table& t, OutlineConfig& c) {
 
 void read_flow(const toml::table& t, FlowConfig& c) {
   for_each_key(t, "flow",
-               {"enabled", "k_threshold", "ridge_color", "valley_color", "coherence", "estimator",
-                "smoothing"},
+               {"enabled", "criterion", "k_threshold", "k_threshold_relative", "smoothing",
+                "min_region", "style", "line_width", "line_color", "ridge_color", "valley_color",
+                "coherence", "estimator"},
                [&](const std::string& n, const std::string& key, const toml::node& v) {
                  if (n == "enabled") c.enabled = read_bool(v, key);
+                 if (n == "criterion")
+                   c.criterion = read_keyword<FlowCriterion>(
+                       v, key, {{"mean", FlowCriterion::mean}, {"paper", FlowCriterion::paper}});
                  if (n == "k_threshold") c.k_threshold = read_number_in(v, key, 1e-30, 1e30);
+                 if (n == "k_threshold_relative")
+                   c.k_threshold_relative = read_number_in(v, key, 1e-30, 1e30);
+                 if (n == "smoothing") c.smoothing = static_cast<int>(read_number_in(v, key, 0, 100));
+                 if (n == "min_region") c.min_region = read_number_in(v, key, 0.0, 1e30);
+                 if (n == "style")
+                   c.style = read_keyword<FlowStyle>(v, key,
+                                                     {{"regions", FlowStyle::regions},
+                                                      {"lines", FlowStyle::lines},
+                                                      {"regions+lines", FlowStyle::regions_and_lines}});
+                 if (n == "line_width") c.line_width = read_number_in(v, key, 0.1, 100.0);
+                 if (n == "line_color") c.line_color = read_color(v, key);
                  if (n == "ridge_color") c.ridge_color = read_color(v, key);
                  if (n == "valley_color") c.valley_color = read_color(v, key);
                  if (n == "coherence") c.coherence = read_bool(v, key);
                  if (n == "estimator")
                    c.estimator = read_keyword<Estimator>(
                        v, key, {{"one-ring", Estimator::one_ring}, {"jet", Estimator::jet}});
-                 if (n == "smoothing") c.smoothing = static_cast<int>(read_number_in(v, key, 0, 100));
                });
 }
 

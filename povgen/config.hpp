@@ -74,14 +74,25 @@ struct OutlineConfig {
   Color color{0.0, 0.0, 0.0};
 };
 
+// How flow regions are drawn: filled (regions), as strokes along their contours (lines), or
+// both (analyzer/flow_lines.hpp).
+enum class FlowStyle { regions, lines, regions_and_lines };
+
+// The water-flow regions (analyzer/flow_regions.hpp). Unset values take the criterion's defaults.
 struct FlowConfig {
   bool enabled = true;
-  std::optional<double> k_threshold;  // absolute T; default: the analyzer's scale-free T
+  FlowCriterion criterion = FlowCriterion::mean;
+  std::optional<double> k_threshold;           // absolute T: 1/length (mean), 1/length² (paper)
+  std::optional<double> k_threshold_relative;  // c in T = c / L or c / L²
+  std::optional<int> smoothing;                // smoothing steps of the flow field
+  std::optional<double> min_region;            // A_min in scene units²
+  FlowStyle style = FlowStyle::regions;
+  double line_width = 2.0;                     // pixels
+  std::optional<Color> line_color;  // default: the region colours (lines), the outline colour (both)
   Color ridge_color{1.0, 1.0, 1.0};
   Color valley_color{0.04, 0.16, 0.42};
   bool coherence = true;                   // carry regions from frame to frame (flow_coherence.hpp)
   Estimator estimator = Estimator::one_ring;  // curvature estimator (analysis.hpp)
-  int smoothing = 0;                       // smoothing steps of the curvature field
 };
 
 enum class ReflectionTarget { concrete, abstract, none };

@@ -9,6 +9,8 @@
 #include "povgen/mesh2_writer.hpp"
 #include "povgen/scene_writer.hpp"
 #include "povgen/sequence.hpp"
+#include "povgen/stroke_writer.hpp"
+#include "povgen/axes.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -33,22 +35,35 @@ struct ObjectSource {
 
 }  // namespace
 
+AnalyzeOptions analysis_options(const FlowConfig& flow, Axis up, WaterShading shading) {
+  AnalyzeOptions options;
+  options.flow.up = up;
+  options.flow.criterion = flow.criterion;
+  options.flow.threshold = flow.k_threshold;
+  options.flow.threshold_relative = flow.k_threshold_relative;
+  options.flow.smoothing_steps = flow.smoothing;
+  options.flow.min_region_area = flow.min_region;
+  options.estimator = flow.estimator;
+  options.flow_regions = shading == WaterShading::toon;
+  return options;
+}
+
 PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,
                                 FlowCoherence* coherence, WaterShading shading) {
   const auto start = Clock::now();
   PreparedSurface out;
   if (flow) {
-    AnalyzeOptions options;
-    options.flow.up = up;
-    options.flow.k_threshold = flow->k_threshold;
-    options.estimator = flow->estimator;
-    options.smoothing_steps = flow->smoothing;
-    options.flow_regions = shading == WaterShading::toon;
-    Analysis a = analyze_mesh(std::move(input), options);
+    Analysis a = analyze_mesh(std::move(input), analysis_options(*flow, up, shading));
     out.mesh = make_scene_mesh(a.surface, a.curvature.normal, is_closed(a.topology), up);
     if (shading == WaterShading::toon) {
       if (coherence) coherence->apply(a.surface, a.curvature, a.flow);
-      out.labels = a.flow.label;
+      if (flow->style != FlowStyle::regions) {
+        // Strokes taper over 3 % of the scene's size: resolution-free, like the field.
+        out.flow_lines = trace_flow_lines(a.surface, a.flow, 0.03 * a.flow.scale_length);
+        for (FlowLine& line : out.flow_lines)
+          for (Vec3& p : line.points) p = to_povray(p, up);
+      }
+      out.flow_field = std::move(a.flow.field);
       out.ridge_vertices = a.flow.ridge_vertices;
       out.valley_vertices = a.flow.valley_vertices;
     } else {
@@ -81,11 +96,12 @@ std::string mesh_include(const PreparedSurface& surface, const std::string& pref
                          ShellFaces shell_faces) {
   std::string text = "// Written by toonwater povgen: meshes for scene.pov.\n";
   const auto uv = surface.view_values.empty()
-                      ? toon_coordinates(surface.mesh, light, surface.labels)
+                      ? toon_coordinates(surface.mesh, light, surface.flow_field)
                       : value_coordinates(surface.view_values, surface.view_range);
   append_mesh2(text, prefix + "_mesh", surface.mesh, uv);
   if (shell_offset > 0)
     append_shell_mesh2(text, prefix + "_shell", surface.mesh, shell_offset, shell_faces);
+  append_flow_lines(text, surface.flow_lines);
   return text;
 }
 

@@ -11,6 +11,7 @@
 
 #include "analyzer/affine_transform.hpp"
 #include "analyzer/flow_coherence.hpp"
+#include "analyzer/flow_lines.hpp"
 #include "povgen/config.hpp"
 #include "povgen/mesh2_writer.hpp"
 #include "povgen/scene_mesh.hpp"
@@ -26,18 +27,22 @@
 
 namespace toonwater::povgen {
 
-// A mesh prepared for the scene, with the flow labels when they were asked for.
+// A mesh prepared for the scene, with the flow field (and lines) when they were asked for.
 struct PreparedSurface {
   SceneMesh mesh;
-  std::vector<std::int8_t> labels;  // per vertex; empty without flow regions
+  std::vector<double> flow_field;   // per vertex s (flow_regions.hpp); empty without flow regions
+  std::vector<FlowLine> flow_lines;  // POV-Ray frame; only with a flow style that draws lines
   std::vector<double> view_values;  // per vertex K or H for a curvature view; else empty
   double view_range = 0;            // the sequence's colour range of view_values
   std::size_t ridge_vertices = 0, valley_vertices = 0;
   double analysis_seconds = 0;  // weld, topology, normals (and curvature and flow when asked)
 };
 
-// Welds and orients the input; computes curvature and flow labels only when `flow` is given,
-// angle-weighted normals otherwise. With `coherence`, the labels are made coherent with the
+// The analysis a scene's flow settings ask for.
+AnalyzeOptions analysis_options(const FlowConfig& flow, Axis up, WaterShading shading);
+
+// Welds and orients the input; computes curvature and the flow field only when `flow` is given,
+// angle-weighted normals otherwise. With `coherence`, the field is made coherent with the
 // frames it saw before (a sequence's frames in order).
 // With a curvature `shading`, keeps the per-vertex K or H for the view (curvature is computed
 // for it even without flow).

@@ -70,8 +70,13 @@ SceneMesh make_scene_mesh(const TriangleMesh& surface, std::span<const Vec3> nor
   return out;
 }
 
+double flow_coordinate(double field) {
+  constexpr double field_limit = 4.0, scale = 0.12;  // v in [0.02, 0.98]
+  return 0.5 + scale * std::clamp(std::isfinite(field) ? field : 0.0, -field_limit, field_limit);
+}
+
 std::vector<TextureCoordinate> toon_coordinates(const SceneMesh& mesh, const LightGeometry& light,
-                                                std::span<const std::int8_t> labels) {
+                                                std::span<const double> flow_field) {
   const std::size_t n = mesh.positions.size();
   std::vector<TextureCoordinate> uv(n);
   for (std::size_t v = 0; v < n; ++v) {
@@ -82,8 +87,8 @@ std::vector<TextureCoordinate> toon_coordinates(const SceneMesh& mesh, const Lig
       to_light = length > 0.0 ? Vec3(to_light / length) : mesh.normals[v];
     }
     const double l_dot_n = std::clamp(to_light.dot(mesh.normals[v]), -1.0, 1.0);
-    const double label = labels.empty() ? 0.0 : static_cast<double>(labels[v]);
-    uv[v] = {static_cast<float>(0.5 + 0.4999 * l_dot_n), static_cast<float>(0.5 + label / 3.0)};
+    const double v_coordinate = flow_field.empty() ? 0.5 : flow_coordinate(flow_field[v]);
+    uv[v] = {static_cast<float>(0.5 + 0.4999 * l_dot_n), static_cast<float>(v_coordinate)};
   }
   return uv;
 }

@@ -3,11 +3,13 @@
 // shader reads (povray-notes.md, "Three crisp bands"):
 //
 //   u = 0.5 + 0.4999 · clamp(L·n, −1, 1)        L = unit vector from the vertex to the light
-//   v = 0.5 + label / 3                          label: −1 valley, 0 none, +1 ridge
+//   v = 0.5 + 0.12 · clamp(s, −4, 4)             s: the flow field (flow_regions.hpp)
 //
 // POV-Ray interpolates u and v linearly inside each triangle and evaluates the colour map per
-// pixel, so band and flow-region boundaries are crisp at pixel level. u stays inside (0, 1)
-// because gradient patterns wrap modulo 1.
+// pixel, so band and flow-region boundaries are crisp at pixel level, and a flow region's edge,
+// the iso-line s = ±1 (v = 0.5 ± 0.12), is a smooth curve across the triangles rather than a
+// staircase along their edges. u and v stay inside (0, 1) because gradient patterns wrap modulo
+// 1; clamping s at ±4 changes no boundary where the field varies less than 4 between neighbours.
 #pragma once
 
 #include "analyzer/mesh.hpp"
@@ -45,9 +47,12 @@ struct LightGeometry {
 
 using TextureCoordinate = std::array<float, 2>;
 
-// (u, v) per vertex as above; `labels` may be empty (no flow regions: v = 0.5).
+// v of a flow field value, as above (the template's Toon_flow_key).
+double flow_coordinate(double field);
+
+// (u, v) per vertex as above; `flow_field` may be empty (no flow regions: v = 0.5).
 std::vector<TextureCoordinate> toon_coordinates(const SceneMesh& mesh, const LightGeometry& light,
-                                                std::span<const std::int8_t> labels);
+                                                std::span<const double> flow_field);
 
 // (u, 0.5) per vertex with u = 0.5 + 0.4999 * clamp(value / range, −1, 1): a curvature value
 // for the curvature view's colour map (range > 0).

@@ -59,23 +59,26 @@ std::string padded(long frame, int digits) {
 std::string mesh_id(const std::string& name) { return std::string("Obj_").append(name).append("_mesh"); }
 std::string shell_id(const std::string& name) { return std::string("Obj_").append(name).append("_shell"); }
 
-void camera(std::string& s, const SceneLayout& l) {
+Vec3 camera_look_at(const SceneLayout& l) {
   const CameraConfig& c = l.config->camera;
-  const Vec3 centre = 0.5 * (l.water_min + l.water_max);
-  const Vec3 look_at = c.look_at ? to_povray(*c.look_at, l.up) : centre;
-  Vec3 location;
-  if (c.location) {
-    location = to_povray(*c.location, l.up);
-  } else {
-    // Framed on the bounding sphere, from the front (−z) and 30° above.
-    const double radius = std::max(0.5 * (l.water_max - l.water_min).norm(), 1e-9);
-    const double aspect = static_cast<double>(l.config->render.height) / l.config->render.width;
-    const double half_h = 0.5 * c.angle * std::numbers::pi / 180.0;
-    const double half = std::min(half_h, std::atan(std::tan(half_h) * aspect));
-    location = look_at + radius / std::sin(half) * Vec3(0.0, 0.5, -0.8660254);
-  }
-  s += "camera {\n  perspective\n  location " + vec(location) + "\n  look_at " + vec(look_at) +
-       "\n  right x * image_width / image_height\n  angle " + num(c.angle) + "\n}\n\n";
+  return c.look_at ? to_povray(*c.look_at, l.up) : Vec3(0.5 * (l.water_min + l.water_max));
+}
+
+Vec3 camera_location(const SceneLayout& l) {
+  const CameraConfig& c = l.config->camera;
+  if (c.location) return to_povray(*c.location, l.up);
+  // Framed on the bounding sphere, from the front (−z) and 30° above.
+  const double radius = std::max(0.5 * (l.water_max - l.water_min).norm(), 1e-9);
+  const double aspect = static_cast<double>(l.config->render.height) / l.config->render.width;
+  const double half_h = 0.5 * c.angle * std::numbers::pi / 180.0;
+  const double half = std::min(half_h, std::atan(std::tan(half_h) * aspect));
+  return camera_look_at(l) + radius / std::sin(half) * Vec3(0.0, 0.5, -0.8660254);
+}
+
+void camera(std::string& s, const SceneLayout& l) {
+  s += "camera {\n  perspective\n  location " + vec(camera_location(l)) + "\n  look_at " +
+       vec(camera_look_at(l)) + "\n  right x * image_width / image_height\n  angle " +
+       num(l.config->camera.angle) + "\n}\n\n";
 }
 
 // The diverging colour map of the curvature maps (analyzer/maps/colormap.hpp) as a POV-Ray
@@ -143,6 +146,18 @@ std::string scene_pov(const SceneLayout& l) {
   const bool secondary_rays = reflects || refracts || c.outline.enabled;
   s += secondary_rays ? "global_settings { assumed_gamma 1.0 max_trace_level 10 }\n\n"
                       : "global_settings { assumed_gamma 1.0 }\n\n";
+  const FlowConfig& flow = c.flow;
+  const bool flow_regions = !curvature_view && flow.enabled && flow.style != FlowStyle::lines;
+  const bool flow_lines = !curvature_view && flow.enabled && flow.style != FlowStyle::regions;
+  if (flow_lines) {
+    // Read by Toon_stroke while the water include is parsed: strokes as wide on screen near
+    // and far.
+    s += "// Flow lines: width in pixels, and what turns it into a radius at a distance\n";
+    s += "#declare Toon_line_width = " + num(flow.line_width) + ";\n";
+    s += "#declare Toon_camera_location = " + vec(camera_location(l)) + ";\n";
+    s += "#declare Toon_pixel_angle = 2 * tan(radians(" + num(c.camera.angle) +
+         ") / 2) / image_width;\n\n";
+  }
   s += "// Meshes of the current frame\n";
   s += "#include concat(\"water_\", str(frame_number, -4, 0), \".inc\")\n";
   for (const ObjectPlacement& o : l.objects) {
@@ -180,15 +195,25 @@ std::string scene_pov(const SceneLayout& l) {
     s += "// Water: Cartoon Water Shader\nobject {\n  Water_mesh\n  texture {\n    ";
     const std::string bands = rgb(w.bright) + ", " + rgb(w.medium) + ", " + rgb(w.dark) + ", " +
                               num(w.t_bright) + ", " + num(w.t_medium);
-    if (c.flow.enabled)
-      s += "Toon_bands_with_flow(" + bands + ",\n      " + rgb(c.flow.valley_color) + ", " +
-           rgb(c.flow.ridge_color) + ", " + num(w.transmit) + ")";
+    if (flow_regions)
+      s += "Toon_bands_with_flow(" + bands + ",\n      " + rgb(flow.valley_color) + ", " +
+           rgb(flow.ridge_color) + ", " + num(w.transmit) + ")";
     else
       s += "Toon_bands(" + bands + ", " + num(w.transmit) + ")";
     s += "\n    " + finish(c, true) + "\n  }\n";
   }
   if (refracts) s += "  interior { ior " + num(w.ior) + " }\n";
   s += "}\n";
+  if (flow_lines) {
+    // Strokes lie on the water, half above it: the water must not reflect them a second time.
+    const bool both = flow.style == FlowStyle::regions_and_lines;
+    const Color ridge = flow.line_color.value_or(both ? c.outline.color : flow.ridge_color);
+    const Color valley = flow.line_color.value_or(both ? c.outline.color : flow.valley_color);
+    for (const auto& [id, colour] : {std::pair{"Water_ridge_lines", ridge}, std::pair{"Water_valley_lines", valley}})
+      s += std::string("#ifdef (") + id + ")\n  object { " + id + " texture { pigment { color " +
+           rgb(colour) + " } finish { emission 1 diffuse 0 ambient 0 } } no_shadow" +
+           (reflects ? " no_reflection" : "") + " }\n#end\n";
+  }
   // The water's shell lies above its surface: rays the water reflects would meet its inside.
   if (c.outline.enabled)
     s += "object { Toon_outline_shell(Water_shell, " + rgb(c.outline.color) + ")" +

@@ -1,5 +1,5 @@
-// Water-flow regions: ridge/valley by |K| > T and the sign of H, a scale-free threshold, the
-// region of interest, and the free surface of closed liquid volumes.
+// Water-flow regions: the flow field on H (default) and the paper's |K| rule, thresholds that
+// are scale- and resolution-free, ripple rings, specks, and the free surface of closed volumes.
 #include "analyzer/flow_regions.hpp"
 #include "tests/analyzer/curvature_test_util.hpp"
 #include "tests/analyzer/water_meshes.hpp"
@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <functional>
+#include <numbers>
+#include <random>
 
 namespace toonwater::test {
 namespace {
@@ -35,16 +37,17 @@ std::size_t nearest_vertex(const TriangleMesh& m, double x, double y) {
 }
 
 TEST(FlowRegions, FlatWaterHasNoLabels) {
-  const Flow f = flow_of(height_field(41, [](double, double) { return 0.3; }));
+  const Flow f = flow_of(height_field(21, [](double, double) { return 0.3; }));
   EXPECT_EQ(f.regions.ridge_vertices + f.regions.valley_vertices, 0u);
   EXPECT_TRUE(f.regions.region_of_interest.empty());
   EXPECT_DOUBLE_EQ(f.regions.rest_height, 0.3);
-  EXPECT_NEAR(f.regions.median_edge_length, 0.05, 1e-12);
+  EXPECT_NEAR(f.regions.scale_length, 2.0, 1e-2);  // sqrt of the 2 × 2 sheet's area
+  for (double s : f.regions.field) EXPECT_EQ(s, 0.0);
 }
 
 TEST(FlowRegions, BumpIsARidgeAndDipAValley) {
-  const TriangleMesh m = height_field(81, [](double x, double y) {
-    return bump(0.2, -0.5, 0.0, 0.15)(x, y) - bump(0.2, 0.5, 0.0, 0.15)(x, y);
+  const TriangleMesh m = height_field(61, [](double x, double y) {
+    return bump(0.1, -0.5, 0.0, 0.2)(x, y) - bump(0.1, 0.5, 0.0, 0.2)(x, y);
   });
   const Flow f = flow_of(m);
   EXPECT_GT(f.regions.ridge_vertices, 10u);
@@ -52,60 +55,218 @@ TEST(FlowRegions, BumpIsARidgeAndDipAValley) {
   EXPECT_EQ(f.regions.label[nearest_vertex(m, -0.5, 0.0)], FlowLabel::ridge);
   EXPECT_EQ(f.regions.label[nearest_vertex(m, 0.5, 0.0)], FlowLabel::valley);
   for (std::size_t v = 0; v < m.positions.size(); ++v) {
+    const double s = f.regions.field[v];
+    ASSERT_TRUE(std::isfinite(s));
+    EXPECT_EQ(f.regions.label[v], s >= 1.0 ? FlowLabel::ridge : s <= -1.0 ? FlowLabel::valley : FlowLabel::none);
     if (f.regions.label[v] == FlowLabel::none) continue;
-    EXPECT_GT(std::abs(f.curvature.field.gaussian[v]), f.regions.threshold);
-    EXPECT_EQ(f.regions.label[v] == FlowLabel::ridge, f.curvature.field.mean[v] > 0.0);
+    EXPECT_TRUE(f.regions.region_of_interest.contains(m.positions[v]));
     EXPECT_LT(std::abs(std::abs(m.positions[v].x()) - 0.5), 0.5) << "label far from the bumps";
   }
 }
 
+// The paper's rule is kept as it was, bar the threshold: ridge where |K| > T and H > 0, valley
+// where |K| > T and H < 0, no smoothing, no speck fading (away from the free surface's border).
+TEST(FlowRegions, PaperCriterionIsThePapersRule) {
+  const TriangleMesh m = height_field(61, [](double x, double y) {
+    return 0.05 * std::sin(5 * x) * std::cos(4 * y) + bump(0.1, 0.3, 0.2, 0.15)(x, y);
+  });
+  FlowOptions options;
+  options.criterion = FlowCriterion::paper;
+  options.threshold = 4.0;
+  const Flow f = flow_of(m, options);
+  ASSERT_GT(f.regions.ridge_vertices, 20u);
+  ASSERT_GT(f.regions.valley_vertices, 20u);
+  const auto& c = f.curvature.field;
+  const auto& vf = f.curvature.topology.vertex_faces;
+  std::size_t checked = 0;
+  for (std::size_t v = 0; v < m.positions.size(); ++v) {
+    bool interior = f.regions.free_surface[v];
+    for (std::int32_t face : vf.of(static_cast<std::int32_t>(v)))
+      for (std::int32_t w : m.triangles[face]) interior = interior && f.regions.free_surface[w];
+    if (!interior) continue;
+    const std::int8_t rule = std::abs(c.gaussian[v]) > 4.0 && c.mean[v] > 0   ? FlowLabel::ridge
+                             : std::abs(c.gaussian[v]) > 4.0 && c.mean[v] < 0 ? FlowLabel::valley
+                                                                             : FlowLabel::none;
+    EXPECT_EQ(f.regions.label[v], rule) << v;
+    ++checked;
+  }
+  EXPECT_GT(checked, 3000u);
+}
+
 TEST(FlowRegions, DefaultThresholdIsScaleFree) {
-  const TriangleMesh m = height_field(61, bump(0.2, 0.0, 0.0, 0.2));
-  const Flow reference = flow_of(m);
-  ASSERT_GT(reference.regions.ridge_vertices, 0u);
-  for (double scale : {1e-3, 1e3}) {
-    TriangleMesh scaled = m;
-    for (Vec3& p : scaled.positions) p *= scale;
-    const Flow f = flow_of(scaled);
-    EXPECT_NEAR(f.regions.threshold * scale * scale, reference.regions.threshold,
-                1e-12 * reference.regions.threshold);
-    EXPECT_EQ(f.regions.label, reference.regions.label) << "scale " << scale;
+  const TriangleMesh m = height_field(41, bump(0.1, 0.0, 0.0, 0.25));
+  for (const FlowCriterion criterion : {FlowCriterion::mean, FlowCriterion::paper}) {
+    FlowOptions options;
+    options.criterion = criterion;
+    const Flow reference = flow_of(m, options);
+    ASSERT_GT(reference.regions.ridge_vertices, 0u);
+    const double power = criterion == FlowCriterion::mean ? 1.0 : 2.0;  // T in 1/length^power
+    for (const double scale : {1e-3, 1e3}) {
+      TriangleMesh scaled = m;
+      for (Vec3& p : scaled.positions) p *= scale;
+      const Flow f = flow_of(scaled, options);
+      EXPECT_NEAR(f.regions.threshold * std::pow(scale, power), reference.regions.threshold,
+                  1e-9 * reference.regions.threshold);
+      EXPECT_EQ(f.regions.label, reference.regions.label) << "scale " << scale;
+    }
   }
 }
 
 TEST(FlowRegions, AbsoluteThresholdOverridesTheRelativeOne) {
-  const TriangleMesh m = height_field(61, bump(0.2, 0.0, 0.0, 0.2));
+  const TriangleMesh m = height_field(41, bump(0.1, 0.0, 0.0, 0.25));
   FlowOptions options;
-  options.k_threshold = 1e9;
+  options.threshold = 1e9;
   const Flow f = flow_of(m, options);
   EXPECT_EQ(f.regions.threshold, 1e9);
   EXPECT_EQ(f.regions.ridge_vertices + f.regions.valley_vertices, 0u);
 }
 
-TEST(FlowRegions, RegionOfInterestExcludesUndisplacedWater) {
-  // A displaced bump on the left and, far to the right, a ripple too small to count as
-  // displacement but curved enough to pass a low threshold.
+// Concentric ripples: z = a cos(k r) out to two wavelengths, fading to calm water beyond.
+constexpr double ripple_amplitude = 0.01, ripple_wavelength = 0.3;
+double ripple(double x, double y) {
+  const double r = std::hypot(x, y), k = 2 * std::numbers::pi / ripple_wavelength;
+  const double inner = 2.0 * ripple_wavelength, outer = 2.8 * ripple_wavelength;
+  const double envelope = r < inner ? 1.0 : r > outer ? 0.0 : std::pow(std::cos(0.5 * std::numbers::pi * (r - inner) / (outer - inner)), 2);
+  return ripple_amplitude * std::cos(k * r) * envelope;
+}
+
+// A height field of the ripple on an n × n grid whose x, y are jittered by `jitter` grid steps.
+TriangleMesh ripple_mesh(int n, double jitter) {
+  TriangleMesh m = height_field(n, ripple);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> offset(-jitter, jitter);
+  const double step = 2.0 / (n - 1);
+  for (Vec3& p : m.positions) {
+    if (std::abs(p.x()) < 1.0) p.x() += offset(rng) * step;
+    if (std::abs(p.y()) < 1.0) p.y() += offset(rng) * step;
+    p.z() = ripple(p.x(), p.y());
+  }
+  return m;
+}
+
+struct RippleScore {
+  double crest_ridge = 0, trough_valley = 0;  // shares of the vertices near each circle
+  std::size_t calm_labelled = 0;
+  double labelled_share = 0;  // of the area
+};
+
+RippleScore score_ripple(const TriangleMesh& m, const Flow& f) {
+  RippleScore score;
+  std::size_t crest = 0, trough = 0, area_n = 0;
+  double labelled_area = 0, total_area = 0;
+  for (std::size_t v = 0; v < m.positions.size(); ++v) {
+    const double r = std::hypot(m.positions[v].x(), m.positions[v].y());
+    const double phase = r / ripple_wavelength;  // crests at whole numbers, troughs at halves
+    const double area = f.curvature.field.area[v];
+    total_area += area;
+    if (f.regions.label[v] != FlowLabel::none) labelled_area += area;
+    ++area_n;
+    if (phase < 0.75 || phase > 2.0) {
+      if (phase > 3.0 && f.regions.label[v] != FlowLabel::none) ++score.calm_labelled;
+      continue;
+    }
+    const double to_crest = std::abs(phase - std::round(phase));
+    const double to_trough = std::abs(phase - std::floor(phase) - 0.5);
+    if (to_crest < 0.08) {
+      ++crest;
+      score.crest_ridge += f.regions.label[v] == FlowLabel::ridge;
+    } else if (to_trough < 0.08) {
+      ++trough;
+      score.trough_valley += f.regions.label[v] == FlowLabel::valley;
+    }
+  }
+  score.crest_ridge /= static_cast<double>(crest);
+  score.trough_valley /= static_cast<double>(trough);
+  score.labelled_share = labelled_area / total_area;
+  return score;
+}
+
+// The rings an animator draws around a drop: crests ridge, troughs valley, calm water nothing,
+// and the same labelled area whatever the resolution (the old T = c/ℓ² fell 4× per halving).
+TEST(FlowRegions, RippleRingsAreDrawnAsRingsAtEveryResolution) {
+  std::vector<double> shares;
+  for (const int n : {81, 161, 321}) {
+    const TriangleMesh m = ripple_mesh(n, 0.0);
+    const Flow f = flow_of(m);
+    const RippleScore score = score_ripple(m, f);
+    EXPECT_GE(score.crest_ridge, 0.8) << n;
+    EXPECT_GE(score.trough_valley, 0.8) << n;
+    EXPECT_EQ(score.calm_labelled, 0u) << n;
+    shares.push_back(score.labelled_share);
+  }
+  for (const double share : shares) {
+    EXPECT_GT(share, 0.05);
+    EXPECT_NEAR(share / shares.back(), 1.0, 0.25) << "labelled share changes with resolution";
+  }
+}
+
+TEST(FlowRegions, RippleRingsOnAJitteredMesh) {
+  std::vector<double> shares;
+  for (const int n : {161, 321}) {
+    const TriangleMesh m = ripple_mesh(n, 0.3);
+    const RippleScore score = score_ripple(m, flow_of(m));
+    EXPECT_GE(score.crest_ridge, 0.8) << n;
+    EXPECT_GE(score.trough_valley, 0.8) << n;
+    EXPECT_EQ(score.calm_labelled, 0u) << n;
+    shares.push_back(score.labelled_share);
+  }
+  EXPECT_NEAR(shares[0] / shares[1], 1.0, 0.25);
+}
+
+// A region smaller than A_min is not drawn, and regions fade in as they grow: the drawn area
+// never jumps.
+TEST(FlowRegions, SpecksFadeOutAndGrowingRegionsFadeIn) {
+  FlowOptions options;
+  options.min_region_area = 0.02;
+  options.threshold = 2.0;
+  double last_area = 0.0;
+  bool seen_hidden = false, seen_drawn = false;
+  for (double width = 0.04; width <= 0.25; width += 0.0075) {
+    const TriangleMesh m = height_field(121, bump(0.5 * width, 0.0, 0.0, width));
+    const Flow f = flow_of(m, options);
+    double drawn = 0.0, above_one_before_fading = 0.0;
+    for (std::size_t v = 0; v < m.positions.size(); ++v) {
+      if (f.regions.label[v] == FlowLabel::ridge) drawn += f.curvature.field.area[v];
+      if (f.regions.smoothed_field[v] >= 1.0) above_one_before_fading += f.curvature.field.area[v];
+    }
+    if (above_one_before_fading > 0 && above_one_before_fading < options.min_region_area.value()) {
+      EXPECT_EQ(drawn, 0.0) << width;
+      seen_hidden = true;
+    }
+    if (above_one_before_fading >= 2 * options.min_region_area.value()) {
+      EXPECT_DOUBLE_EQ(drawn, above_one_before_fading) << width;
+      seen_drawn = true;
+    }
+    if (above_one_before_fading < 2 * options.min_region_area.value())
+      EXPECT_GE(drawn, last_area - 1e-12) << width;  // fading in as it grows
+    EXPECT_LE(drawn - last_area, 0.5 * options.min_region_area.value()) << "jump at width " << width;
+    last_area = drawn;
+  }
+  EXPECT_TRUE(seen_hidden);
+  EXPECT_TRUE(seen_drawn);
+}
+
+// The region of interest only reports where the regions are: a small ripple far from the
+// displaced water is labelled all the same.
+TEST(FlowRegions, RegionOfInterestNeverRemovesARegion) {
   const TriangleMesh m = height_field(101, [](double x, double y) {
     return bump(0.2, -0.6, 0.0, 0.12)(x, y) + bump(0.004, 0.7, 0.0, 0.05)(x, y);
   });
   FlowOptions options;
-  options.k_threshold = 0.05;
+  options.threshold = 0.5;
   options.rest_height = 0.0;
-  options.region_of_interest = false;
-  const Flow everywhere = flow_of(m, options);
-  EXPECT_NE(everywhere.regions.label[nearest_vertex(m, 0.7, 0.0)], FlowLabel::none);
-  options.region_of_interest = true;
-  const Flow roi = flow_of(m, options);
-  EXPECT_EQ(roi.regions.label[nearest_vertex(m, 0.7, 0.0)], FlowLabel::none);
-  EXPECT_EQ(roi.regions.label[nearest_vertex(m, -0.6, 0.0)], FlowLabel::ridge);
-  EXPECT_LT(roi.regions.region_of_interest.max.x(), 0.0);
+  options.min_region_area = 0.0;
+  const Flow f = flow_of(m, options);
+  EXPECT_EQ(f.regions.label[nearest_vertex(m, 0.7, 0.0)], FlowLabel::ridge);
+  EXPECT_EQ(f.regions.label[nearest_vertex(m, -0.6, 0.0)], FlowLabel::ridge);
+  EXPECT_GT(f.regions.region_of_interest.max.x(), 0.7);
 }
 
 TEST(FlowRegions, TankWallsFloorAndCornersNeverBecomeFlowRegions) {
   const TriangleMesh m = tank(41, [](double x, double y) { return 0.1 * std::sin(4 * x) * std::cos(3 * y); });
   FlowOptions options;
-  options.region_of_interest = false;  // even with the whole mesh in play
-  options.k_threshold = 1e-6;          // and a threshold every corner passes
+  options.threshold = 1e-6;  // a threshold every corner passes
+  options.min_region_area = 0.0;
   const Flow f = flow_of(m, options);
   EXPECT_EQ(f.curvature.topology.boundary_vertices, 0u);  // the tank is closed
   EXPECT_EQ(f.curvature.flipped, 0u);
@@ -115,6 +276,7 @@ TEST(FlowRegions, TankWallsFloorAndCornersNeverBecomeFlowRegions) {
     const bool on_wall_or_floor = p.z() == -1.0 || std::abs(p.x()) == 1.0 || std::abs(p.y()) == 1.0;
     if (on_wall_or_floor) {
       EXPECT_EQ(f.regions.label[v], FlowLabel::none) << v;
+      EXPECT_EQ(f.regions.field[v], 0.0) << v;
     }
     labelled += f.regions.label[v] != FlowLabel::none;
   }
