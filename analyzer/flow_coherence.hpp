@@ -31,7 +31,7 @@
 namespace toonwater {
 
 struct CoherenceOptions {
-  double blend = 0.5;         // weight of the carried-over (already blended) field: lag b/(1 − b) frames
+  double blend = 0.7;         // weight of the carried-over (already blended) field: lag b/(1 − b) frames
   double max_distance = 2.0;  // in median edge lengths: farther vertices have no predecessor
 };
 

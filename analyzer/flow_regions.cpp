@@ -47,15 +47,22 @@ std::int8_t region_sign(double s) {
   return s >= 1.0 ? FlowLabel::ridge : s <= -1.0 ? FlowLabel::valley : FlowLabel::none;
 }
 
-// How much of a region's field survives the speck fading: 1 from 2 A_min up; below, a factor
-// that brings the peak |s| from where it is (at 2 A_min) down to just under 1 (at A_min), where
-// the region is no longer drawn.
-double speck_factor(double area, double peak, double min_area) {
-  if (!(area < 2.0 * min_area)) return 1.0;
+// How much of a region's field survives the fading: the smaller of two factors, each 1 for a
+// region well above the limits and falling to the one that brings the region's peak |s| just
+// under 1 (where it is no longer drawn) at the limit:
+//   by area: from 2 A_min (1) down to A_min (hidden);
+//   by peak: from a peak of 1 + peak_ramp (1) down to 1 (hidden).
+// So a region that is born (its peak crossing 1, its area growing) starts at a point and grows,
+// and one that dies shrinks to a point: a broad crest whose peak crosses the threshold would
+// otherwise appear at once over its whole flat top.
+constexpr double peak_ramp = 0.5;
+
+double fade_factor(double area, double peak, double min_area) {
   constexpr double just_below_one = 0.999;
   const double hidden = just_below_one / peak;
-  const double grown = std::clamp((area - min_area) / min_area, 0.0, 1.0);
-  return hidden + (1.0 - hidden) * grown;
+  const double by_area = std::clamp((area - min_area) / min_area, 0.0, 1.0);
+  const double by_peak = std::clamp((peak - 1.0) / peak_ramp, 0.0, 1.0);
+  return hidden + (1.0 - hidden) * std::min(by_area, by_peak);
 }
 
 }  // namespace
@@ -85,7 +92,8 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   std::vector<double> factor(n, 1.0);
   for (std::size_t r = 0; r < n; ++r) {
     if (region_peak[r] == 0.0) continue;
-    factor[r] = speck_factor(region_area[r], region_peak[r], flow.min_region_area);
+    if (flow.min_region_area > 0.0)
+      factor[r] = fade_factor(region_area[r], region_peak[r], flow.min_region_area);
     flow.specks_faded += factor[r] < 1.0;
     flow.regions += factor[r] * region_peak[r] >= 1.0;
   }

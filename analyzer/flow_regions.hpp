@@ -21,10 +21,12 @@
 //      the free surface (curvature_smoothing.hpp), which damps the vertex-to-vertex noise of the
 //      cotangent curvature on marching-cubes meshes;
 //   2. over a sequence, blending with the previous frame (flow_coherence.hpp);
-//   3. specks: a region (connected free-surface vertices with s >= 1, or s <= −1) whose area is
-//      below A_min fades out: s is scaled down until its peak is below 1 (so it is not drawn),
-//      and regions between A_min and 2 A_min are scaled part way, so a region that grows
-//      appears gradually and never pops. A_min is in scene units², 0.002 L² by default;
+//   3. fading: a region (connected free-surface vertices with s >= 1, or s <= −1) whose area is
+//      below A_min (a speck) or whose peak |s| is barely 1 fades out: s is scaled down until
+//      its peak is below 1 (so it is not drawn), and regions between A_min and 2 A_min, or with
+//      a peak between 1 and 1.5, are scaled part way. A region that is born starts at a point
+//      and grows, one that dies shrinks to a point: nothing pops. A_min is in scene units²,
+//      0.002 L² by default; A_min = 0 turns the fading off;
 //   4. labels: +1 where s >= 1, −1 where s <= −1, else 0.
 // The field written out (texture coordinates, CSV, PLY) is the one labels are taken from, so
 // POV-Ray, interpolating s inside each triangle and cutting it at ±1 per pixel, draws smooth
@@ -103,7 +105,7 @@ struct FlowRegions {
   std::size_t ridge_vertices = 0;
   std::size_t valley_vertices = 0;
   std::size_t regions = 0;         // drawn regions (connected, one sign)
-  std::size_t specks_faded = 0;    // regions below 2 A_min, faded in part or whole
+  std::size_t specks_faded = 0;    // regions faded in part or whole
 };
 
 // Median edge length, from a deterministic sample of at most `max_samples` edges.

@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <numbers>
+
 #include <cstdio>
 #include <random>
 
@@ -83,17 +86,22 @@ TEST(FlowCoherence, CutsFlickerOfANoisySequenceByMoreThanHalf) {
   EXPECT_LT(coherent_flicker, 0.5 * raw_flicker);
 }
 
+// Where the drawn ridges are, to a fraction of a triangle: their area weighted by how far the
+// field is over the threshold (the iso-line s = 1 moves inside the triangles).
 double ridge_centroid_x(const Analysis& a) {
-  double sum = 0.0;
-  for (std::size_t v = 0; v < a.surface.positions.size(); ++v)
-    if (a.flow.label[v] == FlowLabel::ridge) sum += a.surface.positions[v].x();
-  return sum / static_cast<double>(a.flow.ridge_vertices);
+  double sum = 0.0, weight = 0.0;
+  for (std::size_t v = 0; v < a.surface.positions.size(); ++v) {
+    const double w = std::max(a.flow.field[v] - 1.0, 0.0) * a.curvature.area[v];
+    sum += w * a.surface.positions[v].x();
+    weight += w;
+  }
+  return sum / weight;
 }
 
-// Blending trades flicker for lag: with blend b the carried curvature trails a moving wave by
-// about b/(1 − b) frames of its motion (2.3 frames for b = 0.7), and labels last at least
-// min_lifetime frames. At 0.3 edge lengths a frame the regions stay within two edge lengths of
-// the per-frame ones and keep moving with the wave.
+// Blending trades flicker for lag: with blend b the carried field trails a moving wave by about
+// b/(1 − b) frames of its motion (1 frame for b = 0.5). At 0.3 edge lengths a frame the regions
+// stay within two edge lengths of the per-frame ones and move with the wave in every frame:
+// nothing freezes.
 TEST(FlowCoherence, TravellingWaveRegionsFollowTheWave) {
   FlowCoherence coherence;
   const int n = 81;
@@ -107,10 +115,39 @@ TEST(FlowCoherence, TravellingWaveRegionsFollowTheWave) {
     ASSERT_GT(a.flow.ridge_vertices, 0u);
     const double coherent = ridge_centroid_x(a);
     EXPECT_NEAR(coherent, raw, 2.0 * edge) << "frame " << frame;
-    EXPECT_GE(coherent, last - 1e-12) << "frame " << frame;
+    if (frame > 0) EXPECT_GT(coherent, last + 0.05 * edge) << "frozen at frame " << frame;
     last = coherent;
   }
-  EXPECT_GT(last, -0.4 + 0.5 * 0.3 * edge * 11);  // it moved
+}
+
+double drawn_area(const Analysis& a, std::int8_t label) {
+  double area = 0.0;
+  for (std::size_t v = 0; v < a.surface.positions.size(); ++v)
+    if (a.flow.label[v] == label) area += a.curvature.area[v];
+  return area;
+}
+
+// A wave that rises from calm water and sinks back over two seconds at 24 frames a second: its
+// regions grow over several frames from a point and shrink back to one (no step above 30 % of
+// their full size; a region that popped in would take 100 % in one), and they are there in
+// every frame while the wave is.
+TEST(FlowCoherence, RisingAndFallingWaveNeverPops) {
+  FlowCoherence coherence;
+  std::vector<double> areas;
+  const int frames = 48;
+  for (int frame = 0; frame < frames; ++frame) {
+    const double height = 0.08 * std::sin(std::numbers::pi * frame / (frames - 1));
+    Analysis a = analyze_frame(height_field(81, [&](double x, double y) {
+      return bump(height, 0.0, 0.0, 0.2)(x, y) - bump(height, 0.5, 0.0, 0.2)(x, y);
+    }));
+    coherence.apply(a.surface, a.curvature, a.flow);
+    areas.push_back(drawn_area(a, FlowLabel::ridge) + drawn_area(a, FlowLabel::valley));
+  }
+  const double largest = *std::max_element(areas.begin(), areas.end());
+  ASSERT_GT(largest, 0.05);
+  for (int frame = 1; frame < frames; ++frame)
+    EXPECT_LE(std::abs(areas[frame] - areas[frame - 1]), 0.3 * largest) << "pop at frame " << frame;
+  for (int frame = 8; frame < frames - 8; ++frame) EXPECT_GT(areas[frame], 0.0) << frame;
 }
 
 TEST(FlowCoherence, MantaflowWakeFlickerIsAtLeastHalved) {
