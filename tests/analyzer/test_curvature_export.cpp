@@ -51,15 +51,16 @@ struct Fixture {
     c.k2 = {-1e-22, -0.0, 7.0, 1e-7};
     c.area = {0.5, 0.25, 0.125, 6.02214076e23};
     analysis.flow.label = {1, 0, -1, 1};
+    analysis.flow.field = {1.5, 0.25, -3.0, nan};
   }
 
-  // The nine values of input vertex v as the export must write them.
+  // The ten values of input vertex v as the export must write them.
   std::vector<double> expected_row(std::size_t v) const {
     const std::size_t s = analysis.input_to_surface[v];
     const CurvatureField& c = analysis.curvature;
     std::vector<double> row{input.positions[v].x(), input.positions[v].y(), input.positions[v].z(),
                             c.gaussian[s], c.mean[s], c.k1[s], c.k2[s], c.area[s],
-                            static_cast<double>(analysis.flow.label[s])};
+                            static_cast<double>(analysis.flow.label[s]), analysis.flow.field[s]};
     for (double& value : row)
       if (!std::isfinite(value)) value = 0.0;
     return row;
@@ -98,7 +99,7 @@ TEST(CurvatureExport, CsvRowsRoundTripBitForBit) {
   EXPECT_EQ(csv.back(), '\n');
   const std::vector<std::string> lines = split(csv, '\n');
   ASSERT_EQ(lines.size(), 1 + f.input.positions.size());
-  EXPECT_EQ(lines[0], "x,y,z,gaussian,mean,k1,k2,area,label");
+  EXPECT_EQ(lines[0], "x,y,z,gaussian,mean,k1,k2,area,label,flow");
   for (std::size_t v = 0; v < f.input.positions.size(); ++v) {
     const std::vector<std::string> fields = split(lines[1 + v], ',');
     const std::vector<double> expected = f.expected_row(v);
@@ -114,7 +115,7 @@ TEST(CurvatureExport, CsvRowsRoundTripBitForBit) {
   EXPECT_EQ(csv.find("nan"), std::string::npos);
   EXPECT_EQ(csv.find("inf"), std::string::npos);
   // The label column is an integer.
-  EXPECT_EQ(split(lines[3], ',').back(), "-1");
+  EXPECT_EQ(split(lines[3], ',')[8], "-1");
 }
 
 TEST(CurvatureExport, CsvOfManyVerticesKeepsInputOrder) {
@@ -133,6 +134,7 @@ TEST(CurvatureExport, CsvOfManyVerticesKeepsInputOrder) {
   for (std::size_t s = 0; s < n; ++s) c.gaussian.push_back(static_cast<double>(s) + 0.25);
   c.mean = c.k1 = c.k2 = c.area = std::vector<double>(n, 1.0);
   analysis.flow.label.assign(n, 0);
+  analysis.flow.field.assign(n, 0.0);
   const std::vector<std::string> lines = split(csv_of(analysis), '\n');
   ASSERT_EQ(lines.size(), n + 1);
   for (std::size_t v = 0; v < n; v += 997) {
@@ -162,20 +164,21 @@ TEST(CurvatureExport, PlyHeaderAndFloatValues) {
   const std::string ply = ply_of(f.input.triangles, f.analysis);
   const std::string header =
       "ply\nformat binary_little_endian 1.0\n"
-      "comment toonwater curvature per vertex; label: 1 ridge, -1 valley, 0 none\n"
+      "comment toonwater curvature per vertex; label: 1 ridge, -1 valley, 0 none; flow: the "
+      "signed flow field, regions where |flow| >= 1\n"
       "element vertex 6\n"
       "property float x\nproperty float y\nproperty float z\nproperty float gaussian\n"
       "property float mean\nproperty float k1\nproperty float k2\nproperty float area\n"
-      "property float label\n"
+      "property float label\nproperty float flow\n"
       "element face 2\nproperty list uchar int vertex_indices\nend_header\n";
   ASSERT_EQ(ply.substr(0, header.size()), header);
-  ASSERT_EQ(ply.size(), header.size() + 6 * 9 * 4 + 2 * 13);
+  ASSERT_EQ(ply.size(), header.size() + 6 * 10 * 4 + 2 * 13);
   for (std::size_t v = 0; v < 6; ++v) {
     const std::vector<double> expected = f.expected_row(v);
-    for (std::size_t k = 0; k < 9; ++k) {
+    for (std::size_t k = 0; k < 10; ++k) {
       std::uint32_t bits = 0;
       for (int byte = 3; byte >= 0; --byte)
-        bits = bits << 8 | static_cast<unsigned char>(ply[header.size() + (v * 9 + k) * 4 + byte]);
+        bits = bits << 8 | static_cast<unsigned char>(ply[header.size() + (v * 10 + k) * 4 + byte]);
       const float value = std::bit_cast<float>(bits);
       ASSERT_TRUE(std::isfinite(value)) << v << " " << k;
       EXPECT_EQ(value, as_ply_float(expected[k])) << "vertex " << v << " value " << k;
@@ -188,7 +191,7 @@ TEST(CurvatureExport, WritesFilesAtomically) {
   ScratchDir dir;
   write_file_atomically(dir / "c.csv", "an earlier good file\n");
   write_curvature_csv(dir / "c.csv", f.analysis);
-  EXPECT_EQ(read_text(dir / "c.csv").rfind("x,y,z,gaussian,mean,k1,k2,area,label\n", 0), 0u);
+  EXPECT_EQ(read_text(dir / "c.csv").rfind("x,y,z,gaussian,mean,k1,k2,area,label,flow\n", 0), 0u);
   EXPECT_THROW(write_curvature_csv(dir / "no" / "c.csv", f.analysis), OutputError);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);
 }

@@ -99,7 +99,7 @@ double ridge_centroid_x(const Analysis& a) {
 }
 
 // Blending trades flicker for lag: with blend b the carried field trails a moving wave by about
-// b/(1 − b) frames of its motion (1 frame for b = 0.5). At 0.3 edge lengths a frame the regions
+// b/(1 − b) frames of its motion (2.3 frames for b = 0.7). At 0.3 edge lengths a frame the regions
 // stay within two edge lengths of the per-frame ones and move with the wave in every frame:
 // nothing freezes.
 TEST(FlowCoherence, TravellingWaveRegionsFollowTheWave) {

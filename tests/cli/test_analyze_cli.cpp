@@ -35,7 +35,7 @@ std::vector<std::string> entries(const fs::path& directory) {
   return names;
 }
 
-const std::string good_csv = "x,y,z,gaussian,mean,k1,k2,area,label\n0,0,0,0,0,0,0,0,0\n";
+const std::string good_csv = "x,y,z,gaussian,mean,k1,k2,area,label,flow\n0,0,0,0,0,0,0,0,0,0\n";
 
 class AnalyzeCli : public ::testing::Test {
  protected:
@@ -138,14 +138,14 @@ TEST_F(AnalyzeCli, SoupGetsOneRowPerInputVertexAndWeldedCopiesAgree) {
 
   const std::vector<std::string> rows = lines_of(read_text(csv));
   ASSERT_EQ(rows.size(), 1u + 24u);
-  EXPECT_EQ(rows[0], "x,y,z,gaussian,mean,k1,k2,area,label");
+  EXPECT_EQ(rows[0], "x,y,z,gaussian,mean,k1,k2,area,label,flow");
   const InputMesh input = read_mesh(mesh);
   for (std::size_t v = 0; v < 24; ++v) {
     std::istringstream fields(rows[1 + v]);
     std::string field;
     std::vector<double> values;
     while (std::getline(fields, field, ',')) values.push_back(std::strtod(field.c_str(), nullptr));
-    ASSERT_EQ(values.size(), 9u) << rows[1 + v];
+    ASSERT_EQ(values.size(), 10u) << rows[1 + v];
     for (int axis = 0; axis < 3; ++axis) EXPECT_EQ(values[axis], input.mesh.positions[v][axis]);
     // Welded, every corner is an interior vertex of a closed convex surface: K > 0 and H > 0
     // (unwelded, each copy would sit alone on a boundary).

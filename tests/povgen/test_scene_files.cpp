@@ -142,11 +142,12 @@ TEST(PovgenMesh2, BandCoordinateFollowsLightDotNormalForParallelAndPointLights) 
   const povgen::SceneMesh sm = povgen::make_scene_mesh(m, up, false, Axis::y);
   povgen::LightGeometry sun;
   sun.vector = Vec3(0, 1, 0);
-  const std::vector<std::int8_t> labels{-1, 0, 1};
-  auto uv = povgen::toon_coordinates(sm, sun, labels);
+  const std::vector<double> flow_field{-1.0, 0.25, 9.0};  // 9 is clamped at 4
+  auto uv = povgen::toon_coordinates(sm, sun, flow_field);
   EXPECT_NEAR(uv[0][0], 0.5 + 0.4999, 1e-6);
-  EXPECT_NEAR(uv[0][1], 0.5 - 1.0 / 3.0, 1e-6);
-  EXPECT_NEAR(uv[2][1], 0.5 + 1.0 / 3.0, 1e-6);
+  EXPECT_NEAR(uv[0][1], 0.5 - 0.12, 1e-6);
+  EXPECT_NEAR(uv[1][1], 0.5 + 0.03, 1e-6);
+  EXPECT_NEAR(uv[2][1], 0.5 + 0.48, 1e-6);
   povgen::LightGeometry lamp{false, Vec3(1, 1, 0)};  // 45° above vertex 0, straight above vertex 1
   uv = povgen::toon_coordinates(sm, lamp, {});
   EXPECT_NEAR(uv[0][0], 0.5 + 0.4999 * std::sqrt(0.5), 1e-6);
