@@ -109,7 +109,7 @@ void FlowCoherence::apply(const TriangleMesh& surface, const CurvatureField& cur
   }
   const std::size_t n = surface.positions.size();
   const PointGrid grid(previous_.positions, options_.max_distance * flow.median_edge_length);
-  const double b = options_.blend;
+  const double rise = options_.rise_blend, fall = options_.blend;
   std::vector<double> blended(n, 0.0);
   std::vector<std::int32_t> predecessor(n, -1);
   FlowFrame next;
@@ -119,7 +119,16 @@ void FlowCoherence::apply(const TriangleMesh& surface, const CurvatureField& cur
     const std::int32_t p = grid.closest(surface.positions[v]);
     predecessor[v] = p;
     const double s = flow.smoothed_field.empty() ? 0.0 : flow.smoothed_field[v];
-    blended[v] = p >= 0 ? (1 - b) * s + b * previous_.field[p] : s;
+    if (p >= 0) {
+      const double before = previous_.field[p];
+      // A field that grows (same sign, larger) is followed faster than one that fades, so a
+      // crest that moves a cell or more a frame is not averaged away with the calm water it
+      // has left.
+      const double b = before * s > 0 && std::abs(s) > std::abs(before) ? rise : fall;
+      blended[v] = (1 - b) * s + b * before;
+    } else {
+      blended[v] = s;
+    }
     next.positions.push_back(surface.positions[v]);
     next.field.push_back(blended[v]);
   }

@@ -4,10 +4,14 @@
 // cannot simply be compared with the last one's vertex by vertex. Each frame's free-surface
 // vertices find their closest free-surface vertex of the previous frame (a uniform grid with
 // cells of `max_distance` edge lengths) and blend the flow field s (flow_regions.hpp) with it,
-//   s̃ = (1 − b) s + b s̃_prev                      (exponential blend, b = blend),
-// in the spirit of DeCarlo et al., "Interactive rendering of suggestive contours with temporal
-// coherence" (NPAR 2004), who fade lines in and out by strength. The specks and labels are then
-// taken from s̃ as for a single frame (label_flow_field).
+//   s̃ = (1 − b) s + b s̃_prev                      (exponential blend),
+// with b = rise_blend where the field grows (s has s̃_prev's sign and a larger magnitude) and
+// b = blend elsewhere, in the spirit of DeCarlo et al., "Interactive rendering of suggestive
+// contours with temporal coherence" (NPAR 2004), who fade lines in and out by strength. A
+// symmetric blend averages a crest that moves a cell or more a frame (the bow wave of a
+// Mantaflow wake does) with the calm water it has left and loses it for frames; following growth
+// faster keeps it, and the slower fading still damps the frame-to-frame noise. The fading and
+// labels are then taken from s̃ as for a single frame (label_flow_field).
 //
 // Everything stays continuous in time: s̃ moves by a fraction of its change each frame, so a
 // region boundary (the iso-line s̃ = ±1 inside the triangles) slides and never jumps; a region
@@ -31,7 +35,8 @@
 namespace toonwater {
 
 struct CoherenceOptions {
-  double blend = 0.7;         // weight of the carried-over (already blended) field: lag b/(1 − b) frames
+  double blend = 0.8;       // weight of the carried-over (already blended) field: lag b/(1 − b) frames
+  double rise_blend = 0.5;  // the same where the field grows (same sign, larger magnitude)
   double max_distance = 2.0;  // in median edge lengths: farther vertices have no predecessor
 };
 

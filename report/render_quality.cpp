@@ -2,9 +2,9 @@
 // line options after scene.ini (+W +H +A/-A +R), which override the ini's values.
 #include "report/render_quality.hpp"
 
-#include "povgen/render.hpp"
+#include "report/image.hpp"
 
-#include <OpenImageIO/imageio.h>
+#include "povgen/render.hpp"
 
 #include <algorithm>
 #include <array>
@@ -17,29 +17,6 @@ namespace toonwater::report {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Image {
-  int width = 0, height = 0;
-  std::vector<float> rgb;  // row-major, 3 channels in [0, 1]
-  std::array<float, 3> pixel(int x, int y) const {
-    const std::size_t i = 3 * (static_cast<std::size_t>(y) * width + x);
-    return {rgb[i], rgb[i + 1], rgb[i + 2]};
-  }
-};
-
-Image read_rgb(const fs::path& path) {
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) throw std::runtime_error(path.string() + ": cannot read the rendered image");
-  const OIIO::ImageSpec& spec = in->spec();
-  Image image{spec.width, spec.height, {}};
-  std::vector<float> all(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
-  if (spec.nchannels < 3 || !in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
-    throw std::runtime_error(path.string() + ": cannot read the rendered image");
-  image.rgb.reserve(static_cast<std::size_t>(spec.width) * spec.height * 3);
-  for (std::size_t p = 0; p < all.size(); p += spec.nchannels)
-    image.rgb.insert(image.rgb.end(), all.begin() + p, all.begin() + p + 3);
-  return image;
-}
 
 struct Rendered {
   Image image;

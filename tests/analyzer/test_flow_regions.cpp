@@ -8,8 +8,6 @@
 
 #include <cmath>
 #include <functional>
-#include <numbers>
-#include <random>
 
 namespace toonwater::test {
 namespace {
@@ -119,98 +117,6 @@ TEST(FlowRegions, AbsoluteThresholdOverridesTheRelativeOne) {
   const Flow f = flow_of(m, options);
   EXPECT_EQ(f.regions.threshold, 1e9);
   EXPECT_EQ(f.regions.ridge_vertices + f.regions.valley_vertices, 0u);
-}
-
-// Concentric ripples: z = a cos(k r) out to two wavelengths, fading to calm water beyond.
-constexpr double ripple_amplitude = 0.01, ripple_wavelength = 0.3;
-double ripple(double x, double y) {
-  const double r = std::hypot(x, y), k = 2 * std::numbers::pi / ripple_wavelength;
-  const double inner = 2.0 * ripple_wavelength, outer = 2.8 * ripple_wavelength;
-  const double envelope = r < inner ? 1.0 : r > outer ? 0.0 : std::pow(std::cos(0.5 * std::numbers::pi * (r - inner) / (outer - inner)), 2);
-  return ripple_amplitude * std::cos(k * r) * envelope;
-}
-
-// A height field of the ripple on an n × n grid whose x, y are jittered by `jitter` grid steps.
-TriangleMesh ripple_mesh(int n, double jitter) {
-  TriangleMesh m = height_field(n, ripple);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> offset(-jitter, jitter);
-  const double step = 2.0 / (n - 1);
-  for (Vec3& p : m.positions) {
-    if (std::abs(p.x()) < 1.0) p.x() += offset(rng) * step;
-    if (std::abs(p.y()) < 1.0) p.y() += offset(rng) * step;
-    p.z() = ripple(p.x(), p.y());
-  }
-  return m;
-}
-
-struct RippleScore {
-  double crest_ridge = 0, trough_valley = 0;  // shares of the vertices near each circle
-  std::size_t calm_labelled = 0;
-  double labelled_share = 0;  // of the area
-};
-
-RippleScore score_ripple(const TriangleMesh& m, const Flow& f) {
-  RippleScore score;
-  std::size_t crest = 0, trough = 0, area_n = 0;
-  double labelled_area = 0, total_area = 0;
-  for (std::size_t v = 0; v < m.positions.size(); ++v) {
-    const double r = std::hypot(m.positions[v].x(), m.positions[v].y());
-    const double phase = r / ripple_wavelength;  // crests at whole numbers, troughs at halves
-    const double area = f.curvature.field.area[v];
-    total_area += area;
-    if (f.regions.label[v] != FlowLabel::none) labelled_area += area;
-    ++area_n;
-    if (phase < 0.75 || phase > 2.0) {
-      if (phase > 3.0 && f.regions.label[v] != FlowLabel::none) ++score.calm_labelled;
-      continue;
-    }
-    const double to_crest = std::abs(phase - std::round(phase));
-    const double to_trough = std::abs(phase - std::floor(phase) - 0.5);
-    if (to_crest < 0.08) {
-      ++crest;
-      score.crest_ridge += f.regions.label[v] == FlowLabel::ridge;
-    } else if (to_trough < 0.08) {
-      ++trough;
-      score.trough_valley += f.regions.label[v] == FlowLabel::valley;
-    }
-  }
-  score.crest_ridge /= static_cast<double>(crest);
-  score.trough_valley /= static_cast<double>(trough);
-  score.labelled_share = labelled_area / total_area;
-  return score;
-}
-
-// The rings an animator draws around a drop: crests ridge, troughs valley, calm water nothing,
-// and the same labelled area whatever the resolution (the old T = c/ℓ² fell 4× per halving).
-TEST(FlowRegions, RippleRingsAreDrawnAsRingsAtEveryResolution) {
-  std::vector<double> shares;
-  for (const int n : {81, 161, 321}) {
-    const TriangleMesh m = ripple_mesh(n, 0.0);
-    const Flow f = flow_of(m);
-    const RippleScore score = score_ripple(m, f);
-    EXPECT_GE(score.crest_ridge, 0.8) << n;
-    EXPECT_GE(score.trough_valley, 0.8) << n;
-    EXPECT_EQ(score.calm_labelled, 0u) << n;
-    shares.push_back(score.labelled_share);
-  }
-  for (const double share : shares) {
-    EXPECT_GT(share, 0.05);
-    EXPECT_NEAR(share / shares.back(), 1.0, 0.25) << "labelled share changes with resolution";
-  }
-}
-
-TEST(FlowRegions, RippleRingsOnAJitteredMesh) {
-  std::vector<double> shares;
-  for (const int n : {161, 321}) {
-    const TriangleMesh m = ripple_mesh(n, 0.3);
-    const RippleScore score = score_ripple(m, flow_of(m));
-    EXPECT_GE(score.crest_ridge, 0.8) << n;
-    EXPECT_GE(score.trough_valley, 0.8) << n;
-    EXPECT_EQ(score.calm_labelled, 0u) << n;
-    shares.push_back(score.labelled_share);
-  }
-  EXPECT_NEAR(shares[0] / shares[1], 1.0, 0.25);
 }
 
 // A region smaller than A_min is not drawn, and regions fade in as they grow: the drawn area

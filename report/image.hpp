@@ -1,0 +1,22 @@
+// An RGB image read back from a render (OpenImageIO), for measurements on rendered pixels.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <vector>
+
+namespace toonwater::report {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<float> rgb;  // row-major, 3 channels in [0, 1] (as encoded in the file)
+  std::array<float, 3> pixel(int x, int y) const {
+    const std::size_t i = 3 * (static_cast<std::size_t>(y) * width + x);
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+  }
+};
+
+// Throws std::runtime_error naming the file when it cannot be read or has fewer than 3 channels.
+Image read_rgb(const std::filesystem::path& path);
+
+}  // namespace toonwater::report
