@@ -3,6 +3,7 @@
 #pragma once
 
 #include "analyzer/curvature.hpp"
+#include "analyzer/flow_coherence.hpp"
 #include "analyzer/flow_regions.hpp"
 #include "analyzer/mesh.hpp"
 #include "analyzer/topology.hpp"
@@ -22,6 +23,7 @@ struct AnalyzeOptions {
   bool flow_regions = true;  // false: curvature only, all labels 0
   Estimator estimator = Estimator::one_ring;
   int smoothing_steps = 0;  // curvature_smoothing.hpp; 0: none
+  FlowCoherence* coherence = nullptr;  // a sequence's carried flow state (flow_coherence.hpp)
 };
 
 struct StageTimes {  // seconds

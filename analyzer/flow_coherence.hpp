@@ -2,8 +2,8 @@
 //
 // Simulation meshes change topology every frame (marching cubes), so the field of one frame
 // cannot simply be compared with the last one's vertex by vertex. Each frame's free-surface
-// vertices find their closest free-surface vertex of the previous frame (a uniform grid with
-// cells of `max_distance` edge lengths) and blend the flow field s (flow_regions.hpp) with it,
+// vertices find their closest free-surface vertex of the previous frame within `max_distance`
+// edge lengths (point_grid.hpp) and blend the flow field s (flow_regions.hpp) with it,
 //   s̃ = (1 − b) s + b s̃_prev                      (exponential blend),
 // with b = rise_blend where the field grows (s has s̃_prev's sign and a larger magnitude) and
 // b = blend elsewhere, in the spirit of DeCarlo et al., "Interactive rendering of suggestive
@@ -28,6 +28,7 @@
 #include "analyzer/curvature.hpp"
 #include "analyzer/flow_regions.hpp"
 #include "analyzer/mesh.hpp"
+#include "analyzer/point_grid.hpp"
 
 #include <cstdint>
 #include <vector>
@@ -48,40 +49,28 @@ struct FlowFrame {
   double edge_length = 0.0;
 };
 
-// Closest point among `points` within a radius, through a uniform grid of cells of that size.
-class PointGrid {
- public:
-  PointGrid(const std::vector<Vec3>& points, double cell_size);
-  // Index of the closest point within cell_size of p, or −1.
-  std::int32_t closest(const Vec3& p) const;
-
- private:
-  struct Cell {
-    std::int64_t key;
-    std::int32_t begin, end;  // range in order_
-  };
-  std::int64_t key_of(const Vec3& p) const;
-  const std::vector<Vec3>& points_;
-  double cell_size_;
-  std::vector<std::int32_t> order_;  // point indices sorted by cell
-  std::vector<Cell> cells_;          // sorted by key
-};
-
 class FlowCoherence {
  public:
   explicit FlowCoherence(CoherenceOptions options = {}) : options_(options) {}
 
-  // Replaces flow.field, flow.label and the counts by coherent ones for this frame and
-  // remembers the frame. The first frame's are left as they are.
+  // The two halves, around label_flow_field (find_flow_regions calls them when given this):
+  // blends `field`, this frame's s before fading, with the frames seen before; then, once
+  // `flow` is labelled, remembers the frame and measures its flicker.
+  void blend(const TriangleMesh& surface, const FlowRegions& flow, std::vector<double>& field);
+  void remember(const CurvatureField& curvature, const FlowRegions& flow);
+
+  // Both, for a frame labelled on its own: replaces flow.field, flow.label and the counts by
+  // coherent ones. The first frame's are left as they are.
   void apply(const TriangleMesh& surface, const CurvatureField& curvature, FlowRegions& flow);
 
-  // Flicker of the frame last passed to apply(), against the frame before it: the share of
+  // Flicker of the frame last remembered, against the frame before it: the share of
   // free-surface area whose label changed; 0 for the first frame.
   double last_flicker() const { return last_flicker_; }
 
  private:
   CoherenceOptions options_;
-  FlowFrame previous_;
+  FlowFrame previous_, pending_;
+  std::vector<std::int32_t> predecessor_;  // per vertex of the pending frame, −1: none
   bool has_previous_ = false;
   double last_flicker_ = 0.0;
 };

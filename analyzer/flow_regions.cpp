@@ -3,6 +3,7 @@
 
 #include "analyzer/curvature_smoothing.hpp"
 #include "analyzer/disjoint_sets.hpp"
+#include "analyzer/flow_coherence.hpp"
 #include "analyzer/free_surface.hpp"
 
 #include <algorithm>
@@ -74,24 +75,31 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   flow.ridge_vertices = flow.valley_vertices = flow.regions = flow.specks_faded = 0;
   flow.region_of_interest = Box3{};
 
+  // The vertices in regions, numbered compactly: regions are a small part of the surface.
+  std::vector<std::int32_t> member_index(n, -1);
+  std::vector<std::int32_t> members;
+  for (std::size_t v = 0; v < n; ++v)
+    if (region_sign(field[v]) != FlowLabel::none) {
+      member_index[v] = static_cast<std::int32_t>(members.size());
+      members.push_back(static_cast<std::int32_t>(v));
+    }
   // Regions: vertices of one sign joined along the edges between them.
-  DisjointSets sets(n);
+  DisjointSets sets(members.size());
   for (const Triangle& t : mesh.triangles)
     for (int c = 0; c < 3; ++c) {
-      const std::int32_t a = t[c], b = t[(c + 1) % 3];
-      const std::int8_t sign = region_sign(field[a]);
-      if (sign != FlowLabel::none && sign == region_sign(field[b])) sets.join(a, b);
+      const std::int32_t a = member_index[t[c]], b = member_index[t[(c + 1) % 3]];
+      if (a >= 0 && b >= 0 && region_sign(field[t[c]]) == region_sign(field[t[(c + 1) % 3]]))
+        sets.join(a, b);
     }
-  std::vector<double> region_area(n, 0.0), region_peak(n, 0.0);
-  for (std::size_t v = 0; v < n; ++v) {
-    if (region_sign(field[v]) == FlowLabel::none) continue;
-    const std::int32_t r = sets.root(static_cast<std::int32_t>(v));
-    region_area[r] += vertex_area[v];
-    region_peak[r] = std::max(region_peak[r], std::abs(field[v]));
+  const std::size_t m = members.size();
+  std::vector<double> region_area(m, 0.0), region_peak(m, 0.0), factor(m, 1.0);
+  for (std::size_t i = 0; i < m; ++i) {
+    const std::int32_t r = sets.root(static_cast<std::int32_t>(i));
+    region_area[r] += vertex_area[members[i]];
+    region_peak[r] = std::max(region_peak[r], std::abs(field[members[i]]));
   }
-  std::vector<double> factor(n, 1.0);
-  for (std::size_t r = 0; r < n; ++r) {
-    if (region_peak[r] == 0.0) continue;
+  for (std::size_t r = 0; r < m; ++r) {
+    if (region_peak[r] == 0.0) continue;  // not a root
     if (flow.min_region_area > 0.0)
       factor[r] = fade_factor(region_area[r], region_peak[r], flow.min_region_area);
     flow.specks_faded += factor[r] < 1.0;
@@ -101,9 +109,9 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   Box3& box = flow.region_of_interest;
   box.min = Vec3::Constant(std::numeric_limits<double>::infinity());
   box.max = -box.min;
-  for (std::size_t v = 0; v < n; ++v) {
-    if (region_sign(field[v]) != FlowLabel::none)
-      field[v] *= factor[sets.root(static_cast<std::int32_t>(v))];
+  for (std::size_t i = 0; i < m; ++i) {
+    const std::int32_t v = members[i];
+    field[v] *= factor[sets.root(static_cast<std::int32_t>(i))];
     const std::int8_t label = region_sign(field[v]);
     flow.label[v] = label;
     if (label == FlowLabel::none) continue;
@@ -117,7 +125,8 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
 }
 
 FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
-                              const CurvatureField& curvature, const FlowOptions& options) {
+                              const CurvatureField& curvature, const FlowOptions& options,
+                              FlowCoherence* coherence) {
   const std::size_t n = mesh.positions.size();
   FlowRegions flow;
   flow.criterion = options.criterion;
@@ -174,7 +183,9 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
                         options.smoothing_steps.value_or(defaults.smoothing_steps));
   }
   flow.smoothed_field = field;
+  if (coherence) coherence->blend(mesh, flow, field);
   label_flow_field(mesh, curvature.area, std::move(field), flow);
+  if (coherence) coherence->remember(curvature, flow);
   return flow;
 }
 

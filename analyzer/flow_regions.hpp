@@ -111,8 +111,13 @@ struct FlowRegions {
 // Median edge length, from a deterministic sample of at most `max_samples` edges.
 double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples = 100000);
 
+class FlowCoherence;
+
+// With `coherence` (a sequence's state, flow_coherence.hpp), step 2 blends this frame's field
+// with the frames it saw before.
 FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
-                              const CurvatureField& curvature, const FlowOptions& options);
+                              const CurvatureField& curvature, const FlowOptions& options,
+                              FlowCoherence* coherence = nullptr);
 
 // Steps 3 and 4 of the header on `field` (s before the fading, after coherence for example):
 // fades the specks, then sets flow.field, the labels, the counts and the region of interest.

@@ -3,12 +3,15 @@
 //   ReadObj          read_mesh of an OBJ file written once to the temp directory
 //   Prepare          weld + topology + orientation
 //   Curvature        compute_curvature
-//   FlowRegions      find_flow_regions
+//   FlowRegions      find_flow_regions: the flow field, its smoothing, fading and labels
+//   FlowWithCoherence  the same blended with a previous frame (flow_coherence.hpp): the whole
+//                    flow stage of a sequence frame in povgen
 //   CurvatureAndLabels  the two together — the figure the targets are stated for
 //   AnalyzeCommand   `toonwater analyze MESH --csv FILE` end to end as a child process, with
 //                    its peak resident memory per vertex (counter bytes_per_vertex)
 #include "analyzer/analysis.hpp"
 #include "analyzer/analytic_surfaces.hpp"
+#include "analyzer/flow_coherence.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "analyzer/weld.hpp"
 
@@ -123,6 +126,17 @@ void FlowRegions(benchmark::State& state) {
   set_vertex_rate(state, p.mesh.positions.size());
 }
 
+void FlowWithCoherence(benchmark::State& state) {
+  const Prepared p = prepared(state.range(0));
+  const CurvatureField field = compute_curvature(p.mesh, p.topology);
+  FlowCoherence coherence;
+  find_flow_regions(p.mesh, p.topology.vertex_faces, field, wave_flow_options(), &coherence);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        find_flow_regions(p.mesh, p.topology.vertex_faces, field, wave_flow_options(), &coherence));
+  set_vertex_rate(state, p.mesh.positions.size());
+}
+
 void CurvatureAndLabels(benchmark::State& state) {
   const Prepared p = prepared(state.range(0));
   for (auto _ : state) {
@@ -165,6 +179,7 @@ BENCHMARK(ReadObj)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(Prepare)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(Curvature)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(FlowRegions)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(FlowWithCoherence)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(CurvatureAndLabels)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(AnalyzeCommand)->Arg(1000)->UseManualTime()->Iterations(3)->Unit(benchmark::kMillisecond);
 

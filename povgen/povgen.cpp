@@ -53,10 +53,11 @@ PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* f
   const auto start = Clock::now();
   PreparedSurface out;
   if (flow) {
-    Analysis a = analyze_mesh(std::move(input), analysis_options(*flow, up, shading));
+    AnalyzeOptions options = analysis_options(*flow, up, shading);
+    options.coherence = shading == WaterShading::toon ? coherence : nullptr;
+    Analysis a = analyze_mesh(std::move(input), options);
     out.mesh = make_scene_mesh(a.surface, a.curvature.normal, is_closed(a.topology), up);
     if (shading == WaterShading::toon) {
-      if (coherence) coherence->apply(a.surface, a.curvature, a.flow);
       if (flow->style != FlowStyle::regions) {
         // Strokes taper over 3 % of the scene's size: resolution-free, like the field.
         out.flow_lines = trace_flow_lines(a.surface, a.flow, 0.03 * a.flow.scale_length);

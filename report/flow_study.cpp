@@ -190,8 +190,12 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
                                                        const fs::path& work_dir,
                                                        const fs::path& picture_dir,
                                                        double pixels_per_cell,
-                                                       const std::vector<FlowCriterion>& criteria) {
-  const povgen::Sequence sequence = povgen::find_sequence(pattern, fs::current_path());
+                                                       const std::vector<FlowCriterion>& criteria,
+                                                       std::optional<povgen::FrameRange> frames) {
+  povgen::Sequence sequence = povgen::find_sequence(pattern, fs::current_path());
+  if (frames)
+    std::erase_if(sequence.frames, [&](const auto& f) { return f.first < frames->first || f.first > frames->last; });
+  if (sequence.frames.empty()) throw std::runtime_error(pattern + ": no frame in the range");
   // The overhead camera and the picture size from the first frame: cells of the median edge.
   const TriangleMesh first = read_mesh(sequence.frames.begin()->second).mesh;
   Vec3 min = first.positions.front(), max = min;
@@ -215,6 +219,7 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
   config.render.width = std::max(16, static_cast<int>(std::ceil(across / cell * pixels_per_cell)));
   config.render.height = std::max(16, static_cast<int>(std::ceil(down / cell * pixels_per_cell)));
   config.render.antialias = false;
+  config.render.frames = frames;
   config.water.transmit = 0.0;
   config.water.reflection = 0.0;
   config.water.ks = 0.0;

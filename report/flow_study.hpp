@@ -16,11 +16,13 @@
 
 #include "analyzer/analysis.hpp"
 #include "analyzer/mesh.hpp"
+#include "povgen/config.hpp"
 #include "report/image.hpp"
 
 #include <array>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -76,7 +78,7 @@ struct SequenceFlowStudy {
   std::filesystem::path picture;  // one rendered frame (the middle one)
 };
 
-// Renders the water sequence `pattern` (up axis `up`) from straight above with each criterion's
+// Renders the water sequence `pattern` (up axis `up`; `frames` of it, default all) from straight above with each criterion's
 // regions in flat red (ridge) and green (valley), coherence on, and measures every frame. Scenes
 // and frames go under `work_dir`; the middle frame is copied to `picture_dir` as
 // flow_<criterion>.png. Throws std::runtime_error when a frame fails to render.
@@ -85,6 +87,7 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
                                                        const std::filesystem::path& picture_dir,
                                                        double pixels_per_cell,
                                                        const std::vector<FlowCriterion>& criteria =
-                                                           {FlowCriterion::mean, FlowCriterion::paper});
+                                                           {FlowCriterion::mean, FlowCriterion::paper},
+                                                       std::optional<povgen::FrameRange> frames = {});
 
 }  // namespace toonwater::report

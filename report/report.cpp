@@ -321,6 +321,49 @@ std::string pipeline_table(const std::vector<PipelineTiming>& rows, int width, i
   return md;
 }
 
+std::string ripple_csv(const std::vector<RippleRow>& rows) {
+  std::string s = "criterion,n,jittered,crest_ridge,trough_valley,calm_labelled,labelled_share\n";
+  for (const RippleRow& r : rows)
+    s += r.criterion + "," + std::to_string(r.n) + "," + (r.jittered ? "1" : "0") + "," +
+         g(r.coverage.crest_ridge) + "," + g(r.coverage.trough_valley) + "," +
+         g(r.coverage.calm_labelled) + "," + g(r.coverage.labelled_share) + "\n";
+  return s;
+}
+
+std::string percent(double share) { return format("%.1f %%", 100.0 * share); }
+
+std::string flow_section(const ReportResult& r, double pixels_per_cell) {
+  std::string s =
+      "The flow regions' criterion (`--criterion`, `flow.criterion`): `mean` (default), s = H/T "
+      "with T = 2/L; `paper`, s = sign(H)|K|/T with T = 30/L² (L = sqrt of the free surface's "
+      "area; analyzer/flow_regions.hpp).\n\n"
+      "**Analytic concentric ripples** (z = a cos kr, a = 0.01, λ = 0.3 on a 2 × 2 sheet, calm "
+      "beyond 2.8 λ; jittered: x, y moved by up to 0.3 grid steps). Shares of the vertices near "
+      "the crest circles labelled ridge and near the trough circles labelled valley, of calm "
+      "water labelled, and of the sheet's area labelled:\n\n"
+      "| criterion | mesh | n × n | crests ridge | troughs valley | calm labelled | area labelled |\n"
+      "|---|---|---:|---:|---:|---:|---:|\n";
+  for (const RippleRow& row : r.ripples)
+    s += "| " + row.criterion + " | " + (row.jittered ? "jittered" : "regular") + " | " +
+         std::to_string(row.n) + " | " + percent(row.coverage.crest_ridge) + " | " +
+         percent(row.coverage.trough_valley) + " | " + percent(row.coverage.calm_labelled) +
+         " | " + percent(row.coverage.labelled_share) + " |\n";
+  s += "\n**mantaflow-wake from straight above**, " + format("%.0f", pixels_per_cell) +
+       " pixels a cell, ridge red and valley green, coherence on, every frame rendered by "
+       "POV-Ray and measured on its pixels: frames with regions, share of the flow pixels in "
+       "pieces under 4 cells² (specks), and boundary length over its one-cell-smoothed length "
+       "(median over the frames; 1 is smooth, a staircase along mesh edges is longer):\n\n";
+  if (r.flow_sequence.empty()) return s + "Not measured: " + r.flow_sequence_failure + "\n\n";
+  s += "| criterion | frames with regions | specks | boundary roughness | middle frame |\n"
+       "|---|---:|---:|---:|---|\n";
+  for (const SequenceFlowStudy& f : r.flow_sequence)
+    s += "| " + f.criterion + " | " + std::to_string(f.frames_with_regions) + " / " +
+         std::to_string(f.frames) + " | " + percent(f.speck_share) + " | " +
+         format("%.3f", f.boundary_ratio) + " | ![" + f.criterion + "](" +
+         f.picture.filename().string() + ") |\n";
+  return s + "\n";
+}
+
 std::string render_quality_csv(const RenderQualityResult& r) {
   std::string csv = "preset,width,height,seconds,rmse,band_mismatch\n";
   for (const RenderQualitySample& p : r.presets)
@@ -401,6 +444,27 @@ ReportResult write_report(const ReportOptions& options) {
     result.render_quality_failure = e.what();
   }
 
+  progress("flow criteria: analytic ripples");
+  result.ripples = run_ripple_study(options.size == ReportSize::quick ? std::vector<int>{81, 161}
+                                                                      : std::vector<int>{81, 161, 321});
+  const fs::path wake_frames = options.data_dir / "mantaflow-wake" / "water_####.obj";
+  const double pixels_per_cell = options.size == ReportSize::quick ? 2.0 : 8.0;
+  if (!fs::exists(options.data_dir / "mantaflow-wake" / "water_0001.obj")) {
+    result.flow_sequence_failure = "the sample simulation was not found in " + options.data_dir.string();
+  } else {
+    progress("flow criteria: mantaflow-wake from above");
+    try {
+      // A quick run measures frames 10–15 (the wake at its busiest) at 2 pixels a cell.
+      std::optional<povgen::FrameRange> frames;
+      if (options.size == ReportSize::quick) frames = povgen::FrameRange{10, 15};
+      result.flow_sequence = run_sequence_flow_study(fs::absolute(wake_frames).string(), Axis::z,
+                                                     work, options.out_dir, pixels_per_cell,
+                                                     {FlowCriterion::mean, FlowCriterion::paper}, frames);
+    } catch (const std::exception& e) {
+      result.flow_sequence_failure = e.what();
+    }
+  }
+  write_file_atomically(options.out_dir / "flow_ripples.csv", ripple_csv(result.ripples));
   write_file_atomically(options.out_dir / "curvature_errors.csv", study_csv(result.study));
   write_file_atomically(options.out_dir / "pipeline.csv", pipeline_csv(result.pipeline));
   if (result.render_quality) {
@@ -456,6 +520,8 @@ ReportResult write_report(const ReportOptions& options) {
                                      std::to_string(result.pipeline.front().vertices) + " vertices)",
                                  width, height);
   md += "## 4. Table 1: time per frame\n\n" + pipeline_table(result.pipeline, width, height);
+  md += "\n## 5. Flow regions: the paper's criterion and the default\n\n" +
+        flow_section(result, pixels_per_cell);
   if (!fs::exists(options.data_dir / "mantaflow-wake"))
     md += "\nThe sample simulation was not found in " + options.data_dir.string() +
           " (pass `--data DIR`).\n";

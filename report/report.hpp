@@ -4,10 +4,12 @@
 //   pipeline.csv           the Table 1 timings (pipeline_timing.hpp)
 //   render_quality.csv     render presets against a reference render (render_quality.hpp)
 //   error_{K,H}_{regular,jittered,noisy}.svg, render_error.svg   error against run time, log–log
+//   flow_ripples.csv, flow_mean.png, flow_paper.png   the flow criteria compared (flow_study.hpp)
 // Every number in them comes from this run.
 #pragma once
 
 #include "report/curvature_study.hpp"
+#include "report/flow_study.hpp"
 #include "report/pipeline_timing.hpp"
 #include "report/render_quality.hpp"
 
@@ -37,6 +39,9 @@ struct ReportResult {
   std::vector<PipelineTiming> pipeline;
   std::optional<RenderQualityResult> render_quality;  // of the first pipeline input's scene
   std::string render_quality_failure;                 // why it is empty
+  std::vector<RippleRow> ripples;                     // flow criteria on analytic ripples
+  std::vector<SequenceFlowStudy> flow_sequence;       // and on mantaflow-wake from above
+  std::string flow_sequence_failure;                  // why that is empty
 };
 
 ReportResult write_report(const ReportOptions& options);

@@ -43,9 +43,10 @@ SequenceMaps write_sequence_maps(const std::vector<std::filesystem::path>& frame
   result.view = planner.view(maps);
   result.ranges = planner.ranges(maps.percentile);
   FlowCoherence coherence;
+  AnalyzeOptions coherent = analyze;
+  if (coherent_labels) coherent.coherence = &coherence;
   for (const auto& frame : frames) {
-    if (std::optional<Analysis> a = analyze_frame(frame, analyze, transform)) {
-      if (coherent_labels) coherence.apply(a->surface, a->curvature, a->flow);
+    if (std::optional<Analysis> a = analyze_frame(frame, coherent, transform)) {
       write_maps(dir, frame_stem(frame), *a, result.view, result.ranges);
       ++result.frames;
     }

@@ -98,8 +98,21 @@ TEST(Report, QuickRunHasFiniteNumbersAndErrorsFallingOnRegularMeshes) {
   EXPECT_GT(number(quality[1][4]), 0.0);
 
   const std::string md = read_text(dir / "out" / "report.md");
-  for (const char* part : {"## 1.", "## 2.", "## 3.", "## 4.", "error_H_jittered.svg"})
+  for (const char* part : {"## 1.", "## 2.", "## 3.", "## 4.", "## 5.", "error_H_jittered.svg"})
     EXPECT_NE(md.find(part), std::string::npos) << part;
+  // The flow criteria on ripples: the default draws the crest circles, the paper's rule less.
+  const std::vector<Row> ripples = read_csv(read_text(dir / "out" / "flow_ripples.csv"));
+  ASSERT_EQ(ripples.front(), (Row{"criterion", "n", "jittered", "crest_ridge", "trough_valley",
+                                  "calm_labelled", "labelled_share"}));
+  ASSERT_EQ(ripples.size(), 1u + 2 * 2 * 2);  // criteria × meshes × resolutions
+  for (std::size_t i = 1; i < ripples.size(); ++i) {
+    const double crest = number(ripples[i][3]);
+    EXPECT_TRUE(ripples[i][0] == "mean" ? crest >= 0.8 : crest < 0.5) << ripples[i][0] << " " << crest;
+  }
+  if (!shared_dir().empty()) {
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / "flow_mean.png"));
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / "flow_paper.png"));
+  }
   const std::string svg = read_text(dir / "out" / "error_H_jittered.svg");
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_GE(std::count(svg.begin(), svg.end(), '\n'), 20);
