@@ -51,14 +51,16 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
   std::fprintf(stderr,
                "%s: %zu vertices (%zu welded), %zu faces\n"
                "  boundary %zu, non-manifold %zu, isolated %zu vertices; degenerate faces "
-               "%zu, mollified faces %zu, flipped faces %zu; curvature extrapolated at %zu, undefined at %zu\n"
+               "%zu, caps %zu, mollified faces %zu (intrinsic flips %zu), flipped faces %zu;\n"
+               "  curvature extrapolated at %zu, undefined at %zu\n"
                "  flow: T = %.6g (median edge %.6g), rest height %.6g, free surface %zu vertices "
                "(%zu patches dropped), ridge %zu, valley %zu\n"
                "  time: read %.3f s, weld %.3f s, topology %.3f s, curvature %.3f s, "
                "flow %.3f s, write %.3f s\n",
                mesh_path.c_str(), a.input_vertices, a.merged_vertices, a.surface.triangles.size(),
                t.boundary_vertices, t.nonmanifold_vertices, t.isolated_vertices,
-               a.curvature.degenerate_faces, a.curvature.mollified_faces, a.flipped_faces, a.curvature.extrapolated_vertices,
+               a.curvature.degenerate_faces, a.curvature.cap_faces, a.curvature.mollified_faces,
+               a.curvature.intrinsic_flips, a.flipped_faces, a.curvature.extrapolated_vertices,
                a.curvature.undefined_vertices,
                f.threshold, f.median_edge_length, f.rest_height, f.free_surface_vertices,
                f.free_surface_patches_dropped, f.ridge_vertices, f.valley_vertices, read_seconds, a.times.weld, a.times.topology,
