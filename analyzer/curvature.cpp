@@ -330,7 +330,7 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   const Counts counts = gather_all(nullptr);
   if (counts.mollification > 0.0 || counts.caps > 0) {
     const IntrinsicTriangulation intrinsic =
-        intrinsic_delaunay(mesh, scale, std::max(counts.mollification, 0.0));
+        intrinsic_delaunay(mesh, topology.vertex_faces, scale, std::max(counts.mollification, 0.0));
     field.intrinsic_flips = intrinsic.flips;
     gather_all(&intrinsic);
   }

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <tuple>
 
 namespace toonwater {
 namespace {
@@ -37,44 +36,47 @@ double double_area_from_lengths(double a, double b, double c) {
   return 0.5 * std::sqrt(std::max(product, 0.0));
 }
 
-IntrinsicTriangulation intrinsic_delaunay(const TriangleMesh& mesh, double scale, double delta) {
+IntrinsicTriangulation intrinsic_delaunay(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
+                                          double scale, double delta) {
   IntrinsicTriangulation result;
   auto& faces = result.faces;
   auto& lengths = result.lengths;
-  for (const Triangle& t : mesh.triangles) {
+  std::vector<std::int32_t> intrinsic_index(mesh.triangles.size(), -1);  // of each mesh face
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
     std::array<double, 3> l;
     for (int c = 0; c < 3; ++c)
       l[c] = ((mesh.positions[t[(c + 1) % 3]] - mesh.positions[t[c]]) * scale).norm();
     if (has_repeated_corner(t) || l[0] == 0.0 || l[1] == 0.0 || l[2] == 0.0) continue;
     for (double& x : l) x += delta;
+    intrinsic_index[f] = static_cast<std::int32_t>(faces.size());
     faces.push_back(t);
     lengths.push_back(l);
   }
 
-  // Twins: the directed edges sorted by their undirected key; a key held by exactly two
-  // halfedges of opposite direction is an interior manifold edge.
+  // Twins, from the mesh's faces around each vertex: an edge held by exactly two faces, in
+  // opposite directions, is an interior manifold edge.
   const std::size_t halfedges = 3 * faces.size();
   std::vector<std::int32_t> twin(halfedges, -1);
-  {
-    std::vector<std::tuple<std::int32_t, std::int32_t, std::int32_t>> keyed(halfedges);
-    for (std::size_t h = 0; h < halfedges; ++h) {
-      const std::int32_t a = faces[h / 3][h % 3], b = faces[h / 3][(h % 3 + 1) % 3];
-      keyed[h] = {std::min(a, b), std::max(a, b), static_cast<std::int32_t>(h)};
-    }
-    std::sort(keyed.begin(), keyed.end());
-    for (std::size_t i = 0; i < keyed.size();) {
-      std::size_t j = i;
-      while (j < keyed.size() && std::get<0>(keyed[j]) == std::get<0>(keyed[i]) &&
-             std::get<1>(keyed[j]) == std::get<1>(keyed[i]))
-        ++j;
-      if (j - i == 2) {
-        const std::int32_t h = std::get<2>(keyed[i]), g = std::get<2>(keyed[i + 1]);
-        if (faces[h / 3][h % 3] != faces[g / 3][g % 3]) {  // opposite directions
-          twin[h] = g;
-          twin[g] = h;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      const std::int32_t a = faces[f][c], b = faces[f][(c + 1) % 3];
+      int holders = 0;
+      std::int32_t reverse = -1;
+      for (std::int32_t g : vertex_faces.of(a)) {
+        const std::int32_t i = intrinsic_index[g];
+        if (i < 0) continue;
+        const Triangle& t = faces[i];
+        for (int k = 0; k < 3; ++k) {
+          if (t[k] == b && t[(k + 1) % 3] == a) {
+            ++holders;
+            reverse = 3 * i + k;
+          } else if (t[k] == a && t[(k + 1) % 3] == b) {
+            ++holders;
+          }
         }
       }
-      i = j;
+      if (holders == 2 && reverse >= 0) twin[3 * f + c] = reverse;
     }
   }
 

@@ -33,8 +33,9 @@ struct IntrinsicTriangulation {
 };
 
 // Faces with a repeated corner or a zero-length edge are left out. Lengths are those of the
-// positions times `scale`, plus `delta`.
-IntrinsicTriangulation intrinsic_delaunay(const TriangleMesh& mesh, double scale, double delta);
+// positions times `scale`, plus `delta`. `vertex_faces` are the mesh's.
+IntrinsicTriangulation intrinsic_delaunay(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
+                                          double scale, double delta);
 
 // Twice the area of a triangle with edge lengths a, b, c (Kahan, "Miscalculating Area and
 // Angles of a Needle-like Triangle", 2014): accurate for needles and caps.
