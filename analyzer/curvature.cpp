@@ -12,17 +12,19 @@
 //   stretched quad are exact geometry, and their cotangents (u·v)/|u×v| are accurate: |u×v| has
 //   a relative round-off error of about ε/sin θ, 1e-14 at 0.06°.
 // - Where a face has an angle above 150°, or is within ε = 1e-6 of violating the triangle
-//   inequality, areas and cotangents come from the intrinsic Delaunay triangulation
-//   (intrinsic_delaunay.hpp: Fisher, Springborn, Bobenko, Schröder 2007) of the mesh's edge
-//   lengths, each first increased by the least δ that gives every face a slack
+//   inequality, the cotangent weights of the Laplacian come from the intrinsic Delaunay
+//   triangulation (intrinsic_delaunay.hpp: Fisher, Springborn, Bobenko, Schröder 2007) of the
+//   mesh's edge lengths, each first increased by the least δ that gives every face a slack
 //   ℓᵢ + ℓⱼ − ℓₖ ≥ ε ℓₖ (intrinsic mollification, Sharp and Crane 2020). Such a face is where
 //   the cotangent operator stops describing the surface: a cap standing on edge — a T-junction
 //   as marching cubes leaves them, its third vertex a hair off the long edge — makes the
 //   cotangent Laplacian see a 90° crease along that edge (MeshLab returns H = 1e7 next to one),
 //   and a collinear face has no cotangents at all. Flipping the edges whose cotangent weight is
-//   negative removes both; angles at vertices, hence K, do not change; the Laplacian still
-//   acts on the positions. A mesh without such faces (every analytic test surface) is computed
-//   from its positions alone, in one pass; the first pass detects the need for the second.
+//   negative removes both. The Laplacian still acts on the positions; angles (so the deficit)
+//   and the mixed areas stay the mesh's own, exact geometry, so K and the area a vertex stands
+//   for do not depend on the triangulation chosen for L. A mesh without such faces (every
+//   analytic test surface) is computed from its positions alone, in one pass; the first pass
+//   detects the need for the second.
 //   Measured against the alternatives (README, "Thin and degenerate faces"):
 //   · leaving thin faces out (angles below 3°, as this code did): the UV sphere's poles become
 //     undefined or extrapolated, error 0.17 at 10k vertices against MeshLab's 5.7e-3;
@@ -30,8 +32,10 @@
 //     K error 6.9e-3, H 4.5e-3, 16× and 33× the unclamped operator) and leaves the crease of
 //     a standing cap (H off by 11 at its corners);
 //   · mollification alone: exact on the UV sphere, but the cap's crease stays (H off by 11);
-//   · mollification and intrinsic Delaunay (chosen): exact on the UV sphere, no crease (the
-//     cap's corners within 0.7 of the sphere's H, as the piecewise-linear surface has them).
+//   · mollification and intrinsic Delaunay for the Laplacian (chosen): exact on the UV sphere,
+//     no crease (H within 0.34 of the sphere's at the cap's corners). Taking the intrinsic
+//     triangulation's Voronoi areas as well made K 2.7× worse on a jittered UV sphere (its
+//     sheared pole fans) and H at the cap twice as far off, so the areas stay the mesh's.
 // - A face with a repeated corner or a zero-length edge has no shape (no angles, no plane) and
 //   contributes nothing; its corners lack part of their one-ring.
 // - Boundary and non-manifold vertices and the corners of shapeless faces have no complete
@@ -93,6 +97,7 @@ double mollification_needed(double xa2, double xb2, double ab2) {
   return (mollification_slack * longest - slack) / (1.0 - mollification_slack);
 }
 
+// Whether re + i·im lies in [π, 2π) (see gather_one_ring).
 bool in_lower_half(double re, double im) { return im < 0.0 || (im == 0.0 && re < 0.0); }
 
 // What one vertex gathers from its incident faces.
@@ -108,21 +113,14 @@ struct OneRing {
   std::size_t caps = 0;           // faces counted here with an angle above 150°
 };
 
-// Mixed area and Laplacian terms of corner x of a face (x, a, b) with edge lengths |xa| = la,
-// |xb| = lb, |ab| = lab; xa = a − x and xb = b − x are positions.
-void add_corner(OneRing& ring, double la, double lb, double lab, const Vec3& xa, const Vec3& xb) {
+// The Laplacian terms of corner x of a face (x, a, b) with edge lengths |xa| = la, |xb| = lb,
+// |ab| = lab; xa = a − x and xb = b − x are positions.
+void add_laplacian_terms(OneRing& ring, double la, double lb, double lab, const Vec3& xa,
+                         const Vec3& xb) {
   const double la2 = la * la, lb2 = lb * lb, lab2 = lab * lab;
-  const double double_area = double_area_from_lengths(la, lb, lab);
-  const double inverse_area = 0.5 / double_area;  // cot = (law of cosines) / (4A)
+  const double inverse_area = 0.5 / double_area_from_lengths(la, lb, lab);  // cot = (…)/(4A)
   const double cot_a = (la2 + lab2 - lb2) * inverse_area;
   const double cot_b = (lb2 + lab2 - la2) * inverse_area;
-  const double face_area = 0.5 * double_area;
-  if (la2 + lb2 - lab2 < 0.0)
-    ring.area += 0.5 * face_area;
-  else if (cot_a < 0.0 || cot_b < 0.0)
-    ring.area += 0.25 * face_area;
-  else
-    ring.area += 0.125 * (la2 * cot_b + lb2 * cot_a);
   ring.laplacian -= cot_b * xa + cot_a * xb;
 }
 
@@ -134,8 +132,8 @@ void add_corner(OneRing& ring, double la, double lb, double lab, const Vec3& xa,
 // not the difference of two numbers near 2π, and it costs one atan2 per vertex instead of one
 // per corner.
 //
-// Without `intrinsic`, areas and cotangents come from the faces' positions; with it, from its
-// faces and lengths (the angles and the normal always come from the mesh's own faces).
+// Without `intrinsic`, the Laplacian's cotangents come from the faces' positions; with it, from
+// its faces and lengths. Angles, normal and area always come from the mesh's own faces.
 OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double scale,
                         const IntrinsicTriangulation* intrinsic, std::int32_t v) {
   OneRing ring;
@@ -180,9 +178,7 @@ OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double 
     }
 
     if (counts_here && std::min({dot_x, dot_a, dot_b}) < cap_cotangent * double_area) ++ring.caps;
-    if (intrinsic) continue;
-
-    // Mixed Voronoi area (Meyer et al. 2002, Fig. 4).
+    // Mixed Voronoi area (Meyer et al. 2002, Fig. 4), always the mesh's own.
     const double face_area = 0.5 * double_area;
     const double inverse_area = 1.0 / double_area;
     const double cot_a = dot_a * inverse_area, cot_b = dot_b * inverse_area;
@@ -194,7 +190,7 @@ OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double 
       ring.area += 0.125 * (xa2 * cot_b + xb2 * cot_a);
 
     // Cotangent Laplacian: edge x–a is weighted by the cotangent at b, edge x–b by that at a.
-    ring.laplacian -= cot_b * xa + cot_a * xb;
+    if (!intrinsic) ring.laplacian -= cot_b * xa + cot_a * xb;
   }
   if (intrinsic) {
     for (std::int32_t f : intrinsic->vertex_faces.of(v)) {
@@ -203,7 +199,7 @@ OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double 
       const int corner = t[0] == v ? 0 : t[1] == v ? 1 : 2;
       const int next = (corner + 1) % 3, last = (corner + 2) % 3;
       const Vec3 xa = mesh.positions[t[next]] * scale - x, xb = mesh.positions[t[last]] * scale - x;
-      add_corner(ring, l[corner], l[last], l[next], xa, xb);
+      add_laplacian_terms(ring, l[corner], l[last], l[next], xa, xb);
     }
   }
   // The argument in [−π, π), on the side of the branch cut that the turn count assumes.

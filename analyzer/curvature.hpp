@@ -47,7 +47,7 @@ struct CurvatureField {
   // there are any, every edge length is mollified by `mollification` (input units, else 0).
   std::size_t mollified_faces = 0;
   double mollification = 0.0;
-  // Faces with an angle above 150°. If there are any, or mollified faces, areas and
+  // Faces with an angle above 150°. If there are any, or mollified faces, the Laplacian's
   // cotangents come from the intrinsic Delaunay triangulation, made with this many flips.
   std::size_t cap_faces = 0;
   std::size_t intrinsic_flips = 0;
