@@ -14,8 +14,9 @@
 // Each vertex gathers its sums from its incident faces, read from compressed rows over the flat
 // position and triangle arrays (no halfedge circulators); the vertices split over the cores
 // with no shared writes. See curvature.cpp for how the angle sum is kept exact, how thin and
-// degenerate faces (intrinsic mollification, Sharp and Crane 2020), boundaries and non-manifold
-// vertices are handled.
+// degenerate faces are handled (L from the intrinsic Delaunay triangulation of mollified edge
+// lengths where the mesh has caps or near-collinear faces), and boundaries and non-manifold
+// vertices.
 #pragma once
 
 #include "analyzer/mesh.hpp"
