@@ -154,7 +154,7 @@ AnalyticSurface make_uv_sphere(int rings, int segments, double radius, Jitter ji
       s.mesh.positions.push_back(
           radius * Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
                         std::cos(theta)));
-      s.interior.push_back(i >= 3 && i <= rings - 3);
+      s.interior.push_back(true);
     }
   }
   // Rows run from the north pole down (θ grows), columns eastward: counter-clockwise outside.
@@ -162,8 +162,8 @@ AnalyticSurface make_uv_sphere(int rings, int segments, double radius, Jitter ji
   const auto north = static_cast<std::int32_t>(s.mesh.positions.size());
   s.mesh.positions.emplace_back(0, 0, radius);
   s.mesh.positions.emplace_back(0, 0, -radius);
-  s.interior.push_back(false);
-  s.interior.push_back(false);
+  s.interior.push_back(true);
+  s.interior.push_back(true);
   const std::int32_t south = north + 1, last_row = (rings - 2) * segments;
   for (int j = 0; j < segments; ++j) {
     const int j1 = (j + 1) % segments;

@@ -27,7 +27,7 @@ struct AnalyticSurface {
 
 // Loop-style subdivision of an icosahedron projected on the sphere: 10·4^s + 2 vertices.
 AnalyticSurface make_icosphere(int subdivisions, double radius = 1.0, Jitter jitter = {});
-// Latitude/longitude sphere; the pole caps are not interior.
+// Latitude/longitude sphere, poles included in the errors (their fans are thin: 360°/segments).
 AnalyticSurface make_uv_sphere(int rings, int segments, double radius = 1.0, Jitter jitter = {});
 // Torus around the z axis, major radius R, minor radius r.
 AnalyticSurface make_torus(int major_segments, int minor_segments, double R = 1.0, double r = 0.4,

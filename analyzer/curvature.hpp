@@ -4,15 +4,19 @@
 //   A  = mixed Voronoi area (Voronoi part for non-obtuse triangles, area/2 at an obtuse corner,
 //        area/4 at the other corners of an obtuse triangle)
 //   K  = (2π − Σθ) / A                                   (angle deficit)
-//   H  = 1/(4A) Σ (cot α + cot β)(xᵢ − xⱼ)·n̂             (cotangent Laplace–Beltrami, signed:
-//        H > 0 on a sphere with outward normals)
+//   L  = Σ (cot α + cot β)(xᵢ − xⱼ)                     (cotangent Laplace–Beltrami of x)
+//   H  = ±‖L‖/(4A), the sign of L·n̂                     (Meyer et al. §5.1: half the length of
+//        the mean curvature normal; H > 0 on a sphere with outward normals); where L leans
+//        more than 10° from n̂, (L·n̂)/(4A cos 10°) instead, so H stays continuous
 //   k1,2 = H ± sqrt(max(H² − K, 0))
 //   n̂  = angle-weighted vertex normal (Thürmer and Wüthrich 1998)
 //
 // Each vertex gathers its sums from its incident faces, read from compressed rows over the flat
 // position and triangle arrays (no halfedge circulators); the vertices split over the cores
-// with no shared writes. See curvature.cpp for how the angle sum is kept exact, and how
-// slivers, boundaries and non-manifold vertices are handled.
+// with no shared writes. See curvature.cpp for how the angle sum is kept exact, how thin and
+// degenerate faces are handled (L from the intrinsic Delaunay triangulation of mollified edge
+// lengths where the mesh has caps or near-collinear faces), and boundaries and non-manifold
+// vertices.
 #pragma once
 
 #include "analyzer/mesh.hpp"
@@ -26,7 +30,7 @@ namespace toonwater {
 
 enum class CurvatureStatus : std::uint8_t {
   computed,      // from the vertex's own one-ring
-  extrapolated,  // boundary, non-manifold or sliver corner: mean of its computed neighbours
+  extrapolated,  // boundary, non-manifold or degenerate-face corner: mean of computed neighbours
   undefined,     // no area and no computed neighbour: all values 0
 };
 
@@ -38,9 +42,16 @@ struct CurvatureField {
   std::vector<double> k1;  // k1 >= k2
   std::vector<double> k2;
   std::vector<CurvatureStatus> status;
-  // Faces left out of areas and cotangent weights: repeated corners, zero-length edges, zero
-  // area, or an angle below 3°.
-  std::size_t sliver_faces = 0;
+  // Faces left out: a repeated corner or a zero-length edge (no shape).
+  std::size_t degenerate_faces = 0;
+  // Faces within ε of violating the triangle inequality (caps near 180°, collinear faces): if
+  // there are any, every edge length is mollified by `mollification` (input units, else 0).
+  std::size_t mollified_faces = 0;
+  double mollification = 0.0;
+  // Faces with an angle above 150°. If there are any, or mollified faces, the Laplacian's
+  // cotangents come from the intrinsic Delaunay triangulation, made with this many flips.
+  std::size_t cap_faces = 0;
+  std::size_t intrinsic_flips = 0;
   std::size_t extrapolated_vertices = 0;
   std::size_t undefined_vertices = 0;
 };

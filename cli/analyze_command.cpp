@@ -50,8 +50,9 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
   const auto& f = a.flow;
   std::fprintf(stderr,
                "%s: %zu vertices (%zu welded), %zu faces\n"
-               "  boundary %zu, non-manifold %zu, isolated %zu vertices; degenerate or sliver "
-               "faces %zu, flipped faces %zu; curvature extrapolated at %zu, undefined at %zu\n"
+               "  boundary %zu, non-manifold %zu, isolated %zu vertices; degenerate faces "
+               "%zu, caps %zu, mollified faces %zu (intrinsic flips %zu), flipped faces %zu;\n"
+               "  curvature extrapolated at %zu, undefined at %zu\n"
                "  flow (%s): T = %.6g (scene length %.6g), rest height %.6g, free surface %zu "
                "vertices (%zu patches dropped), %zu regions (%zu specks faded below %.6g), "
                "ridge %zu, valley %zu\n"
@@ -59,7 +60,8 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
                "flow %.3f s, write %.3f s\n",
                mesh_path.c_str(), a.input_vertices, a.merged_vertices, a.surface.triangles.size(),
                t.boundary_vertices, t.nonmanifold_vertices, t.isolated_vertices,
-               a.curvature.sliver_faces, a.flipped_faces, a.curvature.extrapolated_vertices,
+               a.curvature.degenerate_faces, a.curvature.cap_faces, a.curvature.mollified_faces,
+               a.curvature.intrinsic_flips, a.flipped_faces, a.curvature.extrapolated_vertices,
                a.curvature.undefined_vertices,
                f.criterion == FlowCriterion::mean ? "mean" : "paper", f.threshold, f.scale_length,
                f.rest_height, f.free_surface_vertices, f.free_surface_patches_dropped, f.regions,

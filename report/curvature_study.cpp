@@ -20,6 +20,10 @@ AnalyticSurface make_surface(const std::string& surface, std::size_t target, Jit
     const int level = std::max(1, static_cast<int>(std::lround(std::log(n / 10.0) / std::log(4.0))));
     return surface == "sphere" ? make_icosphere(level, 1.0, j) : make_ellipsoid(level, 1.0, 0.8, 0.6, j);
   }
+  if (surface == "uv sphere") {  // rings × 2 rings
+    const int rings = std::max(8, static_cast<int>(std::lround(std::sqrt(n / 2.0))));
+    return make_uv_sphere(rings, 2 * rings, 1.0, j);
+  }
   if (surface == "torus") {
     const int minor = std::max(8, static_cast<int>(std::lround(std::sqrt(n / 2.0))));
     return make_torus(2 * minor, minor, 1.0, 0.4, j);
@@ -69,8 +73,8 @@ RelativeError relative_error(const std::vector<double>& estimate, const Analysis
 
 }  // namespace
 
-const std::vector<std::string> study_surfaces = {"sphere", "torus", "ellipsoid", "saddle",
-                                                 "height field"};
+const std::vector<std::string> study_surfaces = {"sphere", "uv sphere", "torus", "ellipsoid",
+                                                 "saddle", "height field"};
 const std::vector<std::string> study_samplings = {"regular", "jittered", "noisy"};
 
 const std::vector<Method>& study_methods() {

@@ -130,8 +130,8 @@ const std::map<std::string, std::string> method_colors = {
     {"one-ring", "#d62728"}, {"one-ring+smooth2", "#ff9896"}, {"jet", "#1f77b4"},
     {"jet+smooth2", "#9edae5"}};
 const std::map<std::string, std::string> surface_dashes = {
-    {"sphere", ""}, {"torus", "6,3"}, {"ellipsoid", "2,2"}, {"saddle", "8,3,2,3"},
-    {"height field", "1,4"}};
+    {"sphere", ""}, {"uv sphere", "4,2,1,2"}, {"torus", "6,3"}, {"ellipsoid", "2,2"},
+    {"saddle", "8,3,2,3"}, {"height field", "1,4"}};
 
 std::string error_plot(const std::vector<StudySample>& samples, const std::string& sampling,
                        bool mean) {
@@ -496,7 +496,8 @@ ReportResult write_report(const ReportOptions& options) {
         "`one-ring` — the paper's angle deficit and cotangent Laplacian (Meyer et al. 2002); "
         "`jet` — cubic height functions fitted over the two-ring (Cazals and Pouget 2005); "
         "`+smooth2` — then two steps of area-weighted smoothing of K and H.\n\n"
-        "Surfaces: unit icosphere (sphere), torus R = 1, r = 0.4, ellipsoid 1 × 0.8 × 0.6 "
+        "Surfaces: unit icosphere (sphere), unit UV sphere with 2n × n segments (thin pole fans), "
+        "torus R = 1, r = 0.4, ellipsoid 1 × 0.8 × 0.6 "
         "(stretched icosphere), saddle z = (x² − y²)/2, height field z = 0.1 sin 6x cos 6y. "
         "Samplings: regular; jittered (every vertex moved within the surface by up to 0.2 of "
         "the grid step: an irregular triangulation); noisy (moved in a random direction by up "

@@ -48,8 +48,8 @@ TEST(Report, QuickRunHasFiniteNumbersAndErrorsFallingOnRegularMeshes) {
   const std::vector<Row> study = read_csv(read_text(dir / "out" / "curvature_errors.csv"));
   ASSERT_EQ(study.front(), (Row{"surface", "sampling", "method", "vertices", "rms_K", "max_K",
                                 "rms_H", "max_H", "median_seconds"}));
-  // 5 surfaces × 3 samplings × 3 resolutions × 4 methods.
-  ASSERT_EQ(study.size(), 1u + 5 * 3 * 3 * 4);
+  // 6 surfaces × 3 samplings × 3 resolutions × 4 methods.
+  ASSERT_EQ(study.size(), 1u + 6 * 3 * 3 * 4);
   std::map<std::string, std::vector<std::pair<double, std::pair<double, double>>>> regular;
   for (std::size_t i = 1; i < study.size(); ++i) {
     const Row& row = study[i];
@@ -63,7 +63,7 @@ TEST(Report, QuickRunHasFiniteNumbersAndErrorsFallingOnRegularMeshes) {
     if (row[1] == "regular")
       regular[row[0] + ", " + row[2]].push_back({number(row[3]), {number(row[4]), number(row[6])}});
   }
-  ASSERT_EQ(regular.size(), 20u);
+  ASSERT_EQ(regular.size(), 24u);
   for (const auto& [series, points] : regular) {
     SCOPED_TRACE(series);
     ASSERT_EQ(points.size(), 3u);
