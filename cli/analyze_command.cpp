@@ -96,8 +96,12 @@ void check_outputs(const AnalyzeArgs& args) {
 
 void run_analyze(const AnalyzeArgs& args) {
   check_outputs(args);
-  for (const std::string& path : {args.csv, args.ply})  // temporaries of killed runs
-    if (!path.empty() && path != "-") remove_stale_temporaries(std::filesystem::path(path).parent_path());
+  // Temporaries that killed runs left where this one writes.
+  for (const std::string& path : {args.csv, args.ply})
+    if (!path.empty() && path != "-")
+      remove_stale_temporaries(std::filesystem::path(path).parent_path());
+  if (!args.maps.empty() && std::filesystem::is_directory(args.maps))
+    remove_stale_temporaries(args.maps);
   const std::optional<AffineTransform> transform = transform_from(args.transform);
   auto start = std::chrono::steady_clock::now();
   InputMesh input = read_mesh(args.mesh);

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,27 @@ void run_povgen(const PovgenArgs& args) {
   request.out_dir = args.out;
   request.force = args.force;
 
+  // The maps are written once every scene file is complete, and renamed into place only with
+  // the scene (OutputBatch): both outputs are replaced, or neither.
+  std::optional<OutputBatch> maps_batch;
+  std::optional<SequenceMaps> maps;
+  if (!args.maps.empty()) {
+    request.before_commit = [&] {
+      if (std::filesystem::is_directory(args.maps)) remove_stale_temporaries(args.maps);
+      std::vector<std::filesystem::path> frames;
+      for (const auto& [number, path] : povgen::find_sequence(args.water, request.base_dir).frames)
+        frames.push_back(path);
+      AnalyzeOptions options;
+      options.flow.up = args.up;
+      options.flow.k_threshold = config.flow.k_threshold;
+      options.estimator = config.flow.estimator;
+      options.smoothing_steps = config.flow.smoothing;
+      maps_batch.emplace();
+      maps = write_sequence_maps(frames, options, MapOptions{}, args.maps, config.flow.coherence,
+                                 request.water_transform ? &*request.water_transform : nullptr);
+    };
+  }
+
   // Ctrl-C stops between frames; the scene directory is then left as it was.
   std::signal(SIGINT, request_povgen_stop);
   std::signal(SIGTERM, request_povgen_stop);
@@ -69,6 +91,7 @@ void run_povgen(const PovgenArgs& args) {
     shown.finish_line();
     throw;
   }
+  if (maps_batch) maps_batch->commit();
   // From here on a signal ends the run at once (removing any temporary file), as before povgen.
   remove_temporaries_on_signals();
   if (povgen_stop_requested) throw InterruptedError(args.out + ": interrupted");
@@ -84,20 +107,9 @@ void run_povgen(const PovgenArgs& args) {
                r.empty_frames.empty() ? "" : "; frames without water listed above",
                r.read_seconds, r.analysis_seconds,
                r.write_seconds, args.out.c_str(), args.out.c_str());
-  if (!args.maps.empty()) {
-    std::vector<std::filesystem::path> frames;
-    for (const auto& [number, path] : povgen::find_sequence(args.water, request.base_dir).frames)
-      frames.push_back(path);
-    AnalyzeOptions options;
-    options.flow.up = args.up;
-    options.flow.k_threshold = config.flow.k_threshold;
-    options.estimator = config.flow.estimator;
-    options.smoothing_steps = config.flow.smoothing;
-    const SequenceMaps maps =
-        write_sequence_maps(frames, options, MapOptions{}, args.maps, config.flow.coherence,
-                            request.water_transform ? &*request.water_transform : nullptr);
+  if (maps) {
     std::fprintf(stderr, "  maps: %zu frame(s) -> %s, shared colour ranges K \u00b1%.6g, H \u00b1%.6g\n",
-                 maps.frames, args.maps.c_str(), maps.ranges.gaussian, maps.ranges.mean);
+                 maps->frames, args.maps.c_str(), maps->ranges.gaussian, maps->ranges.mean);
   }
 }
 

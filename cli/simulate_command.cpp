@@ -27,6 +27,7 @@ void run_simulate(const SimulateArgs& args) {
   std::error_code ec;
   fs::create_directories(args.out, ec);
   if (ec) throw OutputError(args.out + ": cannot create directory: " + ec.message());
+  remove_stale_temporaries(args.out);  // of runs that were killed
 
   const auto start = std::chrono::steady_clock::now();
   std::size_t files = 0, water_vertices = 0;

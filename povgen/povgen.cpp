@@ -295,6 +295,7 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   write("toon.inc", std::string(toon_template()));
   write("scene.ini", scene_ini(layout));
   write("scene.pov", scene_pov(layout));
+  if (request.before_commit) request.before_commit();
   scene.commit();
   return report;
 }

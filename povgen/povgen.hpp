@@ -64,6 +64,10 @@ struct PovgenRequest {
   Axis up = Axis::y;
   std::filesystem::path out_dir;
   bool force = false;  // write into a non-empty directory that is not a toonwater scene
+  // Called once every scene file is complete, just before DIR is replaced: an exception from it
+  // leaves DIR as it was. (The CLI writes the --maps outputs here, so that both or neither are
+  // replaced.)
+  std::function<void()> before_commit;
 };
 
 struct PovgenReport {

@@ -114,19 +114,28 @@ SceneDirectory::SceneDirectory(fs::path target, bool force) : target_(normalised
     staging_.clear();
     fail(parent, "cannot create a temporary directory", error);
   }
+  try {
+    write_file_atomically(staging_ / scene_marker, "toonwater povgen scene directory\n");
+  } catch (...) {
+    release();  // a constructor that throws gets no destructor call
+    throw;
+  }
 }
 
-SceneDirectory::~SceneDirectory() {
+SceneDirectory::~SceneDirectory() { release(); }
+
+void SceneDirectory::release() {
   std::error_code ec;
   if (!staging_.empty()) fs::remove_all(staging_, ec);
+  staging_.clear();
   if (lock_fd_ >= 0) {
     ::unlink(lock_path_.c_str());  // while still held: a waiting run re-checks the inode
     ::close(lock_fd_);
   }
+  lock_fd_ = -1;
 }
 
 void SceneDirectory::commit() {
-  write_file_atomically(staging_ / scene_marker, "toonwater povgen scene directory\n");
   std::error_code ec;
   if (merge_into_target_) {
     // Forced into a directory of other files: each scene file replaces its namesake only.

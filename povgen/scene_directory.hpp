@@ -34,6 +34,7 @@ class SceneDirectory {
   void commit();
 
  private:
+  void release();  // removes the staging directory (if any) and the lock
   std::filesystem::path target_, staging_, lock_path_;
   bool merge_into_target_ = false;  // forced over a directory povgen did not write
   int lock_fd_ = -1;
