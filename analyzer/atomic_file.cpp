@@ -259,7 +259,8 @@ void OutputBatch::commit() {
 
 void remove_stale_temporaries(const fs::path& directory) {
   std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(directory.empty() ? fs::path(".") : directory, ec)) {
+  const fs::path listed = directory.empty() ? fs::path(".") : directory;
+  for (const auto& entry : fs::directory_iterator(listed, ec)) {
     const std::string name = entry.path().filename().string();
     const std::size_t tmp = name.rfind(".tmp-");
     if (name.size() < 2 || name[0] != '.' || tmp == std::string::npos || tmp == 0) continue;

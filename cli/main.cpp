@@ -30,7 +30,8 @@ std::string printable(const std::string& word) {
 
 std::string subcommand_names(const CLI::App& app) {
   std::string names;
-  for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
+  for (const CLI::App* sub : app.get_subcommands({}))
+    names += (names.empty() ? "" : ", ") + sub->get_name();
   return names;
 }
 

@@ -41,8 +41,14 @@ IniFrames read_ini_frames(const fs::path& ini) {
     return n;
   };
   for (std::string line; std::getline(in, line);) {
-    if (line.rfind("Initial_Frame=", 0) == 0) f.first = frame_number(line.substr(14)), has_first = true;
-    if (line.rfind("Final_Frame=", 0) == 0) f.last = frame_number(line.substr(12)), has_last = true;
+    if (line.rfind("Initial_Frame=", 0) == 0) {
+      f.first = frame_number(line.substr(14));
+      has_first = true;
+    }
+    if (line.rfind("Final_Frame=", 0) == 0) {
+      f.last = frame_number(line.substr(12));
+      has_last = true;
+    }
     if (line.rfind("Output_File_Name=\"", 0) == 0 && line.size() > 19 && line.back() == '"')
       f.output_name = line.substr(18, line.size() - 19);
   }

@@ -1,8 +1,9 @@
 // toonwater render: runs POV-Ray on the frames of a povgen scene directory, several frames at
 // once (frames are independent), each as `povray scene.ini +SFn +EFn` in the directory.
 // A frame fails when POV-Ray exits non-zero (whatever its log says), is killed, or writes no
-// image or an empty one; the failure gives the reason and POV-Ray's own error lines. Each frame renders into a hidden temporary directory in DIR and its image
-// is renamed into DIR once POV-Ray has finished, so DIR never holds a partial image.
+// image or an empty one; the failure gives the reason and POV-Ray's own error lines. Each frame
+// renders into a hidden temporary directory in DIR and its image is renamed into DIR once
+// POV-Ray has finished, so DIR never holds a partial image.
 #pragma once
 
 #include "povgen/config.hpp"

@@ -32,9 +32,10 @@ fs::path normalised(const fs::path& path) {
 
 // The files povgen writes into a scene directory.
 bool is_scene_file(const std::string& name) {
-  const auto ends_with_inc = name.size() > 4 && name.ends_with(".inc");
-  return name == "scene.pov" || name == "scene.ini" || name == "toon.inc" ||
-         name == scene_marker || (ends_with_inc && (name.starts_with("water_") || name.starts_with("obj_")));
+  const bool include =
+      name.ends_with(".inc") && (name.starts_with("water_") || name.starts_with("obj_"));
+  return include || name == "scene.pov" || name == "scene.ini" || name == "toon.inc" ||
+         name == scene_marker;
 }
 
 // Takes an exclusive flock on `path` (created if missing); -1 when another process holds it.
@@ -67,8 +68,8 @@ void move_entries(const fs::path& from, const fs::path& to, Keep keep) {
   for (const auto& entry : fs::directory_iterator(from, ec)) entries.push_back(entry.path());
   for (const fs::path& entry : entries) {
     const fs::path destination = to / entry.filename();
-    if (!keep(entry.filename().string()) || fs::symlink_status(destination, ec).type() != fs::file_type::not_found)
-      continue;
+    const bool taken = fs::symlink_status(destination, ec).type() != fs::file_type::not_found;
+    if (taken || !keep(entry.filename().string())) continue;
     fs::rename(entry, destination, ec);
   }
 }
@@ -76,29 +77,15 @@ void move_entries(const fs::path& from, const fs::path& to, Keep keep) {
 }  // namespace
 
 SceneDirectory::SceneDirectory(fs::path target, bool force) : target_(normalised(target)) {
-  if (target_ == target_.root_path()) fail(target_, "refusing to write a scene into the root directory");
-  const fs::path parent = target_.parent_path();
   std::error_code ec;
-  fs::create_directories(parent, ec);
-  if (ec) fail(parent, "cannot create the directory", ec.value());
-
   // A link to a directory: the scene replaces the directory it leads to, the link stays.
   if (fs::is_symlink(fs::symlink_status(target_, ec)) && fs::is_directory(target_, ec))
     target_ = fs::canonical(target_, ec);
-  const fs::file_status status = fs::status(target_, ec);
-  if (fs::exists(status)) {
-    if (!fs::is_directory(status)) fail(target_, "exists and is not a directory");
-    const bool marked = fs::exists(target_ / scene_marker, ec);
-    const bool empty = fs::is_empty(target_, ec);
-    if (ec) fail(target_, "cannot read the directory", ec.value());
-    if (!marked && !empty) {
-      if (!force)
-        fail(target_, "is not empty and is not a toonwater scene directory (no " +
-                          std::string(scene_marker) + "); give an empty or new directory, or " +
-                          "--force to write the scene's files into it");
-      merge_into_target_ = true;
-    }
-  }
+  if (target_ == target_.root_path())
+    fail(target_, "refusing to write a scene into the root directory");
+  const fs::path parent = target_.parent_path();
+  fs::create_directories(parent, ec);
+  if (ec) fail(parent, "cannot create the directory", ec.value());
 
   const std::string name = target_.filename().string();
   lock_path_ = parent / ("." + name + ".lock");
@@ -106,18 +93,32 @@ SceneDirectory::SceneDirectory(fs::path target, bool force) : target_(normalised
   if (lock_fd_ < 0)
     fail(target_, "another toonwater povgen is writing this scene directory (lock " +
                       lock_path_.filename().string() + ")");
-  remove_stale_temporaries(parent);
-  staging_ = parent / ("." + name + ".tmp-" + std::to_string(::getpid()));
-  fs::remove_all(staging_, ec);
-  if (!fs::create_directory(staging_, ec) || ec) {
-    const int error = ec.value();
-    staging_.clear();
-    fail(parent, "cannot create a temporary directory", error);
-  }
-  try {
+  try {  // a constructor that throws gets no destructor call: release() by hand
+    const fs::file_status status = fs::status(target_, ec);
+    if (fs::exists(status)) {
+      if (!fs::is_directory(status)) fail(target_, "exists and is not a directory");
+      const bool marked = fs::exists(target_ / scene_marker, ec);
+      const bool empty = fs::is_empty(target_, ec);
+      if (ec) fail(target_, "cannot read the directory", ec.value());
+      if (!marked && !empty) {
+        if (!force)
+          fail(target_, "is not empty and is not a toonwater scene directory (no " +
+                            std::string(scene_marker) + "); give an empty or new directory, " +
+                            "or --force to write the scene's files into it");
+        merge_into_target_ = true;
+      }
+    }
+    remove_stale_temporaries(parent);
+    staging_ = parent / ("." + name + ".tmp-" + std::to_string(::getpid()));
+    fs::remove_all(staging_, ec);
+    if (!fs::create_directory(staging_, ec) || ec) {
+      const int error = ec.value();
+      staging_.clear();
+      fail(parent, "cannot create a temporary directory", error);
+    }
     write_file_atomically(staging_ / scene_marker, "toonwater povgen scene directory\n");
   } catch (...) {
-    release();  // a constructor that throws gets no destructor call
+    release();
     throw;
   }
 }
@@ -156,7 +157,8 @@ void SceneDirectory::commit() {
       const int error = errno;
       if (error != EINVAL && error != ENOSYS) fail(target_, "cannot replace the directory", error);
       const fs::path old = staging_.string() + "-old";
-      if (::rename(target_.c_str(), old.c_str()) != 0) fail(target_, "cannot replace the directory", errno);
+      if (::rename(target_.c_str(), old.c_str()) != 0)
+        fail(target_, "cannot replace the directory", errno);
       if (::rename(staging_.c_str(), target_.c_str()) != 0) {
         const int e = errno;
         ::rename(old.c_str(), target_.c_str());

@@ -278,6 +278,18 @@ TEST_F(HostileCli, PovgenRefusesADirectoryThatIsNotAScene) {
   EXPECT_EQ(read_text(at("mine/notes.txt")), "notes");
 }
 
+TEST_F(HostileCli, SceneDirectoryBehindALinkIsReplacedAndTheLinkStays) {
+  write_text(at("w.obj"), grid_obj());
+  fs::create_directory(at("real"));
+  fs::create_directory_symlink("real", at("link"));
+  for (int run = 0; run < 2; ++run) {
+    const Outcome r = toonwater({"povgen", "--water", "w.obj", "--out", "link"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::is_symlink(at("link")));
+    EXPECT_TRUE(fs::exists(at("real/scene.pov")));
+  }
+}
+
 // ---- 4. outputs through links, FIFOs and standard output ----
 
 TEST_F(HostileCli, OutputsFollowLinksStreamToFifosAndStandardOutput) {
