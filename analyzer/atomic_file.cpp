@@ -8,13 +8,18 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <charconv>
 #include <cerrno>
 #include <cstring>
+#include <mutex>
+#include <stdexcept>
 #include <string>
 #include <system_error>
+#include <vector>
 
 namespace toonwater {
 namespace {
@@ -77,6 +82,15 @@ class HandledSignalsBlocked {
   sigset_t previous_;
 };
 
+// The files of the open OutputBatch, complete and waiting for their rename.
+struct BatchFile {
+  fs::path temporary, target, name;
+  int slot = -1;
+};
+std::mutex batch_mutex;
+bool batch_open = false;
+std::vector<BatchFile> batch_files;
+
 [[noreturn]] void throw_output_error(const fs::path& path, const std::string& what, int error) {
   throw OutputError(path.string() + ": " + what + ": " + std::generic_category().message(error));
 }
@@ -101,6 +115,37 @@ int create_temporary(const fs::path& path, fs::path& temporary) {
   }
 }
 
+// The descriptor a name of an open descriptor stands for ("-", /dev/stdout, /dev/fd/3,
+// /proc/self/fd/3), or -1.
+int descriptor_named(const fs::path& path) {
+  const std::string& p = path.native();
+  if (p == "-" || p == "/dev/stdout") return STDOUT_FILENO;
+  if (p == "/dev/stderr") return STDERR_FILENO;
+  for (const std::string_view prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+    if (!p.starts_with(prefix)) continue;
+    int fd = -1;
+    const char* begin = p.data() + prefix.size();
+    const auto [end, error] = std::from_chars(begin, p.data() + p.size(), fd);
+    if (error == std::errc{} && end == p.data() + p.size() && fd >= 0) return fd;
+  }
+  return -1;
+}
+
+// `path` with its symbolic links followed (the last component's, repeatedly): the file an
+// atomic replacement must rename over, so that a link stays a link. A dangling link leads to the
+// file it names, which is then created.
+fs::path follow_links(fs::path path) {
+  constexpr int max_links = 40;  // as the kernel's ELOOP limit
+  for (int i = 0; i < max_links; ++i) {
+    std::error_code ec;
+    if (!fs::is_symlink(fs::symlink_status(path, ec))) return path;
+    const fs::path target = fs::read_symlink(path, ec);
+    if (ec) return path;
+    path = target.is_absolute() ? target : path.parent_path() / target;
+  }
+  throw OutputError(path.string() + ": too many levels of symbolic links");
+}
+
 bool write_all(int fd, std::string_view contents) {
   while (!contents.empty()) {
     const ssize_t n = ::write(fd, contents.data(), contents.size());
@@ -113,8 +158,24 @@ bool write_all(int fd, std::string_view contents) {
 
 }  // namespace
 
-AtomicFileWriter::AtomicFileWriter(fs::path path) : path_(std::move(path)) {
+AtomicFileWriter::AtomicFileWriter(fs::path path) : name_(path), path_(std::move(path)) {
+  const std::string shown = name_ == "-" ? "standard output" : name_.string();
+  if (const int fd = descriptor_named(name_); fd >= 0) {
+    fd_ = ::fcntl(fd, F_DUPFD_CLOEXEC, 3);
+    if (fd_ < 0) throw_output_error(shown, "cannot write", errno);
+    stream_ = true;
+    return;
+  }
   if (!path_.has_filename()) throw OutputError(path_.string() + ": not a file name");
+  path_ = follow_links(path_);
+  struct stat status {};
+  if (::stat(path_.c_str(), &status) == 0 && !S_ISREG(status.st_mode)) {
+    if (S_ISDIR(status.st_mode)) throw OutputError(name_.string() + ": is a directory");
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);  // a FIFO, device or socket
+    if (fd_ < 0) throw_output_error(name_, "cannot open", errno);
+    stream_ = true;
+    return;
+  }
   const HandledSignalsBlocked blocked;
   fd_ = create_temporary(path_, temporary_);
   slot_ = track(temporary_);
@@ -129,10 +190,10 @@ AtomicFileWriter::~AtomicFileWriter() {
 void AtomicFileWriter::fail(const std::string& what, int error) {
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
-  ::unlink(temporary_.c_str());
+  if (!temporary_.empty()) ::unlink(temporary_.c_str());
   temporary_.clear();
   untrack(slot_);
-  throw_output_error(path_, what, error);
+  throw_output_error(name_ == "-" ? fs::path("standard output") : name_, what, error);
 }
 
 void AtomicFileWriter::write(std::string_view bytes) {
@@ -145,9 +206,73 @@ void AtomicFileWriter::commit() {
   const int fd = fd_;
   fd_ = -1;
   if (::close(fd) != 0) fail("cannot write", errno);
+  if (stream_) return;
+  {
+    std::lock_guard lock(batch_mutex);
+    if (batch_open) {  // renamed by OutputBatch::commit(), with the others
+      batch_files.push_back({temporary_, path_, name_, slot_});
+      temporary_.clear();
+      slot_ = -1;
+      return;
+    }
+  }
   if (::rename(temporary_.c_str(), path_.c_str()) != 0) fail("cannot replace the file", errno);
   temporary_.clear();
   untrack(slot_);
+}
+
+OutputBatch::OutputBatch() {
+  std::lock_guard lock(batch_mutex);
+  if (batch_open) throw std::logic_error("OutputBatch: one at a time");
+  batch_open = true;
+}
+
+OutputBatch::~OutputBatch() {
+  std::lock_guard lock(batch_mutex);
+  for (BatchFile& f : batch_files) {
+    ::unlink(f.temporary.c_str());
+    untrack(f.slot);
+  }
+  batch_files.clear();
+  batch_open = false;
+}
+
+void OutputBatch::commit() {
+  std::lock_guard lock(batch_mutex);
+  batch_open = false;
+  for (std::size_t i = 0; i < batch_files.size(); ++i) {
+    BatchFile& f = batch_files[i];
+    if (::rename(f.temporary.c_str(), f.target.c_str()) != 0) {
+      const int error = errno;
+      const fs::path name = f.name;
+      for (std::size_t j = i; j < batch_files.size(); ++j) {
+        ::unlink(batch_files[j].temporary.c_str());
+        untrack(batch_files[j].slot);
+      }
+      batch_files.clear();
+      throw_output_error(name, "cannot replace the file", error);
+    }
+    untrack(f.slot);
+  }
+  batch_files.clear();
+}
+
+void remove_stale_temporaries(const fs::path& directory) {
+  std::error_code ec;
+  const fs::path listed = directory.empty() ? fs::path(".") : directory;
+  for (const auto& entry : fs::directory_iterator(listed, ec)) {
+    const std::string name = entry.path().filename().string();
+    const std::size_t tmp = name.rfind(".tmp-");
+    if (name.size() < 2 || name[0] != '.' || tmp == std::string::npos || tmp == 0) continue;
+    std::string_view rest = std::string_view(name).substr(tmp + 5);
+    rest = rest.substr(0, rest.find('-'));  // the PID, before an AtomicFileWriter's counter
+    pid_t pid = 0;
+    const auto [end, error] = std::from_chars(rest.data(), rest.data() + rest.size(), pid);
+    if (error != std::errc{} || end != rest.data() + rest.size() || pid <= 0) continue;
+    if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+    std::error_code ignored;
+    fs::remove_all(entry.path(), ignored);
+  }
 }
 
 void remove_temporaries_on_signals() {

@@ -1,5 +1,10 @@
 // Writes a file so that readers only ever see the old or the complete new content: the data goes
 // to a temporary file in the same directory, which is renamed over the target once complete.
+//
+// Where the output goes: "-" is standard output, and so are /dev/stdout, /dev/stderr,
+// /dev/fd/N and /proc/self/fd/N (the open descriptor itself); a symbolic link is followed to
+// the file it leads to, which is replaced atomically while the link stays a link; a FIFO, a
+// character device or a socket is written as a stream, in place (no rename is possible there).
 #pragma once
 
 #include <filesystem>
@@ -11,6 +16,12 @@ namespace toonwater {
 class OutputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// A run stopped by a signal between steps: what it had finished is complete, nothing is partial.
+class InterruptedError : public OutputError {
+ public:
+  using OutputError::OutputError;
 };
 
 // A file written in pieces and put in place at once: write() appends to a temporary file beside
@@ -29,14 +40,36 @@ class AtomicFileWriter {
 
  private:
   [[noreturn]] void fail(const std::string& what, int error);
-  std::filesystem::path path_;
+  std::filesystem::path name_;  // as given, for messages
+  std::filesystem::path path_;  // the file replaced: name_ with its links followed
   std::filesystem::path temporary_;
   int fd_ = -1;
   int slot_ = -1;  // in the table remove_temporaries_on_signals() reads
+  bool stream_ = false;  // written in place: standard output, a FIFO or a device
+};
+
+// All-or-nothing for a run with several outputs. While an OutputBatch exists, the commit() of
+// every AtomicFileWriter (in any thread) completes its temporary file but leaves the rename to
+// OutputBatch::commit(), which renames them all once every output is complete. Destroyed
+// without commit(), it removes the temporary files: no output is replaced. (Streams are written
+// as they go: what reached a pipe cannot be taken back.) One batch at a time.
+class OutputBatch {
+ public:
+  OutputBatch();
+  ~OutputBatch();
+  OutputBatch(const OutputBatch&) = delete;
+  OutputBatch& operator=(const OutputBatch&) = delete;
+  void commit();
 };
 
 // Replaces `path` with `contents` atomically (AtomicFileWriter in one piece).
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents);
+
+// Removes the temporary files and directories in `directory` that processes which no longer
+// exist left behind (killed by SIGKILL, say): names ".NAME.tmp-PID" or ".NAME.tmp-PID-N", as
+// AtomicFileWriter, povgen and render make them. Those of running processes stay. Best effort:
+// what cannot be listed or removed is left as it is.
+void remove_stale_temporaries(const std::filesystem::path& directory);
 
 // Installs handlers for SIGINT, SIGTERM and SIGHUP that delete the temporary files of the
 // AtomicFileWriters in progress, then let the signal end the process as it would have: an

@@ -1,9 +1,11 @@
 // toonwater analyze MESH [--csv FILE] [--ply FILE] [options]
 #include "cli/commands.hpp"
 #include "cli/transform_options.hpp"
+#include "cli/validators.hpp"
 
 #include "analyzer/affine_transform.hpp"
 #include "analyzer/analysis.hpp"
+#include "analyzer/atomic_file.hpp"
 #include "analyzer/curvature_export.hpp"
 #include "analyzer/maps/map_writer.hpp"
 #include "analyzer/maps/sequence_maps.hpp"
@@ -70,7 +72,41 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
                a.times.curvature, a.times.flow, write_seconds);
 }
 
+// Two names of one file: the same existing file, or the same path once made absolute.
+bool same_file(const std::string& a, const std::string& b) {
+  if (a == "-" || b == "-") return a == b;
+  std::error_code ec;
+  if (std::filesystem::equivalent(a, b, ec) && !ec) return true;
+  const auto canonical_a = std::filesystem::weakly_canonical(std::filesystem::absolute(a), ec);
+  const auto canonical_b = std::filesystem::weakly_canonical(std::filesystem::absolute(b), ec);
+  return !ec && canonical_a == canonical_b;
+}
+
+// Refuses, before anything is read or written, an output that is the input or another output.
+void check_outputs(const AnalyzeArgs& args) {
+  const std::vector<std::pair<const char*, std::string>> outputs{{"--csv", args.csv},
+                                                                 {"--ply", args.ply}};
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const auto& [option, path] = outputs[i];
+    if (path.empty()) continue;
+    if (same_file(path, args.mesh))
+      throw InputError(path + ": " + option + " names the input mesh; refusing to overwrite it");
+    for (std::size_t j = i + 1; j < outputs.size(); ++j)
+      if (!outputs[j].second.empty() && same_file(path, outputs[j].second))
+        throw InputError(path + ": given to both " + option + " and " + outputs[j].first);
+  }
+  if (!args.maps.empty() && same_file(args.maps, args.mesh))
+    throw InputError(args.maps + ": --maps names the input mesh");
+}
+
 void run_analyze(const AnalyzeArgs& args) {
+  check_outputs(args);
+  // Temporaries that killed runs left where this one writes.
+  for (const std::string& path : {args.csv, args.ply})
+    if (!path.empty() && path != "-")
+      remove_stale_temporaries(std::filesystem::path(path).parent_path());
+  if (!args.maps.empty() && std::filesystem::is_directory(args.maps))
+    remove_stale_temporaries(args.maps);
   const std::optional<AffineTransform> transform = transform_from(args.transform);
   auto start = std::chrono::steady_clock::now();
   InputMesh input = read_mesh(args.mesh);
@@ -93,6 +129,8 @@ void run_analyze(const AnalyzeArgs& args) {
   const Analysis analysis = analyze_mesh(std::move(input.mesh), options);
 
   start = std::chrono::steady_clock::now();
+  // Every output, or none: the renames wait until all of them are complete.
+  OutputBatch outputs;
   if (!args.csv.empty()) write_curvature_csv(args.csv, analysis);
   if (!args.ply.empty()) write_curvature_ply(args.ply, input_triangles, analysis);
   std::optional<MapRanges> map_ranges;
@@ -104,6 +142,7 @@ void run_analyze(const AnalyzeArgs& args) {
     map_ranges = write_frame_maps(args.maps, frame_stem(args.mesh),
                                   analysis, args.up, map_options);
   }
+  outputs.commit();
   print_summary(args.mesh, analysis, read_seconds, seconds_since(start));
   if (map_ranges)
     std::fprintf(stderr, "  maps in %s: colour ranges K \u00b1%.6g, H \u00b1%.6g\n", args.maps.c_str(),
@@ -129,10 +168,10 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--maps-box", args->maps_box,
                   "Map extent u_min,v_min,u_max,v_max seen from above (default: the surface's)")
       ->expected(4)
-      ->delimiter(',');
-  const std::map<std::string, Axis> axes{{"x", Axis::x}, {"y", Axis::y}, {"z", Axis::z}};
+      ->delimiter(',')
+      ->check(FiniteNumber);
   cmd->add_option("--up", args->up, "Up axis of the input (Blender writes z)")
-      ->transform(CLI::CheckedTransformer(axes, CLI::ignore_case))
+      ->transform(one_of<Axis>({{"x", Axis::x}, {"y", Axis::y}, {"z", Axis::z}}))
       ->default_str("y");
   const std::map<std::string, FlowCriterion> criteria{{"mean", FlowCriterion::mean},
                                                       {"paper", FlowCriterion::paper}};
@@ -144,11 +183,11 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--k-threshold", args->k_threshold,
                   "Absolute threshold T: on H (1/length) with mean, on |K| (1/length^2) with "
                   "paper; overrides --k-threshold-relative")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumber);
   cmd->add_option("--k-threshold-relative", args->k_threshold_relative,
                   "c in T = c / L (mean; default 2) or c / L^2 (paper; default 30), L the square "
                   "root of the free surface's area")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumber);
   cmd->add_option("--flow-smooth", args->flow_smooth,
                   "Smoothing steps of the flow field over the free surface (default: 2 with mean, "
                   "0 with paper)")
@@ -156,15 +195,16 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--min-region", args->min_region,
                   "Smallest flow region drawn, in scene units^2 (default: 0.002 L^2 with mean, 0 "
                   "with paper); smaller ones fade out")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeNumber);
   cmd->add_option("--rest-height", args->rest_height,
-                  "Water rest level along the up axis (default: median height of the free surface)");
+                  "Water rest level along the up axis (default: median height of the free surface)")
+      ->check(FiniteNumber);
   const std::map<std::string, Estimator> estimators{{"one-ring", Estimator::one_ring},
                                                     {"jet", Estimator::jet}};
   cmd->add_option("--estimator", args->estimator,
                   "Curvature estimator: one-ring (the paper's operators, fastest) or jet (cubic "
                   "fits over the two-ring: accurate on irregular and noisy meshes, slower)")
-      ->transform(CLI::CheckedTransformer(estimators, CLI::ignore_case))
+      ->transform(one_of<Estimator>({{"one-ring", Estimator::one_ring}, {"jet", Estimator::jet}}))
       ->default_str("one-ring");
   cmd->add_option("--smooth", args->smooth,
                   "Steps of area-weighted smoothing of K and H over the one-ring")

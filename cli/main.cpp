@@ -1,19 +1,54 @@
 // toonwater: cartoon-style rendering of fluid-simulation output with POV-Ray.
 #include "cli/commands.hpp"
+#include "cli/exit_codes.hpp"
 
 #include "analyzer/atomic_file.hpp"
 #include "analyzer/mesh_reader.hpp"
+#include "povgen/config.hpp"
+#include "povgen/render.hpp"
 
 #include <exception>
+#include <filesystem>
 #include <iostream>
+#include <string>
+
+namespace {
+
+namespace exit_code = toonwater::cli::exit_code;
+
+int fail(const std::string& message, int code) {
+  std::cerr << "toonwater: error: " << message << '\n';
+  return code;
+}
+
+// A word the user typed, safe to print on one line: control and non-ASCII bytes as '?'.
+std::string printable(const std::string& word) {
+  std::string out;
+  for (const char c : word.substr(0, 400)) out += c >= ' ' && c <= '~' ? c : '?';
+  return word.size() > 400 ? out + "..." : out;
+}
+
+std::string subcommand_names(const CLI::App& app) {
+  std::string names;
+  for (const CLI::App* sub : app.get_subcommands({}))
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+  return names;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   toonwater::remove_temporaries_on_signals();  // an interrupted run leaves no temporary file
   CLI::App app{"toonwater: cartoon water from fluid-simulation meshes, rendered with POV-Ray"};
+  app.name("toonwater");
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("toonwater ") + TOONWATER_VERSION);
+  app.footer("Run `toonwater help SUBCOMMAND` or `toonwater SUBCOMMAND --help` for its options.\n"
+             "Exit codes: 0 success, 2 bad input, 3 output failure, 4 interrupted, "
+             "5 POV-Ray failed, 1 internal error.");
   // Parse errors in one line, like every other error (CLI11 adds a second by default).
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return "toonwater: error: " + std::string(e.what()) + " (see --help)\n";
+    return "toonwater: error: " + printable(e.what()) + " (see --help)\n";
   });
   toonwater::cli::add_analyze_command(app);
   toonwater::cli::add_povgen_command(app);
@@ -21,19 +56,53 @@ int main(int argc, char** argv) {
   toonwater::cli::add_simulate_command(app);
   toonwater::cli::add_report_command(app);
 
+  // `help [SUBCOMMAND]`, and a first word that is neither an option nor a subcommand.
+  if (argc >= 2 && argv[1][0] != '-') {
+    const std::string word = argv[1];
+    if (word == "help") {
+      if (argc == 2) {
+        std::cout << app.help();
+        return exit_code::success;
+      }
+      const std::string topic = argv[2];
+      for (const CLI::App* sub : app.get_subcommands({}))
+        if (sub->get_name() == topic) {
+          std::cout << sub->help();
+          return exit_code::success;
+        }
+      return fail("unknown subcommand '" + printable(topic) + "' (subcommands: " +
+                      subcommand_names(app) + ")",
+                  exit_code::bad_input);
+    }
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands({})) known = known || sub->get_name() == word;
+    if (!known)
+      return fail("unknown subcommand '" + printable(word) + "' (subcommands: " +
+                      subcommand_names(app) + "; see --help)",
+                  exit_code::bad_input);
+  }
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version are "errors" that exit 0; every other one is bad input.
+    return app.exit(e) == 0 ? exit_code::success : exit_code::bad_input;
   } catch (const toonwater::InputError& e) {
-    std::cerr << "toonwater: error: " << e.what() << '\n';
-    return 2;
+    return fail(e.what(), exit_code::bad_input);
+  } catch (const toonwater::povgen::ConfigError& e) {
+    return fail(e.what(), exit_code::bad_input);
+  } catch (const toonwater::InterruptedError& e) {
+    return fail(e.what(), exit_code::interrupted);
   } catch (const toonwater::OutputError& e) {
-    std::cerr << "toonwater: error: " << e.what() << '\n';
-    return 3;
+    return fail(e.what(), exit_code::output_failed);
+  } catch (const toonwater::povgen::PovrayError& e) {
+    return fail(e.what(), exit_code::povray_failed);
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A file operation without its own message: name the file and the reason only.
+    const std::string path = e.path1().empty() ? "" : e.path1().string() + ": ";
+    return fail(path + e.code().message(), exit_code::output_failed);
   } catch (const std::exception& e) {
-    std::cerr << "toonwater: error: " << e.what() << '\n';
-    return 1;
+    return fail(e.what(), exit_code::internal_error);
   }
-  return 0;
+  return exit_code::success;
 }

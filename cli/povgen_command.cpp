@@ -1,7 +1,9 @@
 // toonwater povgen --water PATTERN [--object PATTERN]... [--config scene.toml]
 //                  [--set key=value]... [--up x|y|z] --out DIR
 #include "cli/commands.hpp"
+#include "cli/progress.hpp"
 #include "cli/transform_options.hpp"
+#include "cli/validators.hpp"
 
 #include "analyzer/atomic_file.hpp"
 #include "analyzer/maps/sequence_maps.hpp"
@@ -15,6 +17,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +33,7 @@ struct PovgenArgs {
   std::string config;
   std::vector<std::string> overrides;
   std::string out;
+  bool force = false;
   Axis up = Axis::y;
   std::string maps;  // curvature maps of the water frames, one shared colour range
   TransformArgs water_transform;
@@ -48,44 +52,61 @@ void run_povgen(const PovgenArgs& args) {
   request.base_dir = std::filesystem::current_path();
   request.up = args.up;
   request.out_dir = args.out;
+  request.force = args.force;
 
-  // Ctrl-C stops between frames: every file written so far is complete.
+  // The maps are written once every scene file is complete, and renamed into place only with
+  // the scene (OutputBatch): both outputs are replaced, or neither.
+  std::optional<OutputBatch> maps_batch;
+  std::optional<SequenceMaps> maps;
+  if (!args.maps.empty()) {
+    request.before_commit = [&] {
+      if (std::filesystem::is_directory(args.maps)) remove_stale_temporaries(args.maps);
+      std::vector<std::filesystem::path> frames;
+      for (const auto& [number, path] : povgen::find_sequence(args.water, request.base_dir).frames)
+        frames.push_back(path);
+      const AnalyzeOptions options =
+          povgen::analysis_options(config.flow, args.up, povgen::WaterShading::toon);
+      maps_batch.emplace();
+      maps = write_sequence_maps(frames, options, MapOptions{}, args.maps, config.flow.coherence,
+                                 request.water_transform ? &*request.water_transform : nullptr);
+    };
+  }
+
+  // Ctrl-C stops between frames; the scene directory is then left as it was.
   std::signal(SIGINT, request_povgen_stop);
   std::signal(SIGTERM, request_povgen_stop);
   const auto start = std::chrono::steady_clock::now();
+  FrameProgress shown("povgen");
   auto progress = [&](std::size_t done, std::size_t total) {
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double left = elapsed / static_cast<double>(done) * static_cast<double>(total - done);
-    std::fprintf(stderr, "\rpovgen: frame %zu/%zu, %.1f s, about %.1f s left   ", done, total,
-                 elapsed, left);
-    if (done == total) std::fputc('\n', stderr);
+    shown.update(done, total,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   };
-  const povgen::PovgenReport r = povgen::generate_scene(config, request, progress, &povgen_stop_requested);
+  povgen::PovgenReport r;
+  try {
+    r = povgen::generate_scene(config, request, progress, &povgen_stop_requested);
+  } catch (...) {
+    shown.finish_line();
+    throw;
+  }
+  if (maps_batch) maps_batch->commit();
   // From here on a signal ends the run at once (removing any temporary file), as before povgen.
   remove_temporaries_on_signals();
-  if (povgen_stop_requested) throw OutputError(args.out + ": interrupted");
+  if (povgen_stop_requested) throw InterruptedError(args.out + ": interrupted");
+  for (const std::string& empty : r.empty_frames)
+    std::fprintf(stderr, "povgen: warning: %s; that frame shows no water\n", empty.c_str());
   std::fprintf(stderr,
                "povgen: %zu frame(s) -> %s (%zu water vertices, %zu degenerate faces left out, "
-               "%zu normals replaced, ridge %zu, valley %zu)\n"
+               "%zu normals replaced, ridge %zu, valley %zu%s)\n"
                "  time: read %.3f s, analysis %.3f s, scene writing %.3f s\n"
                "  render: cd %s && povray scene.ini   (or: toonwater render %s)\n",
                r.frames, args.out.c_str(), r.vertices, r.degenerate_faces, r.replaced_normals,
-               r.ridge_vertices, r.valley_vertices, r.read_seconds, r.analysis_seconds,
+               r.ridge_vertices, r.valley_vertices,
+               r.empty_frames.empty() ? "" : "; frames without water listed above",
+               r.read_seconds, r.analysis_seconds,
                r.write_seconds, args.out.c_str(), args.out.c_str());
-  for (const std::string& empty : r.empty_frames)
-    std::fprintf(stderr, "  warning: %s; that frame shows no water\n", empty.c_str());
-  if (!args.maps.empty()) {
-    std::vector<std::filesystem::path> frames;
-    for (const auto& [number, path] : povgen::find_sequence(args.water, request.base_dir).frames)
-      frames.push_back(path);
-    const AnalyzeOptions options =
-        povgen::analysis_options(config.flow, args.up, povgen::WaterShading::toon);
-    const SequenceMaps maps =
-        write_sequence_maps(frames, options, MapOptions{}, args.maps, config.flow.coherence,
-                            request.water_transform ? &*request.water_transform : nullptr);
+  if (maps) {
     std::fprintf(stderr, "  maps: %zu frame(s) -> %s, shared colour ranges K \u00b1%.6g, H \u00b1%.6g\n",
-                 maps.frames, args.maps.c_str(), maps.ranges.gaussian, maps.ranges.mean);
+                 maps->frames, args.maps.c_str(), maps->ranges.gaussian, maps->ranges.mean);
   }
 }
 
@@ -102,14 +123,18 @@ void add_povgen_command(CLI::App& app) {
                   "Object mesh (static file or per-frame sequence); repeatable");
   cmd->add_option("--config", args->config, "Scene configuration (TOML)")->check(CLI::ExistingFile);
   cmd->add_option("--set", args->overrides, "Override a configuration key: section.key=value");
-  cmd->add_option("--out", args->out, "Output directory")->required();
+  cmd->add_option("--out", args->out,
+                  "Scene directory: new, empty or an earlier scene, which is replaced whole")
+      ->required();
+  cmd->add_flag("--force", args->force,
+                "Write into a non-empty directory that is not a toonwater scene (only the "
+                "scene's own files there are replaced)");
   cmd->add_option("--maps", args->maps,
                   "Also write top-down curvature maps of the water frames into this directory, "
                   "with one colour range shared by all frames");
-  const std::map<std::string, Axis> axes{{"x", Axis::x}, {"y", Axis::y}, {"z", Axis::z}};
   add_transform_options(*cmd, args->water_transform);  // applies to the water meshes
   cmd->add_option("--up", args->up, "Up axis of the input (Blender writes z)")
-      ->transform(CLI::CheckedTransformer(axes, CLI::ignore_case))
+      ->transform(one_of<Axis>({{"x", Axis::x}, {"y", Axis::y}, {"z", Axis::z}}))
       ->default_str("y");
   cmd->callback([args] { run_povgen(*args); });
 }

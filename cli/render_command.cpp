@@ -1,11 +1,14 @@
 // toonwater render DIR [--jobs N] [--frames A-B]
 #include "cli/commands.hpp"
 
+#include "cli/progress.hpp"
+#include "cli/validators.hpp"
 #include "povgen/render.hpp"
 
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -29,24 +32,32 @@ void run_render(const RenderArgs& args) {
   request.jobs = args.jobs > 0 ? args.jobs
                                : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (!args.frames.empty()) request.frames = povgen::parse_frame_range(args.frames, "--frames");
+  // The POV-Ray executable: TOONWATER_POVRAY when set (a path or a name on PATH), else povray.
+  if (const char* povray = std::getenv("TOONWATER_POVRAY"); povray && *povray)
+    request.povray = povray;
   // Ctrl-C or SIGTERM stops the running povray processes and removes their partial output;
   // frames already rendered stay.
   request.stop = &stop_requested;
   std::signal(SIGINT, request_stop);
   std::signal(SIGTERM, request_stop);
-  auto progress = [](std::size_t done, std::size_t total, double elapsed) {
-    const double left = elapsed / static_cast<double>(done) * static_cast<double>(total - done);
-    std::fprintf(stderr, "\rrender: frame %zu/%zu, %.1f s, about %.1f s left   ", done, total,
-                 elapsed, left);
-    if (done == total) std::fputc('\n', stderr);
+  FrameProgress shown("render");
+  auto progress = [&](std::size_t done, std::size_t total, double elapsed) {
+    shown.update(done, total, elapsed);
   };
-  const povgen::RenderReport r = povgen::render_frames(request, progress);
+  povgen::RenderReport r;
+  try {
+    r = povgen::render_frames(request, progress);
+  } catch (...) {
+    shown.finish_line();
+    throw;
+  }
   for (const auto& f : r.failures)
     std::fprintf(stderr, "render: frame %ld failed: %s\n", f.frame, f.message.c_str());
   std::fprintf(stderr, "render: %zu frame(s) rendered, %zu failed, %.2f s\n", r.rendered,
                r.failures.size(), r.seconds);
   if (!r.failures.empty())
-    throw std::runtime_error(std::to_string(r.failures.size()) + " frame(s) failed to render");
+    throw povgen::PovrayError(args.dir + ": " + std::to_string(r.failures.size()) +
+                              " frame(s) failed to render");
 }
 
 }  // namespace
@@ -56,7 +67,7 @@ void add_render_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("render", "Render a povgen scene directory with POV-Ray");
   cmd->add_option("dir", args->dir, "Scene directory written by toonwater povgen")->required();
   cmd->add_option("--jobs", args->jobs, "Frames rendered at the same time (default: cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumber);
   cmd->add_option("--frames", args->frames, "Frame range A-B (default: all)");
   cmd->callback([args] { run_render(*args); });
 }

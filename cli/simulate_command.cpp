@@ -1,5 +1,6 @@
 // toonwater simulate wake|drop|reflection|refraction --frames N --out DIR [--resolution R]
 #include "cli/commands.hpp"
+#include "cli/progress.hpp"
 
 #include "analyzer/atomic_file.hpp"
 #include "examples/sim/obj_writer.hpp"
@@ -26,6 +27,7 @@ void run_simulate(const SimulateArgs& args) {
   std::error_code ec;
   fs::create_directories(args.out, ec);
   if (ec) throw OutputError(args.out + ": cannot create directory: " + ec.message());
+  remove_stale_temporaries(args.out);  // of runs that were killed
 
   const auto start = std::chrono::steady_clock::now();
   std::size_t files = 0, water_vertices = 0;
@@ -35,13 +37,17 @@ void run_simulate(const SimulateArgs& args) {
     ++files;
     if (name.starts_with("water_")) water_vertices = mesh.positions.size();
   };
+  FrameProgress shown("simulate");
   auto progress = [&](int done, int total) {
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "\rsimulate: frame %d/%d, %.1f s   ", done, total, elapsed);
-    if (done == total) std::fputc('\n', stderr);
+    shown.update(static_cast<std::size_t>(done), static_cast<std::size_t>(total),
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   };
-  sim::simulate({args.scenario, args.frames, args.resolution}, sink, progress);
+  try {
+    sim::simulate({args.scenario, args.frames, args.resolution}, sink, progress);
+  } catch (...) {
+    shown.finish_line();
+    throw;
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr,

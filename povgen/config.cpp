@@ -41,6 +41,13 @@ double read_number_in(const toml::node& node, const std::string& key, double lo,
   return v;
 }
 
+// A whole number: 640 or 640.0, never 640.7 (which would otherwise be truncated in silence).
+int read_integer_in(const toml::node& node, const std::string& key, int lo, int hi) {
+  const double v = read_number_in(node, key, lo, hi);
+  if (v != std::floor(v)) fail(key, "must be a whole number");
+  return static_cast<int>(v);
+}
+
 bool read_bool(const toml::node& node, const std::string& key) {
   if (auto b = node.as_boolean()) return b->get();
   fail(key, "must be true or false");
@@ -180,7 +187,7 @@ void read_flow(const toml::table& t, FlowConfig& c) {
                  if (n == "k_threshold") c.k_threshold = read_number_in(v, key, 1e-30, 1e30);
                  if (n == "k_threshold_relative")
                    c.k_threshold_relative = read_number_in(v, key, 1e-30, 1e30);
-                 if (n == "smoothing") c.smoothing = static_cast<int>(read_number_in(v, key, 0, 100));
+                 if (n == "smoothing") c.smoothing = read_integer_in(v, key, 0, 100);
                  if (n == "min_region") c.min_region = read_number_in(v, key, 0.0, 1e30);
                  if (n == "style")
                    c.style = read_keyword<FlowStyle>(v, key,
@@ -201,8 +208,8 @@ void read_flow(const toml::table& t, FlowConfig& c) {
 void read_render(const toml::table& t, RenderConfig& c) {
   for_each_key(t, "render", {"width", "height", "quality", "antialias", "frames", "background"},
                [&](const std::string& n, const std::string& key, const toml::node& v) {
-                 if (n == "width") c.width = static_cast<int>(read_number_in(v, key, 1, 16384));
-                 if (n == "height") c.height = static_cast<int>(read_number_in(v, key, 1, 16384));
+                 if (n == "width") c.width = read_integer_in(v, key, 1, 16384);
+                 if (n == "height") c.height = read_integer_in(v, key, 1, 16384);
                  if (n == "quality")
                    c.quality = read_keyword<RenderQuality>(v, key,
                                                            {{"draft", RenderQuality::draft},

@@ -7,6 +7,7 @@
 #include "analyzer/vertex_normals.hpp"
 #include "analyzer/weld.hpp"
 #include "povgen/mesh2_writer.hpp"
+#include "povgen/scene_directory.hpp"
 #include "povgen/scene_writer.hpp"
 #include "povgen/sequence.hpp"
 #include "povgen/stroke_writer.hpp"
@@ -111,6 +112,14 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   Sequence water = find_sequence(request.water_pattern, request.base_dir);
   if (config.render.frames && !water.single_file) {
     auto& f = water.frames;
+    // A range beyond the sequence is a mistake to report, not to clip.
+    const long have_first = f.begin()->first, have_last = f.rbegin()->first;
+    if (config.render.frames->first < have_first || config.render.frames->last > have_last)
+      throw InputError(request.water_pattern + ": render.frames " +
+                       std::to_string(config.render.frames->first) + "-" +
+                       std::to_string(config.render.frames->last) +
+                       " is outside the sequence's frames " + std::to_string(have_first) + "-" +
+                       std::to_string(have_last));
     std::erase_if(f, [&](const auto& kv) {
       return kv.first < config.render.frames->first || kv.first > config.render.frames->last;
     });
@@ -149,7 +158,8 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     objects.push_back(std::move(o));
   }
 
-  fs::create_directories(request.out_dir);
+  SceneDirectory scene(request.out_dir, request.force);
+  const fs::path out_dir = scene.staging();
   // A curvature view needs the analysis whether or not flow regions are drawn.
   const WaterShading shading = config.water.shading;
   const FlowConfig* flow =
@@ -164,7 +174,7 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
 
   auto write = [&](const fs::path& name, const std::string& text) {
     const auto start = Clock::now();
-    write_file_atomically(request.out_dir / name, text);
+    write_file_atomically(out_dir / name, text);
     report.write_seconds += seconds_since(start);
   };
   auto load = [&](const fs::path& path) {
@@ -182,6 +192,10 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   auto write_object = [&](std::size_t i, const fs::path& path, long frame) {
     const ObjectConfig& oc = *objects[i].placement.config;
     const PreparedSurface s = prepare_surface(load(path).mesh, request.up, nullptr, nullptr);
+    if (s.mesh.triangles.empty())
+      throw InputError(path.string() + ": object '" + oc.name + "': all " +
+                       std::to_string(s.mesh.degenerate_faces) +
+                       " faces are degenerate (zero area)");
     const double width = config.outline.enabled && oc.outline ? outline_width(config.outline, s.mesh) : 0;
     const auto start = Clock::now();
     std::string text = mesh_include(s, "Obj_" + oc.name, light, width);
@@ -228,29 +242,38 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   FlowCoherence coherence;
   std::size_t done = 0;
   for (const auto& [frame, path] : water.frames) {
-    if (stop && stop->load()) throw OutputError(request.out_dir.string() + ": interrupted");
+    if (stop && stop->load()) throw InterruptedError(request.out_dir.string() + ": interrupted");
     const long written_frame = layout.animation ? frame : 0;
     auto write_animated_objects = [&] {
       for (std::size_t i = 0; i < objects.size(); ++i)
         if (objects[i].placement.animated)
           write_object(i, objects[i].sequence.frames.at(frame), written_frame);
     };
-    InputMesh input;
-    try {
-      input = load_water(path);
-    } catch (const EmptyMeshError& empty) {
-      // A frame with no liquid: the scene still needs its include, with nothing in it.
-      if (water.frames.size() == 1) throw;
-      report.empty_frames.push_back(empty.what());
+    // A frame with no liquid: the scene still needs its include, with nothing in it.
+    auto write_empty_frame = [&](const std::string& why) {
+      if (water.frames.size() == 1) throw InputError(why);
+      report.empty_frames.push_back(why);
       write(water_include_name(written_frame), empty_water_include());
       write_animated_objects();
       ++report.frames;
       if (progress) progress(++done, water.frames.size());
+    };
+    InputMesh input;
+    try {
+      input = load_water(path);
+    } catch (const EmptyMeshError& empty) {
+      write_empty_frame(empty.what());
       continue;
     }
     const bool coherent = flow && flow->coherence && water.frames.size() > 1;
     PreparedSurface s = prepare_surface(std::move(input.mesh), request.up, flow,
                                         coherent ? &coherence : nullptr, shading);
+    // POV-Ray rejects a mesh2 without faces: a frame of zero-area faces only has no water.
+    if (s.mesh.triangles.empty()) {
+      write_empty_frame(path.string() + ": all " + std::to_string(s.mesh.degenerate_faces) +
+                        " faces are degenerate (zero area)");
+      continue;
+    }
     s.view_range = view_range;
     report.analysis_seconds += s.analysis_seconds;
     report.vertices += s.mesh.positions.size();
@@ -288,7 +311,9 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   }
   write("toon.inc", std::string(toon_template()));
   write("scene.ini", scene_ini(layout));
-  write("scene.pov", scene_pov(layout));  // last: its presence marks a complete directory
+  write("scene.pov", scene_pov(layout));
+  if (request.before_commit) request.before_commit();
+  scene.commit();
   return report;
 }
 

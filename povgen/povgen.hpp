@@ -4,9 +4,10 @@
 //   DIR/scene.ini            frame range, size, output names
 //   DIR/toon.inc             the shading template (templates/toon.inc)
 //   DIR/water_NNNN.inc       per frame: Water_mesh (+ Water_shell) as mesh2
-//   DIR/obj_NAME[_NNNN].inc  per object (per frame if animated): Obj_NAME_mesh (+ _shell)
+//   DIR/obj_NAME[.NNNN].inc  per object (per frame if animated): Obj_NAME_mesh (+ _shell)
 //
-// All references inside are relative, so DIR can be moved. Every file is written atomically.
+// All references inside are relative, so DIR can be moved. The directory is replaced whole, or
+// not at all (scene_directory.hpp).
 #pragma once
 
 #include "analyzer/affine_transform.hpp"
@@ -67,6 +68,11 @@ struct PovgenRequest {
   std::filesystem::path base_dir;  // patterns on the command line are relative to it
   Axis up = Axis::y;
   std::filesystem::path out_dir;
+  bool force = false;  // write into a non-empty directory that is not a toonwater scene
+  // Called once every scene file is complete, just before DIR is replaced: an exception from it
+  // leaves DIR as it was. (The CLI writes the --maps outputs here, so that both or neither are
+  // replaced.)
+  std::function<void()> before_commit;
 };
 
 struct PovgenReport {
@@ -75,7 +81,7 @@ struct PovgenReport {
   std::size_t vertices = 0;  // water vertices, all frames
   std::size_t degenerate_faces = 0, replaced_normals = 0;
   std::size_t ridge_vertices = 0, valley_vertices = 0;
-  std::vector<std::string> empty_frames;  // "PATH: contains no faces", frames left without water
+  std::vector<std::string> empty_frames;  // "PATH: why", frames left without water (no faces)
   double read_seconds = 0, analysis_seconds = 0, write_seconds = 0;
 };
 
@@ -83,7 +89,7 @@ struct PovgenReport {
 using ProgressFn = std::function<void(std::size_t, std::size_t)>;
 
 // Throws InputError, ConfigError or OutputError; when `stop` becomes true it stops between
-// frames and throws OutputError("interrupted"). Files already written stay complete.
+// frames and throws InterruptedError. On any failure DIR is left as it was.
 PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& request,
                             const ProgressFn& progress, const std::atomic<bool>* stop);
 

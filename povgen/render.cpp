@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <charconv>
 #include <chrono>
 #include <fstream>
 #include <mutex>
@@ -32,9 +33,22 @@ IniFrames read_ini_frames(const fs::path& ini) {
   if (!in) throw InputError(ini.string() + ": no povgen scene here (scene.ini missing)");
   IniFrames f;
   bool has_first = false, has_last = false;
+  const auto frame_number = [&](const std::string& text) {
+    long n = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), n);
+    if (error != std::errc{} || end != text.data() + text.size())
+      throw InputError(ini.string() + ": malformed frame number '" + text.substr(0, 20) + "'");
+    return n;
+  };
   for (std::string line; std::getline(in, line);) {
-    if (line.rfind("Initial_Frame=", 0) == 0) f.first = std::stol(line.substr(14)), has_first = true;
-    if (line.rfind("Final_Frame=", 0) == 0) f.last = std::stol(line.substr(12)), has_last = true;
+    if (line.rfind("Initial_Frame=", 0) == 0) {
+      f.first = frame_number(line.substr(14));
+      has_first = true;
+    }
+    if (line.rfind("Final_Frame=", 0) == 0) {
+      f.last = frame_number(line.substr(12));
+      has_last = true;
+    }
     if (line.rfind("Output_File_Name=\"", 0) == 0 && line.size() > 19 && line.back() == '"')
       f.output_name = line.substr(18, line.size() - 19);
   }
@@ -67,6 +81,9 @@ int wait_for(pid_t pid, const std::atomic<bool>* stop) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+// Exit statuses of the forked child before it becomes POV-Ray (the shell's conventions).
+constexpr int cannot_write_log = 125, cannot_enter_directory = 126, cannot_execute = 127;
+
 // Runs one povray process in `dir` with its output in `log`; returns its exit status.
 int run_povray(const fs::path& dir, const std::vector<std::string>& args, const fs::path& log,
                const std::atomic<bool>* stop) {
@@ -79,11 +96,12 @@ int run_povray(const fs::path& dir, const std::vector<std::string>& args, const 
   if (pid < 0) return -1;
   if (pid == 0) {
     const int fd = ::open(log_s.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd < 0 || ::chdir(dir_s.c_str()) != 0) ::_exit(126);
+    if (fd < 0) ::_exit(cannot_write_log);
+    if (::chdir(dir_s.c_str()) != 0) ::_exit(cannot_enter_directory);
     ::dup2(fd, STDOUT_FILENO);
     ::dup2(fd, STDERR_FILENO);
     ::execvp(argv[0], argv.data());
-    ::_exit(127);
+    ::_exit(cannot_execute);
   }
   return wait_for(pid, stop);
 }
@@ -94,12 +112,23 @@ std::string publish_images(const fs::path& work, const fs::path& dir, const fs::
   std::size_t images = 0;
   for (const auto& entry : fs::directory_iterator(work, ec)) {
     if (entry.path() == log || !entry.is_regular_file()) continue;
+    // A full disk can leave an empty file behind a zero exit status.
+    if (entry.file_size(ec) == 0 || ec) return "POV-Ray wrote an empty image";
     fs::rename(entry.path(), dir / entry.path().filename(), ec);
     if (ec) return "cannot move " + entry.path().string() + " into place: " + ec.message();
     ++images;
   }
   if (ec) return "cannot list " + work.string() + ": " + ec.message();
   return images == 0 ? "POV-Ray wrote no image" : "";
+}
+
+// Why a run that exited with `status` failed: its exit status (a signal above 128, as
+// wait_for reports it), then the log's error lines when it has any.
+std::string povray_failure(int status, const std::string& log) {
+  std::string reason = status > 128 ? "POV-Ray was killed by signal " + std::to_string(status - 128)
+                                    : "POV-Ray exited with status " + std::to_string(status);
+  const std::string message = povray_error_message(log);
+  return message.empty() ? reason : reason + ": " + message;
 }
 
 std::string read_all(const fs::path& p) {
@@ -129,6 +158,7 @@ RenderReport render_frames(const RenderRequest& request, const RenderProgressFn&
   if (!fs::is_regular_file(dir / "scene.pov"))
     throw InputError(dir.string() + ": no povgen scene here (scene.pov missing)");
   const IniFrames ini = read_ini_frames(dir / "scene.ini");
+  remove_stale_temporaries(dir);  // frames of runs that were killed
 
   std::vector<long> frames;
   if (ini.animation) {
@@ -179,15 +209,24 @@ RenderReport render_frames(const RenderRequest& request, const RenderProgressFn&
         break;
       }
       if (ec) failure = "cannot create " + work.string() + ": " + ec.message();
-      else if (status == 127) failure = "cannot run '" + request.povray + "' (is POV-Ray installed?)";
-      else if (status != 0) failure = povray_error_message(read_all(log));
+      else if (status == cannot_execute)
+        failure = "cannot run '" + request.povray + "' (is POV-Ray installed?)";
+      else if (status == cannot_write_log) failure = "cannot write " + log.string();
+      else if (status == cannot_enter_directory) failure = "cannot enter " + dir.string();
+      else if (status != 0) failure = povray_failure(status, read_all(log));
       else failure = publish_images(work, dir, log);
-      if (failure.empty()) fs::remove(kept_log, ec);
-      else fs::rename(log, kept_log, ec);
+      bool log_kept = false;
+      if (failure.empty()) {
+        fs::remove(kept_log, ec);
+      } else if (fs::exists(log, ec)) {
+        fs::rename(log, kept_log, ec);
+        log_kept = !ec;
+      }
       fs::remove_all(work, ec);
       std::lock_guard lock(mutex);
       if (failure.empty()) ++report.rendered;
-      else report.failures.push_back({frame, failure + " (log: " + kept_log.filename().string() + ")"});
+      else report.failures.push_back(
+          {frame, log_kept ? failure + " (log: " + kept_log.filename().string() + ")" : failure});
       ++done;
       if (progress)
         progress(done, frames.size(),
@@ -200,7 +239,7 @@ RenderReport render_frames(const RenderRequest& request, const RenderProgressFn&
     worker();
   }
   if (stop_requested(request.stop))
-    throw OutputError(dir.string() + ": interrupted after " + std::to_string(report.rendered) +
+    throw InterruptedError(dir.string() + ": interrupted after " + std::to_string(report.rendered) +
                       " of " + std::to_string(frames.size()) + " frame(s)");
   std::sort(report.failures.begin(), report.failures.end(),
             [](const FrameFailure& a, const FrameFailure& b) { return a.frame < b.frame; });

@@ -122,7 +122,7 @@ std::string water_include_name(long frame) { return "water_" + padded(frame, 4) 
 
 std::string object_include_name(const std::string& name, bool animated, long frame) {
   std::string s = std::string("obj_").append(name);
-  if (animated) s.append("_").append(padded(frame, 4));
+  if (animated) s.append(".").append(padded(frame, 4));  // '.' is in no object name: no clash
   return s.append(".inc");
 }
 
@@ -162,7 +162,7 @@ std::string scene_pov(const SceneLayout& l) {
   s += "#include concat(\"water_\", str(frame_number, -4, 0), \".inc\")\n";
   for (const ObjectPlacement& o : l.objects) {
     if (o.animated)
-      s += "#include concat(" + quoted("obj_" + o.config->name + "_") +
+      s += "#include concat(" + quoted("obj_" + o.config->name + ".") +
            ", str(frame_number, -4, 0), \".inc\")\n";
     else
       s += "#include " + quoted(object_include_name(o.config->name, false, 0)) + "\n";

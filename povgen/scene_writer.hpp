@@ -1,6 +1,6 @@
 // scene.pov and scene.ini: the parts of a toonwater scene that are the same for every frame.
 // scene.pov includes templates/toon.inc and, per frame, the mesh2 includes the frame writer
-// produced (water_NNNN.inc, obj_NAME.inc or obj_NAME_NNNN.inc). It contains only what the
+// produced (water_NNNN.inc, obj_NAME.inc or obj_NAME.NNNN.inc). It contains only what the
 // configuration needs: no light without highlights, no reflection finish or reflection targets
 // when the water does not reflect, no interior when nothing refracts, no shells without
 // outlines, no flow pigment without flow regions, no object code without objects.

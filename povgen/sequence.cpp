@@ -34,6 +34,33 @@ long last_number(const std::string& name) {
   return begin == end || end - begin > 9 ? -1 : to_frame(std::string_view(name).substr(begin, end - begin));
 }
 
+// A backslash before one of these makes it literal; before anything else it is itself.
+constexpr std::string_view pattern_chars = "#*?[";
+
+bool escapes(std::string_view text, std::size_t i) {
+  return text[i] == '\\' && i + 1 < text.size() &&
+         pattern_chars.find(text[i + 1]) != std::string_view::npos;
+}
+
+// The position of the first of `chars` in `name` that no backslash escapes, or npos.
+std::size_t find_unescaped(const std::string& name, std::string_view chars) {
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    if (escapes(name, i)) ++i;
+    else if (chars.find(name[i]) != std::string_view::npos) return i;
+  }
+  return std::string::npos;
+}
+
+// `text` with each escaped pattern character in place of its escape.
+std::string unescape(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (escapes(text, i)) ++i;
+    out += text[i];
+  }
+  return out;
+}
+
 }  // namespace
 
 Sequence find_sequence(const std::string& pattern, const fs::path& base_dir) {
@@ -42,25 +69,34 @@ Sequence find_sequence(const std::string& pattern, const fs::path& base_dir) {
   const fs::path dir = full.parent_path();
   Sequence seq;
 
-  const auto hashes = name.find('#');
-  const bool glob = name.find_first_of("*?[") != std::string::npos;
-  if (hashes == std::string::npos && !glob) {
-    if (!fs::is_regular_file(full)) throw InputError(full.string() + ": no such file");
+  // An existing file is itself, whatever characters its name holds.
+  std::error_code ec;
+  if (fs::is_regular_file(full, ec)) {
     seq.single_file = true;
     seq.frames.emplace(0, full);
+    return seq;
+  }
+  const auto hashes = find_unescaped(name, "#");
+  const bool glob = find_unescaped(name, "*?[") != std::string::npos;
+  if (hashes == std::string::npos && !glob) {
+    const fs::path file = dir / unescape(name);
+    if (!fs::is_regular_file(file, ec)) throw InputError(file.string() + ": no such file");
+    seq.single_file = true;
+    seq.frames.emplace(0, file);
     return seq;
   }
 
   std::size_t hash_end = hashes;
   if (hashes != std::string::npos)
     while (hash_end < name.size() && name[hash_end] == '#') ++hash_end;
-  std::error_code ec;
+  const bool numbered = hashes != std::string::npos;
+  const std::string prefix = numbered ? unescape(std::string_view(name).substr(0, hashes)) : "";
+  const std::string suffix = numbered ? unescape(std::string_view(name).substr(hash_end)) : "";
   for (const auto& entry : fs::directory_iterator(dir.empty() ? fs::path(".") : dir, ec)) {
     if (!entry.is_regular_file()) continue;
     const std::string file = entry.path().filename().string();
     long frame = -1;
     if (hashes != std::string::npos) {
-      const std::string prefix = name.substr(0, hashes), suffix = name.substr(hash_end);
       if (file.size() < prefix.size() + suffix.size() + (hash_end - hashes)) continue;
       if (file.compare(0, prefix.size(), prefix) != 0) continue;
       if (file.compare(file.size() - suffix.size(), suffix.size(), suffix) != 0) continue;

@@ -2,6 +2,7 @@
 #include "analyzer/maps/map_planner.hpp"
 
 #include "analyzer/flow_regions.hpp"
+#include "analyzer/mesh_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -50,7 +51,7 @@ void MapPlanner::add(const TriangleMesh& surface, const CurvatureField& curvatur
 
 MapView MapPlanner::view(const MapOptions& options) const {
   if (!options.box && !has_extent_)
-    throw std::runtime_error(std::string("maps: no free-surface face faces up along +") +
+    throw InputError(std::string("maps: no free-surface face faces up along +") +
                              "xyz"[static_cast<int>(up_)] +
                              ", so there is no top-down map (is the up axis right?)");
   MapView view;
@@ -59,7 +60,7 @@ MapView MapPlanner::view(const MapOptions& options) const {
   const double u_extent = view.box.u_max - view.box.u_min;
   const double v_extent = view.box.v_max - view.box.v_min;
   if (!(u_extent >= 0.0 && v_extent >= 0.0) || !std::isfinite(u_extent + v_extent))
-    throw std::runtime_error("maps: the map box is empty or not finite");
+    throw InputError("maps: the map box is empty or not finite");
   const double longer = std::max(u_extent, v_extent);
   const int max_size = std::max(1, options.max_size);
   double pixel_size = 0.0;

@@ -1,7 +1,9 @@
 // Wavefront OBJ: "v x y z [w | r g b [a]]" vertices and "f a a/b a/b/c a//c ..." faces, whose
-// indices are 1-based or negative (relative to the vertices read so far). Every other statement
-// (vt, vn, vp, g, o, s, usemtl, mtllib, l, p, ...) describes nothing the analyzer uses and is
-// skipped.
+// indices are 1-based or negative (relative to the vertices read so far). The other statements
+// of the OBJ specification (vt, vn, vp, g, o, s, usemtl, mtllib, l, p, free-form geometry, ...)
+// describe nothing the analyzer uses and are skipped. Any other line is an error: an unknown
+// statement ("F 1 2 3", "f2 3 4") or bytes that are not text (a file cut short by a crash often
+// ends in NUL bytes) would otherwise lose faces in silence.
 #include "analyzer/readers/readers.hpp"
 
 #include <cstdint>
@@ -91,6 +93,21 @@ void read_face(const SourceFile& file, std::size_t line, Fields& fields, Triangl
   add_polygon(mesh, corners);
 }
 
+// The statements of the OBJ specification (Wavefront, Appendix B1 of the Advanced Visualizer
+// manual) that carry no vertex or face of a surface. "call" (which includes another file's
+// geometry) is not among them: it is rejected like an unknown statement.
+bool is_skipped_statement(std::string_view keyword) {
+  static constexpr std::string_view skipped[] = {
+      "vt",   "vn",    "vp",     "g",     "o",        "s",        "mg",      "usemtl",
+      "mtllib", "usemap", "maplib", "l",  "p",        "cstype",   "deg",     "bmat",
+      "step", "curv",  "curv2",  "surf",  "parm",     "trim",     "hole",    "scrv",
+      "sp",   "end",   "con",    "bevel", "c_interp", "d_interp", "lod",     "shadow_obj",
+      "trace_obj", "ctech", "stech", "csh"};
+  for (const std::string_view s : skipped)
+    if (keyword == s) return true;
+  return false;
+}
+
 // Lines that start with "v " and "f ": a quick count to reserve the arrays exactly, since
 // growing them by doubling would cost up to twice their size at the peak of a large read.
 std::pair<std::size_t, std::size_t> count_vertex_and_face_lines(std::string_view bytes) {
@@ -124,7 +141,9 @@ InputMesh read_obj(const SourceFile& file) {
     const std::string_view keyword = fields.next();
     const bool is_vertex = keyword == "v";
     const bool is_face = keyword == "f";
-    if (!is_vertex && !is_face) continue;
+    if (keyword.empty() || is_skipped_statement(keyword)) continue;
+    if (!is_vertex && !is_face)
+      fail_at_line(file, lines.line_number(), "unknown OBJ statement " + quote(keyword));
     if (continues_on_next_line(content))
       fail_at_line(file, lines.line_number(), "line continuation with '\\' is not supported");
     if (is_vertex) {

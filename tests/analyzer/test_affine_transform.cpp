@@ -101,7 +101,7 @@ TEST(AffineTransformCli, BadTransformsAreOneLineErrorsBeforeTheMeshIsRead) {
   const std::vector<Case> cases{
       {{"--transform", "1,0,0,0,0,1,0,0,0,0,0,0"}, "singular"},
       {{"--scale", "0"}, "singular"},
-      {{"--scale", "nan"}, "NaN or infinite"},
+      {{"--scale", "nan"}, "--scale: 'nan' is not a finite number"},
       {{"--transform", "1,0,0,0,0,1,0,0,0,0,1"}, "--transform"},
       {{"--translate", "1,2"}, "--translate"},
       {{"--transform", "1,0,0,0,0,1,0,0,0,0,1,0", "--scale", "2"}, "excludes"}};

@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -76,17 +79,77 @@ TEST(AtomicFile, MissingDirectoryFailsNamingTheFile) {
   EXPECT_TRUE(entries(dir.path()).empty());
 }
 
-TEST(AtomicFile, FailedReplaceKeepsTheTargetAndLeavesNoTemporary) {
-  // The target is a non-empty directory, which rename() cannot replace: the write itself
-  // succeeds and the failure comes at the last step, after the temporary file exists.
+TEST(AtomicFile, DirectoryTargetIsRefusedBeforeWriting) {
   ScratchDir dir;
   const fs::path target = dir / "out.csv";
   fs::create_directory(target);
   write_text(target / "kept.txt", "good");
   const std::string message = write_error(target, "new content");
-  EXPECT_EQ(message.rfind(target.string() + ": cannot replace the file: ", 0), 0u) << message;
+  EXPECT_EQ(message, target.string() + ": is a directory");
   EXPECT_EQ(entries(dir.path()), std::vector<std::string>({"out.csv"}));
   EXPECT_EQ(read_text(target / "kept.txt"), "good");
+}
+
+TEST(AtomicFile, FailedReplaceKeepsTheTargetAndLeavesNoTemporary) {
+  // The target becomes a non-empty directory while the file is written, which rename() cannot
+  // replace: the failure comes at the last step, after the temporary file exists.
+  ScratchDir dir;
+  const fs::path target = dir / "out.csv";
+  AtomicFileWriter file(target);
+  file.write("new content");
+  fs::create_directory(target);
+  write_text(target / "kept.txt", "good");
+  try {
+    file.commit();
+    ADD_FAILURE() << "no error";
+  } catch (const OutputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(target.string() + ": cannot replace the file: ", 0), 0u)
+        << e.what();
+  }
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>({"out.csv"}));
+  EXPECT_EQ(read_text(target / "kept.txt"), "good");
+}
+
+TEST(AtomicFile, BatchReplacesAllOrNone) {
+  ScratchDir dir;
+  write_text(dir / "a.csv", "old a");
+  {
+    OutputBatch batch;
+    write_file_atomically(dir / "a.csv", "new a");
+    EXPECT_EQ(read_text(dir / "a.csv"), "old a") << "renamed only by the batch";
+    EXPECT_THROW(write_file_atomically(dir / "missing" / "b.csv", "b"), OutputError);
+  }  // not committed: a.csv stays
+  EXPECT_EQ(read_text(dir / "a.csv"), "old a");
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>({"a.csv"}));
+  {
+    OutputBatch batch;
+    write_file_atomically(dir / "a.csv", "new a");
+    write_file_atomically(dir / "b.csv", "new b");
+    batch.commit();
+  }
+  EXPECT_EQ(read_text(dir / "a.csv"), "new a");
+  EXPECT_EQ(read_text(dir / "b.csv"), "new b");
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>({"a.csv", "b.csv"}));
+}
+
+TEST(AtomicFile, LinksAreWrittenThroughAndStaleTemporariesRemoved) {
+  ScratchDir dir;
+  write_text(dir / "target.csv", "old");
+  fs::create_symlink("target.csv", dir / "link.csv");
+  write_file_atomically(dir / "link.csv", "new");
+  EXPECT_TRUE(fs::is_symlink(dir / "link.csv"));
+  EXPECT_EQ(read_text(dir / "target.csv"), "new");
+
+  const pid_t gone = ::fork();
+  if (gone == 0) ::_exit(0);
+  ::waitpid(gone, nullptr, 0);
+  const std::string stale = ".out.csv.tmp-" + std::to_string(gone) + "-3";
+  const std::string live = ".out.csv.tmp-" + std::to_string(::getpid()) + "-3";
+  write_text(dir / stale, "left by a killed run");
+  write_text(dir / live, "this process's");
+  remove_stale_temporaries(dir.path());
+  EXPECT_FALSE(fs::exists(dir / stale));
+  EXPECT_TRUE(fs::exists(dir / live));
 }
 
 TEST(AtomicFile, PathWithoutFileNameIsRejected) {

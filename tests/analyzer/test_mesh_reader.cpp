@@ -169,6 +169,41 @@ TEST_F(MeshReader, ObjErrorsNameFileAndLine) {
   expect_line_error("l.obj", triangle_obj + "f 1 2 3.5\n", 4, "malformed face index '3.5'");
 }
 
+// A statement the reader does not know would lose its faces in silence: "F" and "f2" are
+// typing errors, NUL bytes what a crash leaves at the end of a file cut short.
+TEST_F(MeshReader, ObjUnknownStatementsAndNulBytesAreErrors) {
+  const std::string faces = "f 1 2 3\n";
+  expect_line_error("upper.obj", triangle_obj + faces + "F 2 3 1\n", 5, "unknown OBJ statement 'F'");
+  expect_line_error("glued.obj", triangle_obj + "f2 3 1\n" + faces, 4,
+                    "unknown OBJ statement 'f2'");
+  expect_line_error("nul.obj", triangle_obj + faces + std::string(6, '\0') + "\n", 5,
+                    "unknown OBJ statement '" + std::string(6, '?') + "'");
+  expect_line_error("nul_end.obj", triangle_obj + faces + std::string(3, '\0'), 5,
+                    "unknown OBJ statement '" + std::string(3, '?') + "'");
+  expect_line_error("nul_prefix.obj", triangle_obj + std::string(2, '\0') + "f 1 2 3\n", 4,
+                    "unknown OBJ statement");
+  expect_line_error("call.obj", "call other.obj\n" + triangle_obj + faces, 1,
+                    "unknown OBJ statement 'call'");
+}
+
+// The other text readers already refuse what they do not know; NUL bytes included.
+TEST_F(MeshReader, TextFormatsRejectNulBytes) {
+  const std::string nul(4, '\0');
+  expect_line_error("nul.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n" + nul, 7,
+                    "unexpected data after the last");
+  expect_line_error("nul_vertex.off", "OFF\n3 1 0\n0 0 0\n" + nul + "\n1 0 0\n0 1 0\n3 0 1 2\n",
+                    4, "malformed number");
+  const std::string ply_header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  expect_line_error("nul.ply", ply_header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n" + nul, 14,
+                    "unexpected data after the last element");
+  const std::string stl =
+      "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+      "endloop\nendfacet\nendsolid s\n";
+  expect_line_error("nul.stl", stl + nul + "\n", 10, "unexpected '" + std::string(4, '?') + "' in ASCII STL");
+}
+
 TEST_F(MeshReader, EmptyMeshesAreRejected) {
   expect_error("empty.obj", "", {"contains no faces"});
   expect_error("points.obj", triangle_obj, {"contains no faces"});

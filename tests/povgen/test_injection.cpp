@@ -171,6 +171,8 @@ void expect_only_generated_code(const fs::path& scene) {
               << name << ": " << line;
           open = line.find('"', close + 1);
         }
+      } else if (name == ".toonwater-scene") {  // the marker: fixed text, no POV-Ray code
+        EXPECT_EQ(text, "toonwater povgen scene directory\n");
       } else {
         ASSERT_EQ(entry.path().extension(), ".inc") << "unexpected file " << name;
         if (hash != std::string::npos) {

@@ -1,7 +1,8 @@
 // Nothing lost: `toonwater povgen` and `toonwater render` interrupted by SIGINT or SIGTERM in the
-// middle of a sequence stop with an error, leave every file they had finished (and every good file
-// of an earlier run) complete, leave no temporary or partial file and no povray process behind;
-// running the command again completes the sequence.
+// middle of a sequence stop with the "interrupted" exit code and leave no temporary or partial
+// file and no povray process behind. povgen leaves the scene directory exactly as it was (none
+// in a fresh place, the earlier complete scene otherwise); render keeps the images it finished.
+// Running the command again completes the sequence.
 //
 // No timing is asserted: the signal is sent once the progress display shows a few frames done, and
 // the sequences are long enough that the run is still going then. Waits are generous.
@@ -108,7 +109,8 @@ std::vector<std::string> leftovers(const fs::path& dir) {
   std::vector<std::string> found;
   for (const auto& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
-    if (name.find(".tmp") != std::string::npos || name.starts_with("render_") || name[0] == '.')
+    if (name.find(".tmp") != std::string::npos || name.starts_with("render_") ||
+        (name[0] == '.' && name != ".toonwater-scene"))
       found.push_back(name);
   }
   return found;
@@ -156,27 +158,24 @@ TEST_P(Interrupt, PovgenKeepsFinishedFramesAndLeavesNothingPartial) {
   const fs::path out = dir / "scene";
   const std::vector<std::string> args{"povgen", "--water", pattern.string(), "--out", out.string()};
 
-  // Interrupted in a fresh directory: the frames done are complete, scene.pov (written last, it
-  // marks a complete directory) is absent.
+  // Interrupted in a fresh place: no scene directory at all, nothing left beside it.
   {
     Background run(args, dir / "first.log");
     ASSERT_TRUE(run.wait_for_output("frame 3/")) << run.output();
     run.signal(GetParam());
     const int code = run.wait();
-    EXPECT_NE(code, 0) << run.output();
+    EXPECT_EQ(code, 4) << run.output();
     EXPECT_NE(run.output().find("interrupted"), std::string::npos) << run.output();
   }
-  EXPECT_EQ(leftovers(out), std::vector<std::string>{});
-  EXPECT_FALSE(fs::exists(out / "scene.pov"));
-  const auto partial = contents(out);
-  ASSERT_GE(partial.size(), 3u);
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(leftovers(dir.path()), std::vector<std::string>{});
 
-  // Run again: every frame is redone and the directory completes.
+  // Run again: every frame is done and the directory is complete.
   const CommandResult full = run_toonwater(args);
   ASSERT_EQ(full.exit_code, 0) << full.output;
   const auto good = contents(out);
-  ASSERT_EQ(good.size(), frame_count + 3u) << "water includes, toon.inc, scene.ini, scene.pov";
-  for (const auto& [name, text] : partial) EXPECT_EQ(text, good.at(name)) << name;
+  ASSERT_EQ(good.size(), frame_count + 4u)
+      << "water includes, toon.inc, scene.ini, scene.pov, .toonwater-scene";
   for (const auto& [name, text] : good) {
     if (name.starts_with("water_")) {
       EXPECT_EQ(text, good.at("water_0000.inc")) << name;
@@ -188,9 +187,10 @@ TEST_P(Interrupt, PovgenKeepsFinishedFramesAndLeavesNothingPartial) {
     Background run(args, dir / "third.log");
     ASSERT_TRUE(run.wait_for_output("frame 3/")) << run.output();
     run.signal(GetParam());
-    EXPECT_NE(run.wait(), 0) << run.output();
+    EXPECT_EQ(run.wait(), 4) << run.output();
   }
   EXPECT_EQ(leftovers(out), std::vector<std::string>{});
+  EXPECT_EQ(leftovers(dir.path()), std::vector<std::string>{});
   EXPECT_EQ(contents(out), good);
 }
 

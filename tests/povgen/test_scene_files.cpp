@@ -259,13 +259,13 @@ TEST(PovgenScene, GlobSequencesStaticAndAnimatedObjectsMatchedByFrame) {
                                    "--out", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_FALSE(std::filesystem::exists(out / "water_0007.inc"));
-  for (const char* f : {"water_0008.inc", "water_0009.inc", "obj_boat_0008.inc", "obj_boat_0009.inc",
+  for (const char* f : {"water_0008.inc", "water_0009.inc", "obj_boat.0008.inc", "obj_boat.0009.inc",
                         "obj_rock.inc"})
     EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
   const std::string ini = read_text(out / "scene.ini");
   EXPECT_NE(ini.find("Initial_Frame=8\nFinal_Frame=9"), std::string::npos) << ini;
   const std::string pov = read_text(out / "scene.pov");
-  EXPECT_NE(pov.find("#include concat(\"obj_boat_\", str(frame_number, -4, 0), \".inc\")"),
+  EXPECT_NE(pov.find("#include concat(\"obj_boat.\", str(frame_number, -4, 0), \".inc\")"),
             std::string::npos);
   EXPECT_NE(pov.find("#include \"obj_rock.inc\""), std::string::npos);
 

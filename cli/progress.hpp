@@ -1,0 +1,24 @@
+// Progress of a frame loop on standard error. On a terminal one line is rewritten in place
+// ("\r"); anywhere else (a log file, a pipe) each update is a line of its own, so that nothing
+// is overwritten and a message that follows starts on a fresh line.
+#pragma once
+
+#include <cstddef>
+
+namespace toonwater::cli {
+
+class FrameProgress {
+ public:
+  explicit FrameProgress(const char* command);
+  // `done` of `total` frames after `elapsed` seconds.
+  void update(std::size_t done, std::size_t total, double elapsed);
+  // Ends a rewritten line that is still open (before an error or a warning).
+  void finish_line();
+
+ private:
+  const char* command_;
+  bool terminal_;
+  bool line_open_ = false;
+};
+
+}  // namespace toonwater::cli

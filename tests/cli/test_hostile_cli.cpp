@@ -1,0 +1,581 @@
+// The toonwater program under faults and hostile use: it never reports a success that did not
+// happen, never clobbers a file it did not write, and answers every mistake with one printable
+// line and the documented exit code (cli/exit_codes.hpp).
+#include "cli/exit_codes.hpp"
+#include "tests/support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace toonwater {
+namespace {
+
+namespace fs = std::filesystem;
+namespace exit_code = cli::exit_code;
+using test::read_text;
+using test::ScratchDir;
+using test::write_text;
+
+struct Outcome {
+  int exit_code = -1;
+  std::string out, err;  // standard output and standard error
+};
+
+// Runs toonwater in `dir` with `env` added to the environment, its standard output and error
+// captured apart (standard error is a file: not a terminal).
+Outcome run(const fs::path& dir, const std::vector<std::string>& args,
+        const std::map<std::string, std::string>& env = {}) {
+  const fs::path out = dir / ".test-stdout", err = dir / ".test-stderr";
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int out_fd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int err_fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (out_fd < 0 || err_fd < 0 || ::chdir(dir.c_str()) != 0) ::_exit(126);
+    ::dup2(out_fd, STDOUT_FILENO);
+    ::dup2(err_fd, STDERR_FILENO);
+    for (const auto& [name, value] : env) ::setenv(name.c_str(), value.c_str(), 1);
+    std::string exe = TOONWATER_EXECUTABLE;
+    std::vector<std::string> copies = args;
+    std::vector<char*> argv{exe.data()};
+    for (auto& a : copies) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execv(exe.c_str(), argv.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  Outcome r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.out = read_text(out);
+  r.err = read_text(err);
+  fs::remove(out);
+  fs::remove(err);
+  return r;
+}
+
+bool has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+bool printable_lines(const std::string& text) {
+  return std::all_of(text.begin(), text.end(), [](char c) {
+    return c == '\n' || (c >= ' ' && c <= '~') || static_cast<unsigned char>(c) >= 0x80;
+  });
+}
+
+// A wavy 6 x 6 grid as OBJ (y up), shifted by `dy`.
+std::string grid_obj(double dy = 0) {
+  std::string s;
+  constexpr int n = 6;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      s += "v " + std::to_string(i * 0.2) + " " + std::to_string(dy + 0.05 * ((i + j) % 2)) + " " +
+           std::to_string(j * 0.2) + "\n";
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i + 1, b = a + 1, c = a + n, d = c + 1;
+      s += "f " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(b) + "\n";
+      s += "f " + std::to_string(b) + " " + std::to_string(c) + " " + std::to_string(d) + "\n";
+    }
+  return s;
+}
+
+// Every regular file of `dir` by name, with its content (hidden files included).
+std::map<std::string, std::string> contents(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.is_regular_file()) files[entry.path().filename().string()] = read_text(entry.path());
+  return files;
+}
+
+std::vector<std::string> names(const fs::path& dir) {
+  std::vector<std::string> found;
+  for (const auto& entry : fs::directory_iterator(dir))
+    found.push_back(entry.path().filename().string());
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+// A process id that no process has: a child that has exited and been reaped.
+pid_t gone_pid() {
+  const pid_t pid = ::fork();
+  if (pid == 0) ::_exit(0);
+  ::waitpid(pid, nullptr, 0);
+  return pid;
+}
+
+class HostileCli : public ::testing::Test {
+ protected:
+  fs::path at(const std::string& name) const { return dir_ / name; }
+  // Frames water_0000.obj ... of the grid.
+  void write_sequence(int frames) {
+    for (int f = 0; f < frames; ++f) {
+      char name[32];
+      std::snprintf(name, sizeof name, "water_%04d.obj", f);
+      write_text(at(name), grid_obj(0.01 * f));
+    }
+  }
+  // A fake POV-Ray: a shell script with `body`.
+  std::string fake_povray(const std::string& body) {
+    const fs::path script = at("fake-povray");
+    write_text(script, "#!/bin/sh\n" + body + "\n");
+    fs::permissions(script, fs::perms::owner_all);
+    return script.string();
+  }
+  Outcome toonwater(const std::vector<std::string>& args,
+                const std::map<std::string, std::string>& env = {}) {
+    return run(dir_.path(), args, env);
+  }
+  const std::vector<std::string> small{"--set", "render.width=32", "--set", "render.height=24"};
+  ScratchDir dir_;
+};
+
+// ---- 1. render: a failed POV-Ray is a failed frame ----
+
+TEST_F(HostileCli, RenderFailsWhenPovrayFailsSilentlyOrWritesNoImage) {
+  write_sequence(2);
+  ASSERT_EQ(toonwater({"povgen", "--water", "water_####.obj", "--out", "scene"}).exit_code, 0);
+  // A full disk: POV-Ray exits non-zero and its log is empty.
+  Outcome r = toonwater({"render", "scene"}, {{"TOONWATER_POVRAY", fake_povray("exit 1")}});
+  EXPECT_EQ(r.exit_code, exit_code::povray_failed) << r.err;
+  EXPECT_TRUE(has(r.err, "frame 0 failed: POV-Ray exited with status 1")) << r.err;
+  EXPECT_TRUE(has(r.err, "0 frame(s) rendered, 2 failed")) << r.err;
+  // Exit 0 without an image, and exit 0 with an empty one.
+  r = toonwater({"render", "scene"}, {{"TOONWATER_POVRAY", fake_povray("exit 0")}});
+  EXPECT_EQ(r.exit_code, exit_code::povray_failed) << r.err;
+  EXPECT_TRUE(has(r.err, "POV-Ray wrote no image")) << r.err;
+  r = toonwater({"render", "scene"},
+                {{"TOONWATER_POVRAY",
+                  fake_povray("for a; do case $a in +O*) : > \"${a#+O}\"1.png;; esac; done")}});
+  EXPECT_EQ(r.exit_code, exit_code::povray_failed) << r.err;
+  EXPECT_TRUE(has(r.err, "POV-Ray wrote an empty image")) << r.err;
+  // Killed by a signal.
+  r = toonwater({"render", "scene"}, {{"TOONWATER_POVRAY", fake_povray("kill -9 $$")}});
+  EXPECT_EQ(r.exit_code, exit_code::povray_failed) << r.err;
+  EXPECT_TRUE(has(r.err, "POV-Ray was killed by signal 9")) << r.err;
+  for (const std::string& name : names(at("scene"))) EXPECT_FALSE(name.ends_with(".png")) << name;
+  // No executable at all.
+  r = toonwater({"render", "scene"}, {{"TOONWATER_POVRAY", at("absent").string()}});
+  EXPECT_EQ(r.exit_code, exit_code::povray_failed) << r.err;
+  EXPECT_TRUE(has(r.err, "cannot run")) << r.err;
+}
+
+TEST_F(HostileCli, AStreamOnAFullDiskIsAnOutputFailure) {
+  write_text(at("w.obj"), grid_obj());
+  const Outcome r = toonwater({"analyze", "w.obj", "--csv", "/dev/full"});
+  EXPECT_EQ(r.exit_code, exit_code::output_failed) << r.err;
+  EXPECT_TRUE(has(r.err, "/dev/full: cannot write: No space left on device")) << r.err;
+}
+
+// ---- 2. a failed, interrupted or concurrent povgen leaves the earlier scene as it was ----
+
+TEST_F(HostileCli, FailedRerunLeavesTheEarlierSceneExactlyAsItWas) {
+  write_sequence(3);
+  ASSERT_EQ(toonwater({"povgen", "--water", "water_####.obj", "--out", "scene"}).exit_code, 0);
+  write_text(at("scene/frame_0.png"), "a rendered image");  // not povgen's: kept on success
+  const auto before = contents(at("scene"));
+  const auto siblings = names(dir_.path());
+  // The last frame is broken: the new scene fails part-way.
+  write_text(at("water_0002.obj"), grid_obj() + "f 1 2 99999\n");
+  const Outcome r = toonwater({"povgen", "--water", "water_####.obj", "--out", "scene", "--set",
+                           "water.ka=0.5"});
+  EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
+  EXPECT_TRUE(contents(at("scene")) == before);
+  EXPECT_EQ(names(dir_.path()), siblings) << "no temporary directory or lock left beside it";
+
+  // A good re-run replaces the scene whole and keeps the file povgen did not write.
+  write_text(at("water_0002.obj"), grid_obj());
+  ASSERT_EQ(toonwater({"povgen", "--water", "water_####.obj", "--out", "scene", "--set",
+                       "water.ka=0.5"})
+                .exit_code,
+            0);
+  const auto after = contents(at("scene"));
+  EXPECT_NE(after.at("scene.pov"), before.at("scene.pov"));
+  EXPECT_EQ(after.at("frame_0.png"), "a rendered image");
+  EXPECT_EQ(names(dir_.path()), siblings);
+}
+
+TEST_F(HostileCli, SecondConcurrentPovgenIsRefused) {
+  write_sequence(2);
+  ASSERT_EQ(toonwater({"povgen", "--water", "water_####.obj", "--out", "scene"}).exit_code, 0);
+  const auto before = contents(at("scene"));
+  // Another run holds the scene's lock.
+  const int fd = ::open(at(".scene.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX), 0);
+  const Outcome r = toonwater({"povgen", "--water", "water_####.obj", "--out", "scene", "--set",
+                           "water.ka=0.5"});
+  ::close(fd);
+  EXPECT_EQ(r.exit_code, exit_code::output_failed) << r.err;
+  EXPECT_TRUE(has(r.err, "another toonwater povgen is writing this scene directory")) << r.err;
+  EXPECT_TRUE(contents(at("scene")) == before);
+}
+
+TEST_F(HostileCli, ConcurrentPovgenRunsNeverMix) {
+  write_sequence(12);
+  std::vector<std::thread> runs;
+  std::vector<Outcome> results(2);
+  for (int i = 0; i < 2; ++i)
+    runs.emplace_back([&, i] {
+      // Each run in its own working directory (run() keeps its output files there).
+      const fs::path cwd = at("run" + std::to_string(i));
+      fs::create_directory(cwd);
+      results[i] = run(cwd, {"povgen", "--water", (dir_.path() / "water_####.obj").string(),
+                             "--out", at("scene").string(), "--set",
+                             "water.ka=0." + std::to_string(i + 2)});
+    });
+  for (auto& t : runs) t.join();
+  int succeeded = 0;
+  for (const Outcome& r : results) {
+    if (r.exit_code == 0) ++succeeded;
+    else EXPECT_TRUE(has(r.err, "another toonwater povgen")) << r.err;
+  }
+  EXPECT_GE(succeeded, 1);
+  // The scene is one run's: scene.pov and every include from the same configuration.
+  const auto scene = contents(at("scene"));
+  EXPECT_EQ(scene.size(), 12u + 4u) << "includes, toon.inc, scene.ini, scene.pov, marker";
+}
+
+// ---- 3. povgen does not overwrite what it did not write ----
+
+TEST_F(HostileCli, PovgenRefusesADirectoryThatIsNotAScene) {
+  write_text(at("w.obj"), grid_obj());
+  fs::create_directory(at("mine"));
+  write_text(at("mine/scene.pov"), "my own scene");
+  write_text(at("mine/notes.txt"), "notes");
+  Outcome r = toonwater({"povgen", "--water", "w.obj", "--out", "mine"});
+  EXPECT_EQ(r.exit_code, exit_code::output_failed) << r.err;
+  EXPECT_TRUE(has(r.err, "is not a toonwater scene directory")) << r.err;
+  EXPECT_TRUE(has(r.err, "--force")) << r.err;
+  EXPECT_EQ(read_text(at("mine/scene.pov")), "my own scene");
+  EXPECT_EQ(names(at("mine")), (std::vector<std::string>{"notes.txt", "scene.pov"}));
+
+  r = toonwater({"povgen", "--water", "w.obj", "--out", "/"});
+  EXPECT_EQ(r.exit_code, exit_code::output_failed) << r.err;
+  EXPECT_FALSE(fs::exists("/scene.pov"));
+
+  // --force: the scene's files replace their namesakes, the others stay.
+  r = toonwater({"povgen", "--water", "w.obj", "--out", "mine", "--force"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_text(at("mine/scene.pov")), "my own scene");
+  EXPECT_EQ(read_text(at("mine/notes.txt")), "notes");
+  // From now on it is a scene directory: no --force needed.
+  EXPECT_EQ(toonwater({"povgen", "--water", "w.obj", "--out", "mine"}).exit_code, 0);
+  EXPECT_EQ(read_text(at("mine/notes.txt")), "notes");
+}
+
+TEST_F(HostileCli, SceneDirectoryBehindALinkIsReplacedAndTheLinkStays) {
+  write_text(at("w.obj"), grid_obj());
+  fs::create_directory(at("real"));
+  fs::create_directory_symlink("real", at("link"));
+  for (int run = 0; run < 2; ++run) {
+    const Outcome r = toonwater({"povgen", "--water", "w.obj", "--out", "link"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::is_symlink(at("link")));
+    EXPECT_TRUE(fs::exists(at("real/scene.pov")));
+  }
+}
+
+// ---- 4. outputs through links, FIFOs and standard output ----
+
+TEST_F(HostileCli, OutputsFollowLinksStreamToFifosAndStandardOutput) {
+  write_text(at("w.obj"), grid_obj());
+  write_text(at("target.csv"), "old");
+  fs::create_symlink("target.csv", at("link.csv"));
+  Outcome r = toonwater({"analyze", "w.obj", "--csv", "link.csv"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(at("link.csv")));
+  EXPECT_TRUE(read_text(at("target.csv")).starts_with("x,y,z,gaussian")) << read_text(at("target.csv"));
+  const std::string csv = read_text(at("target.csv"));
+
+  fs::create_symlink("absent.csv", at("dangling.csv"));
+  ASSERT_EQ(toonwater({"analyze", "w.obj", "--csv", "dangling.csv"}).exit_code, 0);
+  EXPECT_TRUE(fs::is_symlink(at("dangling.csv")));
+  EXPECT_EQ(read_text(at("absent.csv")), csv);
+
+  r = toonwater({"analyze", "w.obj", "--csv", "-"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, csv);
+  EXPECT_FALSE(fs::exists(at("-")));
+  r = toonwater({"analyze", "w.obj", "--csv", "/dev/stdout"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, csv);
+
+  ASSERT_EQ(::mkfifo(at("pipe.csv").c_str(), 0644), 0);
+  std::string streamed;
+  std::thread reader([&] { streamed = read_text(at("pipe.csv")); });
+  r = toonwater({"analyze", "w.obj", "--csv", "pipe.csv"});
+  reader.join();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(streamed, csv);
+  struct stat st {};
+  ASSERT_EQ(::lstat(at("pipe.csv").c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode)) << "the FIFO was replaced";
+}
+
+TEST_F(HostileCli, AnOutputThatIsTheInputIsRefusedBeforeWriting) {
+  write_text(at("w.obj"), grid_obj());
+  for (const std::string& csv : std::vector<std::string>{"w.obj", "./w.obj", at("w.obj").string()}) {
+    const Outcome r = toonwater({"analyze", "w.obj", "--csv", csv});
+    EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
+    EXPECT_TRUE(has(r.err, "names the input mesh")) << r.err;
+    EXPECT_EQ(read_text(at("w.obj")), grid_obj());
+  }
+  fs::create_symlink("w.obj", at("alias.ply"));
+  EXPECT_EQ(toonwater({"analyze", "w.obj", "--ply", "alias.ply"}).exit_code, exit_code::bad_input);
+  EXPECT_EQ(read_text(at("w.obj")), grid_obj());
+  const Outcome r = toonwater({"analyze", "w.obj", "--csv", "x", "--ply", "./x"});
+  EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
+  EXPECT_FALSE(fs::exists(at("x")));
+}
+
+TEST_F(HostileCli, SeveralOutputsAreAllWrittenOrNoneReplaced) {
+  write_text(at("w.obj"), grid_obj());
+  write_text(at("old.csv"), "old");
+  // The PLY cannot be written (its directory is a file): the CSV must stay as it was.
+  const Outcome r = toonwater({"analyze", "w.obj", "--csv", "old.csv", "--ply", "w.obj/x.ply"});
+  EXPECT_EQ(r.exit_code, exit_code::output_failed) << r.err;
+  EXPECT_EQ(read_text(at("old.csv")), "old");
+  for (const std::string& name : names(dir_.path())) EXPECT_FALSE(has(name, ".tmp-")) << name;
+  ASSERT_EQ(toonwater({"analyze", "w.obj", "--csv", "old.csv", "--ply", "new.ply"}).exit_code, 0);
+  EXPECT_NE(read_text(at("old.csv")), "old");
+  EXPECT_TRUE(fs::exists(at("new.ply")));
+}
+
+TEST_F(HostileCli, PovgenSceneAndMapsAreBothReplacedOrNeither) {
+  write_sequence(2);
+  ASSERT_EQ(toonwater({"povgen", "--water", "water_####.obj", "--out", "scene"}).exit_code, 0);
+  const auto before = contents(at("scene"));
+  write_text(at("file"), "a file");
+  Outcome r = toonwater({"povgen", "--water", "water_####.obj", "--out", "scene", "--set",
+                         "water.ka=0.5", "--maps", "file/maps"});
+  EXPECT_EQ(r.exit_code, exit_code::output_failed) << r.err;
+  EXPECT_TRUE(contents(at("scene")) == before);
+  r = toonwater({"povgen", "--water", "water_####.obj", "--out", "scene", "--set", "water.ka=0.5",
+                 "--maps", "maps"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contents(at("scene")) != before);
+  EXPECT_TRUE(fs::exists(at("maps/water_0001.exr"))) << r.err;
+}
+
+// ---- 6. '#' in file names ----
+
+TEST_F(HostileCli, FileNamesWithHashesWork) {
+  write_text(at("take#1.obj"), grid_obj());
+  Outcome r = toonwater({"povgen", "--water", "take#1.obj", "--out", "one"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(at("one/water_0000.inc")));
+  // A pattern with a literal '#': escaped with a backslash.
+  write_text(at("run#2_0001.obj"), grid_obj());
+  write_text(at("run#2_0002.obj"), grid_obj(0.01));
+  r = toonwater({"povgen", "--water", "run\\#2_####.obj", "--out", "two"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(at("two/water_0001.inc")));
+  EXPECT_TRUE(fs::exists(at("two/water_0002.inc")));
+  EXPECT_TRUE(has(read_text(at("two/scene.ini")), "Final_Frame=2"));
+}
+
+// ---- 7. help, versions and unknown words ----
+
+TEST_F(HostileCli, HelpIsPrintableAndUnknownWordsAreNamed) {
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"--help"}, {"help"}, {"analyze", "--help"}, {"povgen", "--help"},
+        {"help", "render"}, {"simulate", "--help"}, {"report", "--help"}}) {
+    const Outcome r = toonwater(args);
+    EXPECT_EQ(r.exit_code, 0) << args[0];
+    EXPECT_TRUE(printable_lines(r.out)) << r.out;
+    EXPECT_TRUE(has(r.out, "Usage")) << r.out;
+  }
+  EXPECT_TRUE(has(toonwater({"analyze", "--help"}).out, "one of: x, y, z"));
+  Outcome r = toonwater({"--version"});
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_TRUE(r.out.starts_with("toonwater ")) << r.out;
+  r = toonwater({"anlyze", "w.obj"});
+  EXPECT_EQ(r.exit_code, exit_code::bad_input);
+  EXPECT_TRUE(has(r.err, "unknown subcommand 'anlyze'")) << r.err;
+  r = toonwater({"help", "nothing"});
+  EXPECT_EQ(r.exit_code, exit_code::bad_input);
+  EXPECT_TRUE(has(r.err, "unknown subcommand 'nothing'")) << r.err;
+  r = toonwater({"analyze", "w.obj", "--up", "\x01q"});
+  EXPECT_EQ(r.exit_code, exit_code::bad_input);
+  EXPECT_TRUE(has(r.err, "'?q' is not one of x, y, z")) << r.err;
+  EXPECT_TRUE(printable_lines(r.err)) << r.err;
+  r = toonwater({"analyze", "w.obj", "--estimator", "cubic"});
+  EXPECT_TRUE(has(r.err, "'cubic' is not one of one-ring, jet")) << r.err;
+}
+
+// ---- 8. include names never collide ----
+
+TEST_F(HostileCli, StaticObjectNamedLikeASequenceFrameKeepsItsOwnInclude) {
+  write_sequence(2);
+  write_text(at("box_0000.obj"), grid_obj(0.5));
+  write_text(at("box_0001.obj"), grid_obj(0.6));
+  write_text(at("static.obj"), grid_obj(0.9));
+  write_text(at("scene.toml"),
+             "[[object]]\nname = \"box\"\nmesh = \"box_####.obj\"\n"
+             "[[object]]\nname = \"box_0001\"\nmesh = \"static.obj\"\n");
+  std::vector<std::string> args{"povgen", "--water", "water_####.obj", "--config", "scene.toml",
+                                "--out", "scene"};
+  args.insert(args.end(), small.begin(), small.end());
+  const Outcome r = toonwater(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string animated = read_text(at("scene/obj_box.0001.inc"));
+  const std::string fixed = read_text(at("scene/obj_box_0001.inc"));
+  EXPECT_TRUE(has(animated, "#declare Obj_box_mesh")) << animated.substr(0, 200);
+  EXPECT_TRUE(has(fixed, "#declare Obj_box_0001_mesh")) << fixed.substr(0, 200);
+  const Outcome rendered = toonwater({"render", "scene"});
+  EXPECT_EQ(rendered.exit_code, 0) << rendered.err;
+  EXPECT_TRUE(fs::exists(at("scene/frame_0.png")));
+  EXPECT_TRUE(fs::exists(at("scene/frame_1.png")));
+}
+
+// ---- 9. a frame of degenerate faces only ----
+
+TEST_F(HostileCli, FrameOfDegenerateFacesIsAnEmptyFrame) {
+  write_sequence(2);
+  const std::string flat = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nf 1 2 3\nf 2 3 4\n";
+  write_text(at("water_0001.obj"), flat);
+  std::vector<std::string> args{"povgen", "--water", "water_####.obj", "--out", "scene"};
+  args.insert(args.end(), small.begin(), small.end());
+  const Outcome r = toonwater(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(r.err, "water_0001.obj: all 2 faces are degenerate (zero area); that frame shows no water"))
+      << r.err;
+  EXPECT_TRUE(has(read_text(at("scene/water_0001.inc")), "#declare Water_mesh = union {}"));
+  const Outcome rendered = toonwater({"render", "scene"});
+  EXPECT_EQ(rendered.exit_code, 0) << rendered.err;
+  EXPECT_TRUE(fs::exists(at("scene/frame_1.png")));
+  // A single frame like it has nothing to show: an error.
+  write_text(at("flat.obj"), flat);
+  const Outcome single = toonwater({"povgen", "--water", "flat.obj", "--out", "flat"});
+  EXPECT_EQ(single.exit_code, exit_code::bad_input) << single.err;
+  EXPECT_TRUE(has(single.err, "all 2 faces are degenerate")) << single.err;
+}
+
+// ---- 10. numbers ----
+
+TEST_F(HostileCli, NonFiniteAndFractionalNumbersAreRefused) {
+  write_text(at("w.obj"), grid_obj());
+  for (const std::vector<std::string>& option :
+       {std::vector<std::string>{"--k-threshold", "nan"}, {"--rest-height", "nan"},
+        {"--k-threshold-relative", "inf"}, {"--roi-tolerance", "NaN"}, {"--roi-margin", "1e999"},
+        {"--scale", "nan"}, {"--translate", "0,nan,0"}, {"--maps-box", "0,0,nan,1"},
+        {"--k-threshold", "-1e308"}}) {
+    std::vector<std::string> args{"analyze", "w.obj"};
+    args.insert(args.end(), option.begin(), option.end());
+    const Outcome r = toonwater(args);
+    EXPECT_EQ(r.exit_code, exit_code::bad_input) << option[0] << " " << option[1] << ": " << r.err;
+    EXPECT_TRUE(has(r.err, option[0])) << r.err;
+    EXPECT_LT(r.err.size(), 200u) << "no 309-digit numbers: " << r.err;
+  }
+  for (const std::string set : {"render.width=640.7", "flow.smoothing=2.5", "render.height=nan",
+                                 "flow.k_threshold=nan"}) {
+    const Outcome r = toonwater({"povgen", "--water", "w.obj", "--out", "scene", "--set", set});
+    EXPECT_EQ(r.exit_code, exit_code::bad_input) << set << ": " << r.err;
+    EXPECT_TRUE(has(r.err, set.substr(0, set.find('=')))) << r.err;
+  }
+  EXPECT_TRUE(has(toonwater({"povgen", "--water", "w.obj", "--out", "scene", "--set",
+                             "render.width=640.7"})
+                      .err,
+                  "must be a whole number"));
+  EXPECT_EQ(toonwater({"povgen", "--water", "w.obj", "--out", "scene", "--set", "render.width=64.0"})
+                .exit_code,
+            0);
+}
+
+TEST_F(HostileCli, FrameRangesOutsideTheSequenceAreRefused) {
+  write_sequence(3);
+  const Outcome r = toonwater({"povgen", "--water", "water_####.obj", "--out", "scene", "--set",
+                           "render.frames=\"1-5\""});
+  EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
+  EXPECT_TRUE(has(r.err, "render.frames 1-5 is outside the sequence's frames 0-2")) << r.err;
+  EXPECT_FALSE(fs::exists(at("scene")));
+  ASSERT_EQ(toonwater({"povgen", "--water", "water_####.obj", "--out", "scene", "--set",
+                       "render.frames=\"1-2\""})
+                .exit_code,
+            0);
+  const Outcome render = toonwater({"render", "scene", "--frames", "0-2"});
+  EXPECT_EQ(render.exit_code, exit_code::bad_input) << render.err;
+  EXPECT_TRUE(has(render.err, "outside the scene's 1-2")) << render.err;
+}
+
+// ---- 11. temporaries of killed runs ----
+
+TEST_F(HostileCli, LaterRunsRemoveTemporariesOfKilledRuns) {
+  write_sequence(2);
+  ASSERT_EQ(toonwater({"povgen", "--water", "water_####.obj", "--out", "scene"}).exit_code, 0);
+  const std::string dead = std::to_string(gone_pid());
+  const std::string alive = std::to_string(::getpid());
+  fs::create_directory(at("scene/.render-1.tmp-" + dead));
+  write_text(at("scene/.render-1.tmp-" + dead + "/frame_1.png"), "partial");
+  fs::create_directory(at("scene/.render-0.tmp-" + alive));
+  fs::create_directory(at(".scene.tmp-" + dead));
+  write_text(at(".scene.tmp-" + dead + "/water_0000.inc"), "partial");
+  write_text(at(".out.csv.tmp-" + dead + "-0"), "partial");
+  write_text(at(".out.csv.tmp-" + alive + "-0"), "in progress");
+
+  EXPECT_EQ(toonwater({"render", "scene"}, {{"TOONWATER_POVRAY", fake_povray("exit 1")}}).exit_code,
+            exit_code::povray_failed);
+  EXPECT_FALSE(fs::exists(at("scene/.render-1.tmp-" + dead)));
+  EXPECT_TRUE(fs::exists(at("scene/.render-0.tmp-" + alive))) << "a running process's";
+  ASSERT_EQ(toonwater({"povgen", "--water", "water_####.obj", "--out", "scene"}).exit_code, 0);
+  EXPECT_FALSE(fs::exists(at(".scene.tmp-" + dead)));
+  EXPECT_FALSE(fs::exists(at(".out.csv.tmp-" + dead + "-0")));
+  EXPECT_TRUE(fs::exists(at(".out.csv.tmp-" + alive + "-0")));
+}
+
+// ---- 12. messages and exit codes ----
+
+TEST_F(HostileCli, ProgressIsLinesWhenStandardErrorIsNotATerminal) {
+  write_sequence(3);
+  const Outcome r = toonwater({"povgen", "--water", "water_####.obj", "--out", "scene"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(has(r.err, "\r")) << r.err;
+  EXPECT_TRUE(has(r.err, "povgen: frame 1/3, ")) << r.err;
+  EXPECT_TRUE(has(r.err, "\npovgen: frame 2/3, ")) << r.err;
+}
+
+TEST_F(HostileCli, ErrorsAreOneLineWithTheDocumentedCode) {
+  write_text(at("w.obj"), grid_obj());
+  write_text(at("file"), "a file");
+  const struct {
+    std::vector<std::string> args;
+    int code;
+  } cases[] = {
+      {{"analyze", "absent.obj"}, exit_code::bad_input},
+      {{"analyze", "w.obj", "--csv", "file/x.csv"}, exit_code::output_failed},
+      {{"povgen", "--water", "w.obj", "--out", "file/scene"}, exit_code::output_failed},
+      {{"povgen", "--water", "w.obj", "--out", "file"}, exit_code::output_failed},
+      {{"simulate", "wake", "--frames", "1", "--out", "file/x"}, exit_code::output_failed},
+      {{"render", "nowhere"}, exit_code::bad_input},
+      {{"analyze", "w.obj", "--scale", "0"}, exit_code::bad_input},
+      {{"povgen", "--water", "w.obj", "--out", "s", "--set", "water.nothing=1"},
+       exit_code::bad_input},
+      {{}, exit_code::bad_input},
+  };
+  for (const auto& c : cases) {
+    const Outcome r = toonwater(c.args);
+    const std::string shown = c.args.empty() ? "(nothing)" : c.args[0] + " " + c.args.back();
+    EXPECT_EQ(r.exit_code, c.code) << shown << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << shown << ": " << r.err;
+    EXPECT_TRUE(r.err.starts_with("toonwater: error: ")) << r.err;
+    EXPECT_FALSE(has(r.err, "filesystem error")) << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace toonwater
