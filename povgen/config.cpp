@@ -133,7 +133,7 @@ void read_water(const toml::table& t, WaterConfig& c) {
   for_each_key(t, "water",
                {"shading", "bright", "medium", "dark", "bands", "dt_bright", "dt_medium",
                 "t_bright", "t_medium", "ka", "kd", "ks", "specular_color", "phong_size",
-                "reflection", "sky", "transmit", "ior"},
+                "reflection", "sky", "transmit", "ior", "body"},
                [&](const std::string& n, const std::string& key, const toml::node& v) {
                  if (n == "shading")
                    c.shading = read_keyword<WaterShading>(v, key,
@@ -156,6 +156,9 @@ void read_water(const toml::table& t, WaterConfig& c) {
                  if (n == "t_bright") c.t_bright = read_number_in(v, key, -1.0, 1.0);
                  if (n == "t_medium") c.t_medium = read_number_in(v, key, -1.0, 1.0);
                  if (n == "sky") c.sky = read_color(v, key);
+                 if (n == "body")
+                   c.body = read_keyword<WaterBody>(
+                       v, key, {{"opaque", WaterBody::opaque}, {"clear", WaterBody::clear}});
                  if (n == "ka") c.ka = read_number_in(v, key, 0.0, 10.0);
                  if (n == "kd") c.kd = read_number_in(v, key, 0.0, 10.0);
                  if (n == "ks") c.ks = read_number_in(v, key, 0.0, 10.0);

@@ -53,6 +53,13 @@ enum class WaterShading { toon, gaussian, mean };
 // values of L·n.
 enum class BandThresholds { relative, absolute };
 
+// How a see-through closed liquid volume (free surface, walls and floor in one mesh) is drawn:
+// opaque: the free surface (faces with n·up > 0.1) is see-through, the walls and floor are an
+// opaque body in flat bands, so objects leave no ghost images on the walls and no ray bounces
+// around inside; clear: the whole volume is see-through (a body of water seen from all sides,
+// a water creature), its outline shell kept on the free surface only.
+enum class WaterBody { opaque, clear };
+
 struct WaterConfig {
   WaterShading shading = WaterShading::toon;
   Color bright{0.36, 0.64, 0.88};
@@ -73,6 +80,7 @@ struct WaterConfig {
   Color sky{1.0, 1.0, 1.0};  // what a reflected ray sees where it misses every object
   double transmit = 0.4;
   double ior = 1.33;
+  WaterBody body = WaterBody::opaque;
 };
 
 // pixels: of the configured render.width, each shell vertex offset by its distance to the

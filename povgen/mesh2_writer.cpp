@@ -201,15 +201,19 @@ std::vector<bool> upward_faces(const SceneMesh& mesh) {
 }
 
 void append_shell_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
-                        std::span<const double> offsets) {
+                        std::span<const double> offsets, const std::vector<bool>* keep) {
   // The shell is drawn flat, so it needs no normals; without them POV-Ray takes (a−b)×(c−b) of
   // face <a,b,c> as the outward side. Each face is wound to agree with its vertex normals,
   // which also drops a third of the shell's text and parse time.
   std::vector<Triangle> oriented;
   oriented.reserve(mesh.triangles.size());
-  for (const Triangle& t : mesh.triangles)
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    if (keep && !(*keep)[f]) continue;
     oriented.push_back(agrees_with_normals(mesh, t, nullptr) ? t : Triangle{t[0], t[2], t[1]});
-  append(out, identifier, mesh, {}, offsets, oriented, mesh.closed, /*normals=*/false, nullptr);
+  }
+  append(out, identifier, mesh, {}, offsets, oriented, mesh.closed && !keep, /*normals=*/false,
+         nullptr);
 }
 
 }  // namespace toonwater::povgen

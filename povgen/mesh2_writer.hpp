@@ -42,8 +42,9 @@ std::vector<bool> upward_faces(const SceneMesh& mesh);
 
 // Appends the outline shell of `mesh`: the same faces with vertex v moved by `offsets[v]` along
 // its normal (Raskar and Cohen 1999), each face wound so that POV-Ray's face normal points
-// outward, without normals or texture coordinates (the shell is drawn flat).
+// outward, without normals or texture coordinates (the shell is drawn flat). With `keep`, only
+// the faces it marks (then the shell is open).
 void append_shell_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
-                        std::span<const double> offsets);
+                        std::span<const double> offsets, const std::vector<bool>* keep = nullptr);
 
 }  // namespace toonwater::povgen

@@ -90,14 +90,14 @@ std::string empty_water_include() {
 
 std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
                          const LightGeometry& light, std::span<const double> shell_offsets,
-                         const FaceTextures* textures) {
+                         const FaceTextures* textures, const std::vector<bool>* shell_faces) {
   std::string text = "// Written by toonwater povgen: meshes for scene.pov.\n";
   const auto uv = surface.view_values.empty()
                       ? toon_coordinates(surface.mesh, light, surface.labels)
                       : value_coordinates(surface.view_values, surface.view_range);
   append_mesh2(text, prefix + "_mesh", surface.mesh, uv, textures);
   if (!shell_offsets.empty())
-    append_shell_mesh2(text, prefix + "_shell", surface.mesh, shell_offsets);
+    append_shell_mesh2(text, prefix + "_shell", surface.mesh, shell_offsets, shell_faces);
   return text;
 }
 
@@ -317,18 +317,25 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
         config.outline.enabled
             ? shell_offsets(config.outline, s.mesh, layout.camera, config.render.width)
             : std::vector<double>{};
-    // A see-through closed volume: free surface and body get their own textures (scene.pov).
+    // A see-through closed volume (WaterBody): an opaque body gives free surface and body their
+    // own textures (scene.pov); a clear one keeps the shell on the free surface only, as rays
+    // refracted through the volume leave it through the floor and walls and would meet the
+    // inside of a closed shell there, painting the water in the line colour.
     std::optional<FaceTextures> textures;
-    if (s.mesh.closed && refracts) {
+    std::vector<bool> upward;
+    const bool see_through_volume = s.mesh.closed && refracts;
+    if (see_through_volume) upward = upward_faces(s.mesh);
+    if (see_through_volume && config.water.body == WaterBody::opaque) {
       layout.closed_water = true;
       textures.emplace();
       textures->names = {kWaterSurfaceTexture, kWaterBodyTexture};
-      const std::vector<bool> upward = upward_faces(s.mesh);
       textures->index.resize(upward.size());
       for (std::size_t f = 0; f < upward.size(); ++f) textures->index[f] = upward[f] ? 0 : 1;
     }
+    const bool free_surface_shell = see_through_volume && config.water.body == WaterBody::clear;
     const std::string text =
-        mesh_include(s, "Water", light, offsets, textures ? &*textures : nullptr) +
+        mesh_include(s, "Water", light, offsets, textures ? &*textures : nullptr,
+                     free_surface_shell ? &upward : nullptr) +
         water_lines(&s.mesh);
     report.write_seconds += seconds_since(start);
     write(water_include_name(written_frame), text);

@@ -50,10 +50,12 @@ PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* f
 std::string empty_water_include();
 
 // The mesh2 include text: `Prefix_mesh` with toon coordinates (and `textures` per face when
-// given), and `Prefix_shell` when `shell_offsets` (one per vertex, world units) is not empty.
+// given), and `Prefix_shell` when `shell_offsets` (one per vertex, world units) is not empty,
+// of the faces `shell_faces` marks (all when null).
 std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
                          const LightGeometry& light, std::span<const double> shell_offsets,
-                         const FaceTextures* textures = nullptr);
+                         const FaceTextures* textures = nullptr,
+                         const std::vector<bool>* shell_faces = nullptr);
 
 // The height (POV-Ray's y) of the water line around an object whose box is [lo, hi] in a
 // frame: the median height of the free-surface vertices (n·y > 0.5) over the object's
