@@ -77,7 +77,8 @@ struct WaterConfig {
   Color specular_color{1.0, 1.0, 1.0};
   double phong_size = 40.0;
   double reflection = 0.2;
-  Color sky{1.0, 1.0, 1.0};  // what a reflected ray sees where it misses every object
+  // What a reflected ray sees where it misses every object, flat; default: the bright band.
+  std::optional<Color> sky;
   double transmit = 0.4;
   double ior = 1.33;
   WaterBody body = WaterBody::opaque;

@@ -288,7 +288,7 @@ std::string scene_pov(const SceneLayout& l) {
     const Vec3 sky_centre = 0.5 * (l.camera.location + centre);
     const double sky_radius = 1000.0 * (size + (l.camera.location - centre).norm());
     s += "// Sky seen in reflections only\nsphere { " + vec(sky_centre) + ", " + num(sky_radius) +
-         "\n  texture { pigment { color " + rgb(w.sky) + " } " + flat_finish() +
+         "\n  texture { pigment { color " + rgb(w.sky.value_or(w.bright)) + " } " + flat_finish() +
          " }\n  hollow no_image no_shadow\n}\n\n";
   }
 

@@ -65,6 +65,23 @@ TEST(PovgenConfig, ReadsEveryKindOfValueAndOverrides) {
   EXPECT_EQ(c.outline.units, povgen::WidthUnits::world);
 }
 
+TEST(PovgenConfig, BandThresholdsAreRelativeUnlessAbsoluteOnesAreGiven) {
+  EXPECT_EQ(config_from("").water.bands, povgen::BandThresholds::relative);
+  EXPECT_EQ(config_from("[water]\nt_bright = 0.6\n").water.bands, povgen::BandThresholds::absolute);
+  EXPECT_EQ(config_from("[water]\nt_medium = 0.1\nbands = \"relative\"\n").water.bands,
+            povgen::BandThresholds::relative);
+  const auto c = config_from("", {"water.dt_bright=0.1", "water.dt_medium=-0.2"});
+  EXPECT_DOUBLE_EQ(c.water.dt_bright, 0.1);
+  EXPECT_DOUBLE_EQ(c.water.dt_medium, -0.2);
+  EXPECT_NE(config_error("", {"water.dt_medium=0.1"}).find("'water.dt_medium'"), std::string::npos);
+  EXPECT_NE(config_error("", {"water.bands=steep"}).find("'water.bands'"), std::string::npos);
+  EXPECT_NE(config_error("", {"water.body=glass"}).find("'water.body'"), std::string::npos);
+  // Outline widths are in pixels by default; a unit's own default width applies when none is given.
+  EXPECT_EQ(c.outline.units, povgen::WidthUnits::pixels);
+  EXPECT_FALSE(c.outline.width.has_value());
+  EXPECT_EQ(config_from("", {"water.body=clear"}).water.body, povgen::WaterBody::clear);
+}
+
 TEST(PovgenConfig, ErrorsNameTheKey) {
   EXPECT_NE(config_error("[water]\niorr = 1.2\n").find("'water.iorr'"), std::string::npos);
   EXPECT_NE(config_error("[water]\nior = \"high\"\n").find("'water.ior' must be a number"),
