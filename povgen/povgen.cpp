@@ -231,7 +231,7 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
       const double line = frame_water ? water_line(*frame_water, b.min, b.max)
                                       : b.min.y() - (b.max - b.min).norm() - 1.0;
       submerged[i] = submerged[i] || line > b.min.y();
-      text += "#declare " + water_line_id(oc.name) + " = " + std::to_string(line) + ";\n";
+      text += water_line_declaration(oc.name, line);
     }
     return text;
   };

@@ -202,6 +202,10 @@ std::string water_line_id(const std::string& object_name) {
   return std::string("Obj_").append(object_name).append("_water_line");
 }
 
+std::string water_line_declaration(const std::string& object_name, double height) {
+  return "#declare " + water_line_id(object_name) + " = " + num(height) + ";\n";
+}
+
 std::string water_include_name(long frame) { return "water_" + padded(frame, 4) + ".inc"; }
 
 std::string object_include_name(const std::string& name, bool animated, long frame) {

@@ -65,8 +65,10 @@ double calm_light(const SceneLayout& layout);
 // The water's absolute band thresholds {T_bright, T_medium}.
 std::pair<double, double> water_thresholds(const SceneLayout& layout);
 
-// The identifier of an object's water line in a frame (a number: its height in POV-Ray's y).
+// The identifier of an object's water line in a frame (a number: its height in POV-Ray's y),
+// and its declaration in the frame's water include.
 std::string water_line_id(const std::string& object_name);
+std::string water_line_declaration(const std::string& object_name, double height);
 
 // Texture identifiers of a closed volume's faces: free surface, walls and floor.
 inline constexpr const char* kWaterSurfaceTexture = "Water_surface_texture";
