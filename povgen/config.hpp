@@ -84,8 +84,9 @@ struct WaterConfig {
   WaterBody body = WaterBody::opaque;
 };
 
-// pixels: of the configured render.width, each shell vertex offset by its distance to the
-// camera; relative: fraction of the mesh's bounding-box diagonal; world: scene units.
+// pixels: of an image render.width wide, each shell vertex offset by the size of a pixel at its
+// depth from the camera, so lines are even across objects and depth; relative: fraction of the
+// mesh's bounding-box diagonal; world: scene units.
 enum class WidthUnits { pixels, relative, world };
 
 struct OutlineConfig {

@@ -19,9 +19,9 @@
 
 #include <cstdint>
 #include <span>
-#include <vector>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace toonwater::povgen {
 
