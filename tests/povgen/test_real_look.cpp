@@ -114,36 +114,23 @@ Look measure(const Image& img) {
   return look;
 }
 
-class WakeDefaults : public testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    const fs::path data = wake_dir();
-    if (data.empty()) return;
-    dir_ = new ScratchDir;
-    // Every frame: the camera frames the whole sequence. Three frames are rendered.
-    povgen(*dir_ / "defaults", (data / "water_####.obj").string(),
-           (data / "sphere_####.obj").string(), small_picture());
-    for (int frame : {1, 9, 30}) {
-      const std::string n = std::to_string(frame);
-      frames_[frame] = render(*dir_ / "defaults", "+SF" + n + " +EF" + n,
-                              "frame_" + std::string(n.size() < 2 ? "0" : "") + n + ".png");
-    }
+// One test, so that ctest (a process per test) writes and renders the sequence once.
+TEST(WakeDefaults, CartoonLookWithNothingConfigured) {
+  const fs::path data = wake_dir();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is absent: real-data tests skipped";
+  ScratchDir dir;
+  // Every frame: the camera frames the whole sequence. Three frames are rendered.
+  povgen(dir / "defaults", (data / "water_####.obj").string(), (data / "sphere_####.obj").string(),
+         small_picture());
+  std::map<int, Image> frames;
+  for (int frame : {1, 9, 30}) {
+    const std::string n = std::to_string(frame);
+    frames[frame] = render(dir / "defaults", "+SF" + n + " +EF" + n,
+                           "frame_" + std::string(n.size() < 2 ? "0" : "") + n + ".png");
   }
-  static void TearDownTestSuite() {
-    delete dir_;
-    dir_ = nullptr;
-  }
-  void SetUp() override {
-    if (!dir_) GTEST_SKIP() << "../shared/data is absent: real-data tests skipped";
-  }
-  static ScratchDir* dir_;
-  static std::map<int, Image> frames_;
-};
-ScratchDir* WakeDefaults::dir_ = nullptr;
-std::map<int, Image> WakeDefaults::frames_;
 
-TEST_F(WakeDefaults, CameraFramesTheWholeSequenceAndFillsThePicture) {
-  for (const auto& [frame, img] : frames_) {
+  // The camera frames the whole sequence and fills the picture.
+  for (const auto& [frame, img] : frames) {
     ASSERT_EQ(img.width, kWidth);
     const Look look = measure(img);
     std::printf("frame %d: scene covers %.1f %% of the picture, %d scene pixels on its edge\n",
@@ -151,10 +138,9 @@ TEST_F(WakeDefaults, CameraFramesTheWholeSequenceAndFillsThePicture) {
     EXPECT_EQ(look.edge_pixels, 0) << "frame " << frame << ": the scene is cut by the image edge";
     EXPECT_GE(look.coverage, 0.25) << "frame " << frame;
   }
-}
 
-TEST_F(WakeDefaults, WaterStandsOutAndIsMadeOfFlatColours) {
-  for (const auto& [frame, img] : frames_) {
+  // The water stands out against the background and is made of flat colours.
+  for (const auto& [frame, img] : frames) {
     const Look look = measure(img);
     std::printf("frame %d: main colour dE %.1f from the background, %.1f %% of the scene in "
                 "12 colours\n",
@@ -162,31 +148,28 @@ TEST_F(WakeDefaults, WaterStandsOutAndIsMadeOfFlatColours) {
     EXPECT_GE(look.main_delta_e, 25.0) << "frame " << frame;
     EXPECT_GE(look.top12, 0.85) << "frame " << frame;
   }
-}
 
-// The sphere's silhouette where it is in air carries a line: the silhouette is the outline of
-// the sphere rendered alone (the water moved far below), in air where the sphere is seen in
-// the picture with opaque water; a line is a line-coloured pixel outside the sphere within
-// 2 px of it in the default picture.
-TEST_F(WakeDefaults, SphereKeepsItsOutlineInAir) {
-  const fs::path data = wake_dir();
-  const std::string location = camera_setting(*dir_ / "defaults", "location");
-  const std::string look_at = camera_setting(*dir_ / "defaults", "look_at");
+  // The sphere's silhouette where it is in air carries a line: the silhouette is the outline of
+  // the sphere rendered alone (the water moved far below), in air where the sphere is seen in
+  // the picture with opaque water; a line is a line-coloured pixel outside the sphere within
+  // 2 px of it in the default picture.
+  const std::string location = camera_setting(dir / "defaults", "location");
+  const std::string look_at = camera_setting(dir / "defaults", "look_at");
   ASSERT_FALSE(location.empty() || look_at.empty());
   const std::vector<std::string> plain = small_picture() + std::vector<std::string>{
       "--set", location, "--set", look_at, "--set", "outline.enabled=false", "--set",
       "water.transmit=0", "--set", "water.reflection=0", "--set", "object.0.color=[1, 0, 1]",
       "--set", "render.frames=\"9\""};
   {
-    std::ofstream low(*dir_ / "low.obj");
+    std::ofstream low(dir / "low.obj");
     low << "v -9 -9 -5\nv 9 -9 -5\nv 0 9 -5\nf 1 2 3\n";
   }
-  povgen(*dir_ / "alone", (*dir_ / "low.obj").string(), (data / "sphere_0009.obj").string(), plain);
-  povgen(*dir_ / "opaque", (data / "water_####.obj").string(), (data / "sphere_####.obj").string(),
+  povgen(dir / "alone", (dir / "low.obj").string(), (data / "sphere_0009.obj").string(), plain);
+  povgen(dir / "opaque", (data / "water_####.obj").string(), (data / "sphere_####.obj").string(),
          plain);
-  const Image alone = render(*dir_ / "alone", "", "frame.png");
-  const Image opaque = render(*dir_ / "opaque", "", "frame.png");
-  const Image& look = frames_.at(9);
+  const Image alone = render(dir / "alone", "", "frame.png");
+  const Image opaque = render(dir / "opaque", "", "frame.png");
+  const Image& look = frames.at(9);
   auto magenta = [](const Rgb8& c) { return c[1] < 40 && c[0] > 40 && std::abs(c[0] - c[2]) < 30; };
   auto sphere = [&](int x, int y) {
     return x >= 0 && y >= 0 && x < kWidth && y < kHeight && magenta(alone.at(x, y));
