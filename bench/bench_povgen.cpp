@@ -41,8 +41,10 @@ void BM_PovgenFrame(benchmark::State& state) {
   for (auto _ : state) {
     const auto s = povgen::prepare_surface(mesh, Axis::z, &config.flow, nullptr);
     const auto start = std::chrono::steady_clock::now();
+    const povgen::CameraPlacement camera =
+        povgen::frame_camera(config, Axis::z, s.mesh.min, s.mesh.max);
     const std::string text = povgen::mesh_include(
-        s, "Water", light, povgen::outline_width(config.outline, s.mesh));
+        s, "Water", light, povgen::shell_offsets(config.outline, s.mesh, camera, config.render.width));
     write_file_atomically(dir / "water_0001.inc", text);
     writing += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     analysis += s.analysis_seconds;

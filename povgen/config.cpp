@@ -136,9 +136,11 @@ void read_light(const toml::table& t, LightConfig& c) {
 }
 
 void read_water(const toml::table& t, WaterConfig& c) {
+  bool bands_given = false, absolute_given = false;
   for_each_key(t, "water",
-               {"shading", "bright", "medium", "dark", "t_bright", "t_medium", "ka", "kd", "ks",
-                "specular_color", "phong_size", "reflection", "transmit", "ior"},
+               {"shading", "bright", "medium", "dark", "bands", "dt_bright", "dt_medium",
+                "t_bright", "t_medium", "ka", "kd", "ks", "specular_color", "phong_size",
+                "reflection", "sky", "transmit", "ior", "body"},
                [&](const std::string& n, const std::string& key, const toml::node& v) {
                  if (n == "shading")
                    c.shading = read_keyword<WaterShading>(v, key,
@@ -148,8 +150,22 @@ void read_water(const toml::table& t, WaterConfig& c) {
                  if (n == "bright") c.bright = read_color(v, key);
                  if (n == "medium") c.medium = read_color(v, key);
                  if (n == "dark") c.dark = read_color(v, key);
+                 if (n == "bands") {
+                   c.bands = read_keyword<BandThresholds>(
+                       v, key,
+                       {{"relative", BandThresholds::relative},
+                        {"absolute", BandThresholds::absolute}});
+                   bands_given = true;
+                 }
+                 if (n == "dt_bright") c.dt_bright = read_number_in(v, key, -1.0, 1.0);
+                 if (n == "dt_medium") c.dt_medium = read_number_in(v, key, -1.0, 1.0);
+                 if (n == "t_bright" || n == "t_medium") absolute_given = true;
                  if (n == "t_bright") c.t_bright = read_number_in(v, key, -1.0, 1.0);
                  if (n == "t_medium") c.t_medium = read_number_in(v, key, -1.0, 1.0);
+                 if (n == "sky") c.sky = read_color(v, key);
+                 if (n == "body")
+                   c.body = read_keyword<WaterBody>(
+                       v, key, {{"opaque", WaterBody::opaque}, {"clear", WaterBody::clear}});
                  if (n == "ka") c.ka = read_number_in(v, key, 0.0, 10.0);
                  if (n == "kd") c.kd = read_number_in(v, key, 0.0, 10.0);
                  if (n == "ks") c.ks = read_number_in(v, key, 0.0, 10.0);
@@ -160,6 +176,8 @@ void read_water(const toml::table& t, WaterConfig& c) {
                  if (n == "ior") c.ior = read_number_in(v, key, 1.0, 3.0);
                });
   if (c.t_medium >= c.t_bright) fail("water.t_medium", "must be less than water.t_bright");
+  if (c.dt_medium >= c.dt_bright) fail("water.dt_medium", "must be less than water.dt_bright");
+  if (absolute_given && !bands_given) c.bands = BandThresholds::absolute;
 }
 
 void read_outline(const toml::table& t, OutlineConfig& c) {
@@ -168,8 +186,10 @@ void read_outline(const toml::table& t, OutlineConfig& c) {
                  if (n == "enabled") c.enabled = read_bool(v, key);
                  if (n == "width") c.width = read_number_in(v, key, 1e-9, 1e9);
                  if (n == "units")
-                   c.units = read_keyword<WidthUnits>(
-                       v, key, {{"relative", WidthUnits::relative}, {"world", WidthUnits::world}});
+                   c.units = read_keyword<WidthUnits>(v, key,
+                                                      {{"pixels", WidthUnits::pixels},
+                                                       {"relative", WidthUnits::relative},
+                                                       {"world", WidthUnits::world}});
                  if (n == "color") c.color = read_color(v, key);
                });
 }

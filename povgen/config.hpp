@@ -31,8 +31,8 @@ class ConfigError : public std::runtime_error {
 using Color = std::array<double, 3>;  // sRGB in [0, 1], as picked on screen
 
 struct CameraConfig {
-  std::optional<Vec3> location;  // default: framed on the water's bounding box
-  std::optional<Vec3> look_at;   // default: the centre of the water's bounding box
+  std::optional<Vec3> location;  // default: framed on the water and objects of every frame
+  std::optional<Vec3> look_at;   // default: framed likewise
   double angle = 40.0;           // horizontal field of view, degrees
 };
 
@@ -48,12 +48,28 @@ struct LightConfig {
 // a range shared by the whole sequence — a view of surfaces that are not height fields.
 enum class WaterShading { toon, gaussian, mean };
 
+// Where the water's band thresholds come from: offsets from the calm water's L·n (the light
+// against the up axis), so that calm water is the medium band and ripples show; or absolute
+// values of L·n.
+enum class BandThresholds { relative, absolute };
+
+// How a see-through closed liquid volume (free surface, walls and floor in one mesh) is drawn:
+// opaque: the free surface (faces with n·up > 0.1) is see-through, the walls and floor are an
+// opaque body in flat bands, so objects leave no ghost images on the walls and no ray bounces
+// around inside; clear: the whole volume is see-through (a body of water seen from all sides,
+// a water creature), its outline shell kept on the free surface only.
+enum class WaterBody { opaque, clear };
+
 struct WaterConfig {
   WaterShading shading = WaterShading::toon;
-  Color bright{0.72, 0.90, 1.00};
-  Color medium{0.30, 0.63, 0.90};
-  Color dark{0.10, 0.33, 0.65};
-  double t_bright = 0.7;  // L·n above this: bright band
+  Color bright{0.36, 0.64, 0.88};
+  Color medium{0.20, 0.46, 0.76};
+  Color dark{0.08, 0.26, 0.56};
+  // Default: relative, or absolute when t_bright or t_medium is given.
+  BandThresholds bands = BandThresholds::relative;
+  double dt_bright = 0.05;   // relative: bright where L·n > calm + dt_bright
+  double dt_medium = -0.05;  // relative: dark where L·n <= calm + dt_medium
+  double t_bright = 0.7;  // absolute (and objects, always): L·n above this: bright band
   double t_medium = 0.2;  // L·n above this (and not bright): medium band; else dark
   double ka = 0.2;
   double kd = 0.8;
@@ -61,16 +77,22 @@ struct WaterConfig {
   Color specular_color{1.0, 1.0, 1.0};
   double phong_size = 40.0;
   double reflection = 0.2;
+  // What a reflected ray sees where it misses every object, flat; default: the bright band.
+  std::optional<Color> sky;
   double transmit = 0.4;
   double ior = 1.33;
+  WaterBody body = WaterBody::opaque;
 };
 
-enum class WidthUnits { relative, world };
+// pixels: of an image render.width wide, each shell vertex offset by the size of a pixel at its
+// depth from the camera, so lines are even across objects and depth; relative: fraction of the
+// mesh's bounding-box diagonal; world: scene units.
+enum class WidthUnits { pixels, relative, world };
 
 struct OutlineConfig {
   bool enabled = true;
-  double width = 0.006;  // relative: fraction of the mesh's bounding-box diagonal
-  WidthUnits units = WidthUnits::relative;
+  std::optional<double> width;  // default: 2 pixels, 0.006 relative, 0.01 world
+  WidthUnits units = WidthUnits::pixels;
   Color color{0.0, 0.0, 0.0};
 };
 

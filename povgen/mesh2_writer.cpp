@@ -114,17 +114,37 @@ int position_decimals(const SceneMesh& mesh, double offset) {
   return std::clamp(6 - static_cast<int>(std::floor(std::log10(largest))), 0, 16);
 }
 
+// Whether face <a,b,c>'s POV-Ray normal (a−b)×(c−b) agrees with its vertex normals.
+bool agrees_with_normals(const SceneMesh& mesh, const Triangle& t, Vec3* face_normal) {
+  const Vec3& a = mesh.positions[t[0]];
+  const Vec3& b = mesh.positions[t[1]];
+  const Vec3& c = mesh.positions[t[2]];
+  const Vec3 outward = (a - b).cross(c - b);
+  const Vec3 mean = mesh.normals[t[0]] + mesh.normals[t[1]] + mesh.normals[t[2]];
+  const bool agrees = outward.dot(mean) >= 0;
+  if (face_normal) *face_normal = agrees ? outward : Vec3(-outward);
+  return agrees;
+}
+
 void append(std::string& out, std::string_view identifier, const SceneMesh& mesh,
-            std::span<const TextureCoordinate> uv, double offset,
-            std::span<const Triangle> triangles, bool closed, bool normals) {
+            std::span<const TextureCoordinate> uv, std::span<const double> offsets,
+            std::span<const Triangle> triangles, bool closed, bool normals,
+            const FaceTextures* textures) {
   const std::size_t n = mesh.positions.size();
+  if (!offsets.empty() && offsets.size() != n)
+    throw std::logic_error("mesh2 writer: one offset per vertex expected");
+  if (textures && textures->index.size() != triangles.size())
+    throw std::logic_error("mesh2 writer: one texture index per face expected");
   out.reserve(out.size() + 256 + n * (uv.empty() ? 60 : 78) + mesh.triangles.size() * 24);
   out += "#declare ";
   out += identifier;
   out += " = mesh2 {\n";
-  const int decimals = position_decimals(mesh, offset);
+  const double largest_offset =
+      offsets.empty() ? 0.0 : *std::max_element(offsets.begin(), offsets.end());
+  const int decimals = position_decimals(mesh, largest_offset);
   block(out, "vertex_vectors", n, 32, [&](Writer& w, std::size_t i) {
-    w.vector(mesh.positions[i] + offset * mesh.normals[i], decimals);
+    w.vector(offsets.empty() ? mesh.positions[i] : Vec3(mesh.positions[i] + offsets[i] * mesh.normals[i]),
+             decimals);
   });
   if (normals)
     block(out, "normal_vectors", n, 32,
@@ -139,7 +159,12 @@ void append(std::string& out, std::string_view identifier, const SceneMesh& mesh
       w.text(">");
     });
   }
-  block(out, "face_indices", triangles.size(), 24, [&](Writer& w, std::size_t i) {
+  if (textures) {
+    out += "  texture_list { " + std::to_string(textures->names.size());
+    for (const std::string& name : textures->names) out += ", texture { " + name + " }";
+    out += " }\n";
+  }
+  block(out, "face_indices", triangles.size(), 28, [&](Writer& w, std::size_t i) {
     const Triangle& t = triangles[i];
     w.text("<");
     w.integer(t[0]);
@@ -148,6 +173,10 @@ void append(std::string& out, std::string_view identifier, const SceneMesh& mesh
     w.text(",");
     w.integer(t[2]);
     w.text(">");
+    if (textures) {
+      w.text(",");
+      w.integer(textures->index[i]);
+    }
   });
   // Any direction works for a closed mesh; an irrational-looking one avoids grazing edges.
   if (closed) out += "  inside_vector <0.2718, 0.8182, 0.5069>\n";
@@ -157,32 +186,34 @@ void append(std::string& out, std::string_view identifier, const SceneMesh& mesh
 }  // namespace
 
 void append_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
-                  std::span<const TextureCoordinate> uv) {
-  append(out, identifier, mesh, uv, 0.0, mesh.triangles, mesh.closed, /*normals=*/true);
+                  std::span<const TextureCoordinate> uv, const FaceTextures* textures) {
+  append(out, identifier, mesh, uv, {}, mesh.triangles, mesh.closed, /*normals=*/true, textures);
+}
+
+std::vector<bool> upward_faces(const SceneMesh& mesh) {
+  std::vector<bool> up(mesh.triangles.size());
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    Vec3 normal;
+    agrees_with_normals(mesh, mesh.triangles[f], &normal);
+    up[f] = normal.y() > 0.1 * normal.norm();
+  }
+  return up;
 }
 
 void append_shell_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
-                        double offset, ShellFaces faces) {
+                        std::span<const double> offsets, const std::vector<bool>* keep) {
   // The shell is drawn flat, so it needs no normals; without them POV-Ray takes (a−b)×(c−b) of
   // face <a,b,c> as the outward side. Each face is wound to agree with its vertex normals,
   // which also drops a third of the shell's text and parse time.
   std::vector<Triangle> oriented;
   oriented.reserve(mesh.triangles.size());
-  for (const Triangle& t : mesh.triangles) {
-    const Vec3& a = mesh.positions[t[0]];
-    const Vec3& b = mesh.positions[t[1]];
-    const Vec3& c = mesh.positions[t[2]];
-    const Vec3 outward = (a - b).cross(c - b);
-    const Vec3 mean = mesh.normals[t[0]] + mesh.normals[t[1]] + mesh.normals[t[2]];
-    const bool agrees = outward.dot(mean) >= 0;
-    if (faces == ShellFaces::upward) {
-      const double up = (agrees ? outward.y() : -outward.y()) / std::max(outward.norm(), 1e-300);
-      if (!(up > 0.1)) continue;
-    }
-    oriented.push_back(agrees ? t : Triangle{t[0], t[2], t[1]});
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    if (keep && !(*keep)[f]) continue;
+    oriented.push_back(agrees_with_normals(mesh, t, nullptr) ? t : Triangle{t[0], t[2], t[1]});
   }
-  append(out, identifier, mesh, {}, offset, oriented,
-         faces == ShellFaces::all && mesh.closed, /*normals=*/false);
+  append(out, identifier, mesh, {}, offsets, oriented, mesh.closed && !keep, /*normals=*/false,
+         nullptr);
 }
 
 }  // namespace toonwater::povgen

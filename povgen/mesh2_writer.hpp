@@ -4,7 +4,8 @@
 //     vertex_vectors { N, <x,y,z>, ... }
 //     normal_vectors { N, <x,y,z>, ... }    // indexed like the vertices; not in shells
 //     uv_vectors     { N, <u,v>, ... }      // optional, indexed like the vertices
-//     face_indices   { F, <a,b,c>, ... }
+//     texture_list   { T, texture { Name }, ... }   // optional: one texture per face
+//     face_indices   { F, <a,b,c>[, t], ... }
 //     inside_vector  <x,y,z>                // closed meshes only
 //   }
 //
@@ -16,29 +17,34 @@
 
 #include "povgen/scene_mesh.hpp"
 
+#include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace toonwater::povgen {
 
-// Appends `#declare identifier = mesh2 {...}` to `out`. `uv` is empty or one per vertex.
-void append_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
-                  std::span<const TextureCoordinate> uv);
-
-// Which faces an outline shell keeps.
-enum class ShellFaces {
-  all,
-  // Faces whose normal points up (n·y > 0.1): the free surface of a closed liquid volume. Rays
-  // refracted through a transparent closed volume leave it through its floor and walls and would
-  // meet the inside of a closed shell there, painting the water in the line colour.
-  upward,
+// Per-face textures: face f gets the declared texture `names[index[f]]`.
+struct FaceTextures {
+  std::vector<std::string> names;
+  std::vector<std::uint8_t> index;  // one per face of the mesh
 };
 
-// Appends the outline shell of `mesh`: the same faces with every vertex moved by `offset` along
+// Appends `#declare identifier = mesh2 {...}` to `out`. `uv` is empty or one per vertex;
+// `textures` null or one index per face.
+void append_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
+                  std::span<const TextureCoordinate> uv, const FaceTextures* textures = nullptr);
+
+// Per face: its normal (wound to agree with the vertex normals) points up, n·y > 0.1 — the
+// free surface of a closed liquid volume, as opposed to its walls and floor.
+std::vector<bool> upward_faces(const SceneMesh& mesh);
+
+// Appends the outline shell of `mesh`: the same faces with vertex v moved by `offsets[v]` along
 // its normal (Raskar and Cohen 1999), each face wound so that POV-Ray's face normal points
-// outward, without normals or texture coordinates (the shell is drawn flat).
+// outward, without normals or texture coordinates (the shell is drawn flat). With `keep`, only
+// the faces it marks (then the shell is open).
 void append_shell_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
-                        double offset, ShellFaces faces = ShellFaces::all);
+                        std::span<const double> offsets, const std::vector<bool>* keep = nullptr);
 
 }  // namespace toonwater::povgen

@@ -6,6 +6,7 @@
 #include "analyzer/topology.hpp"
 #include "analyzer/vertex_normals.hpp"
 #include "analyzer/weld.hpp"
+#include "povgen/axes.hpp"
 #include "povgen/mesh2_writer.hpp"
 #include "povgen/scene_directory.hpp"
 #include "povgen/scene_writer.hpp"
@@ -83,8 +84,19 @@ PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* f
   return out;
 }
 
-double outline_width(const OutlineConfig& outline, const SceneMesh& mesh) {
-  return outline.units == WidthUnits::world ? outline.width : outline.width * mesh.diagonal();
+double water_line(const SceneMesh& water, const Vec3& lo, const Vec3& hi) {
+  const Vec3 grow = 0.25 * (hi - lo);
+  std::vector<double> heights;
+  for (std::size_t v = 0; v < water.positions.size(); ++v) {
+    const Vec3& p = water.positions[v];
+    if (water.normals[v].y() > 0.5 && p.x() >= lo.x() - grow.x() && p.x() <= hi.x() + grow.x() &&
+        p.z() >= lo.z() - grow.z() && p.z() <= hi.z() + grow.z())
+      heights.push_back(p.y());
+  }
+  if (heights.empty()) return lo.y() - (hi - lo).norm() - 1.0;
+  const auto middle = heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2);
+  std::nth_element(heights.begin(), middle, heights.end());
+  return *middle;
 }
 
 std::string empty_water_include() {
@@ -94,15 +106,15 @@ std::string empty_water_include() {
 }
 
 std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
-                         const LightGeometry& light, double shell_offset,
-                         ShellFaces shell_faces) {
+                         const LightGeometry& light, std::span<const double> shell_offsets,
+                         const FaceTextures* textures, const std::vector<bool>* shell_faces) {
   std::string text = "// Written by toonwater povgen: meshes for scene.pov.\n";
   const auto uv = surface.view_values.empty()
                       ? toon_coordinates(surface.mesh, light, surface.flow_field)
                       : value_coordinates(surface.view_values, surface.view_range);
-  append_mesh2(text, prefix + "_mesh", surface.mesh, uv);
-  if (shell_offset > 0)
-    append_shell_mesh2(text, prefix + "_shell", surface.mesh, shell_offset, shell_faces);
+  append_mesh2(text, prefix + "_mesh", surface.mesh, uv, textures);
+  if (!shell_offsets.empty())
+    append_shell_mesh2(text, prefix + "_shell", surface.mesh, shell_offsets, shell_faces);
   append_flow_lines(text, surface.flow_lines);
   return text;
 }
@@ -169,8 +181,6 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   report.first_frame = layout.first_frame;
   report.last_frame = layout.last_frame;
   bool have_box = false;
-  double water_top = 0;
-  std::vector<double> object_bottom(objects.size(), 0.0);
 
   auto write = [&](const fs::path& name, const std::string& text) {
     const auto start = Clock::now();
@@ -189,6 +199,40 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     if (request.water_transform) apply_transform(*request.water_transform, m.mesh);
     return m;
   };
+  // The box of the water and objects over the sequence frames the default camera; it needs a
+  // first pass over every mesh unless the camera is configured.
+  bool have_scene_box = false;
+  Vec3 scene_min = Vec3::Zero(), scene_max = Vec3::Zero();
+  auto grow_scene_box = [&](const TriangleMesh& m) {
+    for (const Vec3& position : m.positions) {
+      const Vec3 p = to_povray(position, request.up);
+      scene_min = have_scene_box ? Vec3(scene_min.cwiseMin(p)) : p;
+      scene_max = have_scene_box ? Vec3(scene_max.cwiseMax(p)) : p;
+      have_scene_box = true;
+    }
+  };
+  if (!(config.camera.location && config.camera.look_at)) {
+    for (const auto& [frame, path] : water.frames) {
+      try {
+        grow_scene_box(load_water(path).mesh);
+      } catch (const EmptyMeshError&) {
+      }
+    }
+    for (const ObjectSource& o : objects) {
+      if (!o.placement.animated) {
+        grow_scene_box(load(o.sequence.frames.begin()->second).mesh);
+        continue;
+      }
+      for (const auto& [frame, path] : water.frames) grow_scene_box(load(o.sequence.frames.at(frame)).mesh);
+    }
+  }
+  layout.camera = frame_camera(config, request.up, scene_min, scene_max);
+
+  struct Box {
+    Vec3 min = Vec3::Zero(), max = Vec3::Zero();
+  };
+  std::vector<Box> object_box(objects.size());
+  std::vector<bool> submerged(objects.size(), false);
   auto write_object = [&](std::size_t i, const fs::path& path, long frame) {
     const ObjectConfig& oc = *objects[i].placement.config;
     const PreparedSurface s = prepare_surface(load(path).mesh, request.up, nullptr, nullptr);
@@ -196,20 +240,37 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
       throw InputError(path.string() + ": object '" + oc.name + "': all " +
                        std::to_string(s.mesh.degenerate_faces) +
                        " faces are degenerate (zero area)");
-    const double width = config.outline.enabled && oc.outline ? outline_width(config.outline, s.mesh) : 0;
     const auto start = Clock::now();
-    std::string text = mesh_include(s, "Obj_" + oc.name, light, width);
+    const std::vector<double> offsets =
+        config.outline.enabled && oc.outline
+            ? shell_offsets(config.outline, s.mesh, layout.camera, config.render.width)
+            : std::vector<double>{};
+    std::string text = mesh_include(s, "Obj_" + oc.name, light, offsets);
     report.write_seconds += seconds_since(start);
     write(object_include_name(oc.name, objects[i].placement.animated, frame), text);
-    object_bottom[i] = std::min(object_bottom[i], s.mesh.min.y() - water_top);
-    return s.mesh.min.y();
+    object_box[i] = {s.mesh.min, s.mesh.max};
+  };
+  // Per frame, each outlined object's water line (see ObjectPlacement) when the water refracts.
+  const bool refracts = shading == WaterShading::toon && config.water.transmit > 0;
+  auto water_lines = [&](const SceneMesh* frame_water) {
+    std::string text;
+    if (!refracts || !config.outline.enabled) return text;
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+      const ObjectConfig& oc = *objects[i].placement.config;
+      if (!oc.outline) continue;
+      const Box& b = object_box[i];
+      const double line = frame_water ? water_line(*frame_water, b.min, b.max)
+                                      : b.min.y() - (b.max - b.min).norm() - 1.0;
+      submerged[i] = submerged[i] || line > b.min.y();
+      text += water_line_declaration(oc.name, line);
+    }
+    return text;
   };
 
-  // Static objects first; their bottoms are compared with the water's top at the end.
-  std::vector<double> static_bottom(objects.size(), 0.0);
+  // Static objects first.
   for (std::size_t i = 0; i < objects.size(); ++i)
     if (!objects[i].placement.animated)
-      static_bottom[i] = write_object(i, objects[i].sequence.frames.begin()->second, 0);
+      write_object(i, objects[i].sequence.frames.begin()->second, 0);
 
   // A curvature view's colour range is the sequence's: the 98th percentile of |value| over
   // all frames (at most 100k samples a frame), found in a first pass.
@@ -253,8 +314,8 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     auto write_empty_frame = [&](const std::string& why) {
       if (water.frames.size() == 1) throw InputError(why);
       report.empty_frames.push_back(why);
-      write(water_include_name(written_frame), empty_water_include());
       write_animated_objects();
+      write(water_include_name(written_frame), empty_water_include() + water_lines(nullptr));
       ++report.frames;
       if (progress) progress(++done, water.frames.size());
     };
@@ -289,27 +350,44 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     }
     layout.water_min = layout.water_min.cwiseMin(s.mesh.min);
     layout.water_max = layout.water_max.cwiseMax(s.mesh.max);
-    water_top = s.mesh.max.y();
 
-    const double width = config.outline.enabled ? outline_width(config.outline, s.mesh) : 0;
+    write_animated_objects();
     const auto start = Clock::now();
-    // A see-through closed volume keeps the shell on its free surface only (ShellFaces).
-    const ShellFaces shell_faces =
-        s.mesh.closed && config.water.transmit > 0 ? ShellFaces::upward : ShellFaces::all;
-    const std::string text = mesh_include(s, "Water", light, width, shell_faces);
+    const std::vector<double> offsets =
+        config.outline.enabled
+            ? shell_offsets(config.outline, s.mesh, layout.camera, config.render.width)
+            : std::vector<double>{};
+    // A see-through closed volume (WaterBody): an opaque body gives free surface and body their
+    // own textures (scene.pov); a clear one keeps the shell on the free surface only, as rays
+    // refracted through the volume leave it through the floor and walls and would meet the
+    // inside of a closed shell there, painting the water in the line colour.
+    std::optional<FaceTextures> textures;
+    std::vector<bool> upward;
+    const bool see_through_volume = s.mesh.closed && refracts;
+    if (see_through_volume) upward = upward_faces(s.mesh);
+    if (see_through_volume && config.water.body == WaterBody::opaque) {
+      layout.closed_water = true;
+      textures.emplace();
+      textures->names = {kWaterSurfaceTexture, kWaterBodyTexture};
+      textures->index.resize(upward.size());
+      for (std::size_t f = 0; f < upward.size(); ++f) textures->index[f] = upward[f] ? 0 : 1;
+    }
+    const bool free_surface_shell = see_through_volume && config.water.body == WaterBody::clear;
+    const std::string text =
+        mesh_include(s, "Water", light, offsets, textures ? &*textures : nullptr,
+                     free_surface_shell ? &upward : nullptr) +
+        water_lines(&s.mesh);
     report.write_seconds += seconds_since(start);
     write(water_include_name(written_frame), text);
-    write_animated_objects();
     ++report.frames;
     if (progress) progress(++done, water.frames.size());
   }
 
   for (std::size_t i = 0; i < objects.size(); ++i) {
-    if (!objects[i].placement.animated) object_bottom[i] = static_bottom[i] - layout.water_max.y();
-    objects[i].placement.submerged = object_bottom[i] < 0;
+    objects[i].placement.submerged = submerged[i];
     layout.objects.push_back(objects[i].placement);
   }
-  write("toon.inc", std::string(toon_template()));
+  write("toon.inc", scene_toon_inc(layout));
   write("scene.ini", scene_ini(layout));
   write("scene.pov", scene_pov(layout));
   if (request.before_commit) request.before_commit();

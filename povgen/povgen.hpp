@@ -2,7 +2,7 @@
 //
 //   DIR/scene.pov            the same for every frame (scene_writer.hpp)
 //   DIR/scene.ini            frame range, size, output names
-//   DIR/toon.inc             the shading template (templates/toon.inc)
+//   DIR/toon.inc             the parts of the shading template it uses (templates/toon.inc)
 //   DIR/water_NNNN.inc       per frame: Water_mesh (+ Water_shell) as mesh2
 //   DIR/obj_NAME[.NNNN].inc  per object (per frame if animated): Obj_NAME_mesh (+ _shell)
 //
@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -54,13 +55,18 @@ PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* f
 // The include of a frame whose water mesh is empty: the declarations, holding nothing.
 std::string empty_water_include();
 
-// The mesh2 include text: `Prefix_mesh` with toon coordinates, and `Prefix_shell` when
-// `shell_offset` > 0 (in world units).
+// The mesh2 include text: `Prefix_mesh` with toon coordinates (and `textures` per face when
+// given), and `Prefix_shell` when `shell_offsets` (one per vertex, world units) is not empty,
+// of the faces `shell_faces` marks (all when null).
 std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
-                         const LightGeometry& light, double shell_offset,
-                         ShellFaces shell_faces = ShellFaces::all);
+                         const LightGeometry& light, std::span<const double> shell_offsets,
+                         const FaceTextures* textures = nullptr,
+                         const std::vector<bool>* shell_faces = nullptr);
 
-double outline_width(const OutlineConfig& outline, const SceneMesh& mesh);
+// The height (POV-Ray's y) of the water line around an object whose box is [lo, hi] in a
+// frame: the median height of the free-surface vertices (n·y > 0.5) over the object's
+// footprint in x and z (grown by a quarter of its size); below the object where no water is.
+double water_line(const SceneMesh& water, const Vec3& lo, const Vec3& hi);
 
 struct PovgenRequest {
   std::string water_pattern;
@@ -95,5 +101,9 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
 
 // The text of templates/toon.inc, built into the program.
 std::string_view toon_template();
+
+// templates/toon.inc with only the named parts ("bands", "flow", "objects", "outline",
+// "silhouette"): what a scene directory gets, so it holds no macro its scene does not call.
+std::string toon_template_parts(const std::vector<std::string>& parts);
 
 }  // namespace toonwater::povgen

@@ -3,7 +3,9 @@
 #include "analyzer/maps/colormap.hpp"
 
 #include "povgen/axes.hpp"
+#include "povgen/povgen.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <numbers>
@@ -59,27 +61,16 @@ std::string padded(long frame, int digits) {
 std::string mesh_id(const std::string& name) { return std::string("Obj_").append(name).append("_mesh"); }
 std::string shell_id(const std::string& name) { return std::string("Obj_").append(name).append("_shell"); }
 
-Vec3 camera_look_at(const SceneLayout& l) {
-  const CameraConfig& c = l.config->camera;
-  return c.look_at ? to_povray(*c.look_at, l.up) : Vec3(0.5 * (l.water_min + l.water_max));
-}
-
-Vec3 camera_location(const SceneLayout& l) {
-  const CameraConfig& c = l.config->camera;
-  if (c.location) return to_povray(*c.location, l.up);
-  // Framed on the bounding sphere, from the front (−z) and 30° above.
-  const double radius = std::max(0.5 * (l.water_max - l.water_min).norm(), 1e-9);
-  const double aspect = static_cast<double>(l.config->render.height) / l.config->render.width;
-  const double half_h = 0.5 * c.angle * std::numbers::pi / 180.0;
-  const double half = std::min(half_h, std::atan(std::tan(half_h) * aspect));
-  return camera_look_at(l) + radius / std::sin(half) * Vec3(0.0, 0.5, -0.8660254);
-}
-
 void camera(std::string& s, const SceneLayout& l) {
-  s += "camera {\n  perspective\n  location " + vec(camera_location(l)) + "\n  look_at " +
-       vec(camera_look_at(l)) + "\n  right x * image_width / image_height\n  angle " +
-       num(l.config->camera.angle) + "\n}\n\n";
+  const CameraPlacement& c = l.camera;
+  s += "camera {\n  perspective\n  location " + vec(c.location) + "\n  look_at " + vec(c.look_at) +
+       "\n  right x * image_width / image_height\n  angle " + num(c.angle) + "\n}\n\n";
 }
+
+// The default view: from the front (−z) and 30° above, looking down at the scene.
+const Vec3 kViewDirection = Vec3(0.0, -0.5, 0.8660254);
+// Share of the picture's half-width and half-height the framed box may take.
+constexpr double kFrameFill = 0.92;
 
 // The diverging colour map of the curvature maps (analyzer/maps/colormap.hpp) as a POV-Ray
 // colour map over u in [0, 1]: u = 0.5 + 0.4999 t for t in [−1, 1], sampled every 0.1 in t.
@@ -93,6 +84,8 @@ std::string curvature_view_pigment() {
   }
   return s + " } }";
 }
+
+std::string flat_finish() { return "finish { emission 1 diffuse 0 ambient 0 }"; }
 
 std::string finish(const SceneConfig& c, bool water) {
   const WaterConfig& w = c.water;
@@ -118,6 +111,101 @@ LightGeometry light_geometry(const LightConfig& light, Axis up) {
   return g;
 }
 
+CameraPlacement frame_camera(const SceneConfig& config, Axis up, const Vec3& scene_min,
+                             const Vec3& scene_max) {
+  const CameraConfig& c = config.camera;
+  CameraPlacement out;
+  out.angle = c.angle;
+  const Vec3 centre = 0.5 * (scene_min + scene_max);
+  out.look_at = c.look_at ? to_povray(*c.look_at, up) : centre;
+  if (c.location) {
+    out.location = to_povray(*c.location, up);
+    return out;
+  }
+  // Fits the box's corners into the picture: the look-at point (unless configured) moves in the
+  // picture plane to centre them, the distance scales them to the frame; a few rounds converge.
+  const Vec3 d = kViewDirection.normalized();
+  const Vec3 right = Vec3::UnitY().cross(d).normalized();
+  const Vec3 upward = d.cross(right);
+  const double tan_x = std::tan(0.5 * c.angle * std::numbers::pi / 180.0);
+  const double tan_y = tan_x * config.render.height / config.render.width;
+  const double radius = std::max(0.5 * (scene_max - scene_min).norm(), 1e-9);
+  double distance = radius / std::sin(std::atan(std::min(tan_x, tan_y)));
+  Vec3 target = out.look_at;
+  for (int round = 0; round < 60; ++round) {
+    const Vec3 eye = target - distance * d;
+    double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
+    bool behind = false;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 p((corner & 1 ? scene_max : scene_min).x(), (corner & 2 ? scene_max : scene_min).y(),
+                   (corner & 4 ? scene_max : scene_min).z());
+      const double depth = (p - eye).dot(d);
+      if (depth < 0.05 * radius) behind = true;
+      const double x = (p - eye).dot(right) / depth, y = (p - eye).dot(upward) / depth;
+      lo_x = std::min(lo_x, x), hi_x = std::max(hi_x, x);
+      lo_y = std::min(lo_y, y), hi_y = std::max(hi_y, y);
+    }
+    if (behind) {
+      distance *= 1.5;
+      continue;
+    }
+    if (!c.look_at)
+      target += distance * (0.5 * (lo_x + hi_x) * right + 0.5 * (lo_y + hi_y) * upward);
+    const double scale = std::max((hi_x - lo_x) / tan_x, (hi_y - lo_y) / tan_y) / (2.0 * kFrameFill);
+    distance *= std::clamp(scale, 0.5, 2.0);
+  }
+  out.look_at = target;
+  out.location = target - distance * d;
+  return out;
+}
+
+std::vector<double> shell_offsets(const OutlineConfig& outline, const SceneMesh& mesh,
+                                  const CameraPlacement& camera, int image_width) {
+  const std::size_t n = mesh.positions.size();
+  switch (outline.units) {
+    case WidthUnits::world: return std::vector<double>(n, outline.width.value_or(0.01));
+    case WidthUnits::relative:
+      return std::vector<double>(n, outline.width.value_or(0.006) * mesh.diagonal());
+    case WidthUnits::pixels: break;
+  }
+  // A pixel at depth z (along the view axis) spans 2 z tan(angle / 2) / width.
+  const Vec3 d = (camera.look_at - camera.location).normalized();
+  const double per_depth =
+      2.0 * std::tan(0.5 * camera.angle * std::numbers::pi / 180.0) / std::max(1, image_width);
+  const double pixels = outline.width.value_or(2.0);
+  const double nearest = 1e-6 * std::max(mesh.diagonal(), 1e-9);
+  std::vector<double> offsets(n);
+  for (std::size_t v = 0; v < n; ++v)
+    offsets[v] = pixels * per_depth * std::max((mesh.positions[v] - camera.location).dot(d), nearest);
+  return offsets;
+}
+
+double calm_light(const SceneLayout& l) {
+  const LightGeometry g = light_geometry(l.config->light, l.up);
+  if (g.parallel) return g.vector.y();
+  const Vec3 top((l.water_min.x() + l.water_max.x()) / 2, l.water_max.y(),
+                 (l.water_min.z() + l.water_max.z()) / 2);
+  const Vec3 to_light = g.vector - top;
+  return to_light.norm() > 0 ? to_light.normalized().y() : 1.0;
+}
+
+std::pair<double, double> water_thresholds(const SceneLayout& l) {
+  const WaterConfig& w = l.config->water;
+  if (w.bands == BandThresholds::absolute) return {w.t_bright, w.t_medium};
+  // Kept inside (−1, 1), where the band keys stay inside the colour map.
+  const double calm = calm_light(l);
+  return {std::clamp(calm + w.dt_bright, -0.999, 0.999),
+          std::clamp(calm + w.dt_medium, -0.9995, 0.9985)};
+}
+
+std::string water_line_id(const std::string& object_name) {
+  return std::string("Obj_").append(object_name).append("_water_line");
+}
+
+std::string water_line_declaration(const std::string& object_name, double height) {
+  return "#declare " + water_line_id(object_name) + " = " + num(height) + ";\n";
+}
+
 std::string water_include_name(long frame) { return "water_" + padded(frame, 4) + ".inc"; }
 
 std::string object_include_name(const std::string& name, bool animated, long frame) {
@@ -138,11 +226,12 @@ std::string scene_pov(const SceneLayout& l) {
   const bool curvature_view = w.shading != WaterShading::toon;
   const bool refracts = !curvature_view && w.transmit > 0;
   const bool reflects = !curvature_view && w.reflection > 0;
+  const bool closed_volume = l.closed_water && refracts;
   std::string s;
   s += "// Written by toonwater povgen. Render every frame with `povray scene.ini` here.\n";
   s += "#version 3.7;\n#include \"toon.inc\"\n\n";
-  // Reflected, refracted and shell-crossing rays need depth; a pixel whose rays run out of it
-  // turns black, the line colour (povray-notes.md).
+  // Secondary rays need depth; a pixel whose rays run out of it turns black, the line colour
+  // (povray-notes.md).
   const bool secondary_rays = reflects || refracts || c.outline.enabled;
   s += secondary_rays ? "global_settings { assumed_gamma 1.0 max_trace_level 10 }\n\n"
                       : "global_settings { assumed_gamma 1.0 }\n\n";
@@ -154,9 +243,33 @@ std::string scene_pov(const SceneLayout& l) {
     // and far.
     s += "// Flow lines: width in pixels, and what turns it into a radius at a distance\n";
     s += "#declare Toon_line_width = " + num(flow.line_width) + ";\n";
-    s += "#declare Toon_camera_location = " + vec(camera_location(l)) + ";\n";
-    s += "#declare Toon_pixel_angle = 2 * tan(radians(" + num(c.camera.angle) +
+    s += "#declare Toon_camera_location = " + vec(l.camera.location) + ";\n";
+    s += "#declare Toon_pixel_angle = 2 * tan(radians(" + num(l.camera.angle) +
          ") / 2) / image_width;\n\n";
+  }
+
+  const auto [t_bright, t_medium] = water_thresholds(l);
+  const std::string bands = rgb(w.bright) + ", " + rgb(w.medium) + ", " + rgb(w.dark) + ", " +
+                            num(t_bright) + ", " + num(t_medium);
+  std::string water_pigment;
+  if (curvature_view)
+    water_pigment = curvature_view_pigment();
+  else if (flow_regions)
+    water_pigment = "Toon_bands_with_flow(" + bands + ",\n      " + rgb(flow.valley_color) +
+                    ", " + rgb(flow.ridge_color) + ", " + num(w.transmit) + ")";
+  else
+    water_pigment = "Toon_bands(" + bands + ", " + num(w.transmit) + ")";
+  const std::string water_finish = curvature_view ? flat_finish() : finish(c, true);
+  if (closed_volume) {
+    // A closed volume is a see-through free surface over an opaque body: its walls and floor
+    // show flat bands, and nothing is seen through them, so objects leave no ghost images on
+    // the walls and no ray bounces around inside.
+    s += "// The water's faces: see-through free surface, opaque walls and floor\n";
+    s += std::string("#declare ") + kWaterSurfaceTexture + " = texture {\n  " + water_pigment +
+         "\n  " + water_finish + "\n}\n";
+    s += std::string("#declare ") + kWaterBodyTexture + " = texture {\n  Toon_bands(" + bands +
+         ", 0)\n  finish { Toon_flat_shading(" + num(w.ka) + ", <1, 1, 1>, " + num(w.kd) + ", " +
+         vec({c.light.color[0], c.light.color[1], c.light.color[2]}) + ") }\n}\n\n";
   }
   s += "// Meshes of the current frame\n";
   s += "#include concat(\"water_\", str(frame_number, -4, 0), \".inc\")\n";
@@ -171,12 +284,13 @@ std::string scene_pov(const SceneLayout& l) {
   camera(s, l);
 
   // The light only makes highlights: diffuse is 0, the bands come from the u coordinate.
+  const Vec3 centre = 0.5 * (l.water_min + l.water_max);
+  const double size = std::max((l.water_max - l.water_min).norm(), 1e-6);
   if (w.ks > 0) {
     const LightGeometry g = light_geometry(c.light, l.up);
     const Color colour = times(c.light.color, w.specular_color);  // Id * Os
     if (g.parallel) {
-      const Vec3 centre = 0.5 * (l.water_min + l.water_max);
-      const double far = 10.0 * std::max((l.water_max - l.water_min).norm(), 1e-6);
+      const double far = 10.0 * size;
       s += "light_source { " + vec(centre + far * g.vector) + " color " + rgb(colour) +
            " parallel point_at " + vec(centre) + " shadowless }\n";
     } else {
@@ -184,24 +298,26 @@ std::string scene_pov(const SceneLayout& l) {
     }
   }
   s += "background { color " + rgb(c.render.background) + " }\n\n";
+  if (reflects) {
+    // A flat sky for reflected rays that miss every object (no_image: the camera does not
+    // see it), so that a reflection reads as the object against the water's own colour.
+    const Vec3 sky_centre = 0.5 * (l.camera.location + centre);
+    const double sky_radius = 1000.0 * (size + (l.camera.location - centre).norm());
+    s += "// Sky seen in reflections only\nsphere { " + vec(sky_centre) + ", " + num(sky_radius) +
+         "\n  texture { pigment { color " + rgb(w.sky.value_or(w.bright)) + " } " + flat_finish() +
+         " }\n  hollow no_image no_shadow\n}\n\n";
+  }
 
   if (curvature_view) {
     s += "// Water coloured by its " +
          std::string(w.shading == WaterShading::gaussian ? "Gaussian" : "mean") +
          " curvature: u = 0.5 + 0.4999 * value / range, the curvature maps' colours\n";
-    s += "object {\n  Water_mesh\n  texture {\n    " + curvature_view_pigment() +
-         "\n    finish { emission 1 diffuse 0 ambient 0 }\n  }\n";
   } else {
-    s += "// Water: Cartoon Water Shader\nobject {\n  Water_mesh\n  texture {\n    ";
-    const std::string bands = rgb(w.bright) + ", " + rgb(w.medium) + ", " + rgb(w.dark) + ", " +
-                              num(w.t_bright) + ", " + num(w.t_medium);
-    if (flow_regions)
-      s += "Toon_bands_with_flow(" + bands + ",\n      " + rgb(flow.valley_color) + ", " +
-           rgb(flow.ridge_color) + ", " + num(w.transmit) + ")";
-    else
-      s += "Toon_bands(" + bands + ", " + num(w.transmit) + ")";
-    s += "\n    " + finish(c, true) + "\n  }\n";
+    s += "// Water: Cartoon Water Shader\n";
   }
+  s += "object {\n  Water_mesh\n  texture {\n    ";
+  s += closed_volume ? std::string(kWaterSurfaceTexture) : water_pigment + "\n    " + water_finish;
+  s += "\n  }\n";
   if (refracts) s += "  interior { ior " + num(w.ior) + " }\n";
   s += "}\n";
   if (flow_lines) {
@@ -229,15 +345,41 @@ std::string scene_pov(const SceneLayout& l) {
     if (hidden_in_water) s += "  no_reflection\n";
     s += "}\n";
     if (outline) {
-      s += "object { Toon_outline_shell(" + shell_id(oc.name) + ", " + rgb(c.outline.color) + ")";
-      if (refracts && o.submerged) s += " interior { ior " + num(w.ior) + " }";
-      if (reflects && oc.reflection == ReflectionTarget::none) s += " no_reflection";
-      s += " }\n";
+      const std::string shell =
+          "object { Toon_outline_shell(" + shell_id(oc.name) + ", " + rgb(c.outline.color) + ")";
+      const std::string tail =
+          reflects && oc.reflection == ReflectionTarget::none ? " no_reflection }\n" : " }\n";
+      if (refracts && o.submerged) {
+        const std::string line = water_line_id(oc.name);
+        s += shell + " clipped_by { plane { -y, -" + line + " } }" + tail;
+        s += shell + " clipped_by { plane { y, " + line + " } } interior { ior " + num(w.ior) +
+             " }" + tail;
+      } else {
+        s += shell + tail;
+      }
     } else if (reflects && oc.reflection == ReflectionTarget::abstract) {
       s += "object { Toon_silhouette(" + mesh_id(oc.name) + ", " + rgb(c.outline.color) + ") }\n";
     }
   }
   return s;
+}
+
+std::string scene_toon_inc(const SceneLayout& l) {
+  const SceneConfig& c = *l.config;
+  const bool reflects = c.water.shading == WaterShading::toon && c.water.reflection > 0;
+  std::vector<std::string> parts{"bands"};
+  const bool flow = c.flow.enabled && c.water.shading == WaterShading::toon;
+  if (flow && c.flow.style != FlowStyle::lines) parts.push_back("flow");
+  if (flow && c.flow.style != FlowStyle::regions) parts.push_back("strokes");
+  if (!l.objects.empty()) parts.push_back("objects");
+  if (c.outline.enabled) parts.push_back("outline");
+  for (const ObjectPlacement& o : l.objects)
+    if (reflects && !(c.outline.enabled && o.config->outline) &&
+        o.config->reflection == ReflectionTarget::abstract) {
+      parts.push_back("silhouette");
+      break;
+    }
+  return toon_template_parts(parts);
 }
 
 std::string scene_ini(const SceneLayout& l) {

@@ -13,6 +13,7 @@
 #include "povgen/scene_mesh.hpp"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace toonwater::povgen {
@@ -20,17 +21,58 @@ namespace toonwater::povgen {
 struct ObjectPlacement {
   const ObjectConfig* config = nullptr;
   bool animated = false;   // one mesh per frame
-  bool submerged = false;  // below the water's top in some frame: its shell takes the water's ior
+  // Below its water line in some frame. Then, when the water refracts, its shell is drawn as
+  // two copies clipped at the frame's water line (Obj_NAME_water_line, declared in each
+  // water include): the part under it with the water's ior (else the shell's inside acts as an
+  // air bubble), the part above without (else the rim rays bend back onto the object).
+  bool submerged = false;
+};
+
+// The camera in POV-Ray's frame; `angle` is the horizontal field of view in degrees.
+struct CameraPlacement {
+  Vec3 location = Vec3(0, 0, -1), look_at = Vec3::Zero();
+  double angle = 40;
 };
 
 struct SceneLayout {
   const SceneConfig* config = nullptr;
   Axis up = Axis::y;
   Vec3 water_min = Vec3::Zero(), water_max = Vec3::Zero();  // POV-Ray frame, all frames
+  CameraPlacement camera;
   std::vector<ObjectPlacement> objects;
+  // Some frame's water is a closed volume and the water refracts: its faces carry per-face
+  // textures declared in scene.pov (closed_volume_textures).
+  bool closed_water = false;
   bool animation = false;  // false: one frame, written as frame 0
   long first_frame = 0, last_frame = 0;
 };
+
+// The camera: the configured location and look_at; what is not configured frames the box
+// [scene_min, scene_max] (POV-Ray frame: water and objects of every frame): seen from the
+// front and 30° above, the box's corners fill the picture up to a margin of 4 % on each side.
+CameraPlacement frame_camera(const SceneConfig& config, Axis up, const Vec3& scene_min,
+                             const Vec3& scene_max);
+
+// The shell offset of each vertex of `mesh` for the configured outline width: in pixels, the
+// width times the size of a pixel (of render.width) at the vertex's depth from the camera.
+std::vector<double> shell_offsets(const OutlineConfig& outline, const SceneMesh& mesh,
+                                  const CameraPlacement& camera, int image_width);
+
+// The calm water's L·n: the light against the up axis (a point light: seen from the centre of
+// the water's top), where relative band thresholds are measured from.
+double calm_light(const SceneLayout& layout);
+
+// The water's absolute band thresholds {T_bright, T_medium}.
+std::pair<double, double> water_thresholds(const SceneLayout& layout);
+
+// The identifier of an object's water line in a frame (a number: its height in POV-Ray's y),
+// and its declaration in the frame's water include.
+std::string water_line_id(const std::string& object_name);
+std::string water_line_declaration(const std::string& object_name, double height);
+
+// Texture identifiers of a closed volume's faces: free surface, walls and floor.
+inline constexpr const char* kWaterSurfaceTexture = "Water_surface_texture";
+inline constexpr const char* kWaterBodyTexture = "Water_body_texture";
 
 // The light in POV-Ray's frame: the configured one, or a sun from above, left and front.
 LightGeometry light_geometry(const LightConfig& light, Axis up);
@@ -42,5 +84,7 @@ std::string frame_image_name(const SceneLayout& layout, long frame);
 
 std::string scene_pov(const SceneLayout& layout);
 std::string scene_ini(const SceneLayout& layout);
+// The scene's toon.inc: the template's parts that scene.pov uses.
+std::string scene_toon_inc(const SceneLayout& layout);
 
 }  // namespace toonwater::povgen

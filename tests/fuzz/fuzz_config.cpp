@@ -42,7 +42,7 @@ void check(const SceneConfig& c) {
     require_color(*color);
   for (const double v : {c.camera.angle, c.water.t_bright, c.water.t_medium, c.water.ka,
                          c.water.kd, c.water.ks, c.water.phong_size, c.water.reflection,
-                         c.water.transmit, c.water.ior, c.outline.width})
+                         c.water.transmit, c.water.ior, c.outline.width.value_or(1.0)})
     if (!std::isfinite(v)) std::abort();
   if (c.render.width < 1 || c.render.height < 1) std::abort();
   for (const ObjectConfig& o : c.objects) {

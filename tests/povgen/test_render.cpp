@@ -119,6 +119,113 @@ TEST(PovgenRender, ThreeCrispBandsWhereTheThresholdsPutThemForAPointLight) {
   });
 }
 
+// By default the band thresholds sit around the calm water's L·n: flat water is the medium
+// band, the slope of a bump facing the light bright, the slope facing away dark. Absolute
+// thresholds (0.7 and 0.2 under the default sun, whose L·n on flat water is 0.815) put all of
+// the flat water in the bright band.
+TEST(PovgenRender, RelativeBandsPutCalmWaterInTheMiddleBand) {
+  ScratchDir dir;
+  write_obj(dir / "bump.obj", make_height_grid(81, 1.0, [](double x, double z) {
+              return 0.05 * std::exp(-(x * x + z * z) / 0.03);
+            }));
+  const std::vector<std::string> args =
+      std::vector<std::string>{"--water", (dir / "bump.obj").string(), "--set", "outline.enabled=false",
+                               "--set", "water.bright=" + color(kBright), "--set",
+                               "water.medium=" + color(kMedium), "--set", "water.dark=" + color(kDark),
+                               "--set", "camera.location=[0, 2.5, 2.5]", "--set",
+                               "camera.look_at=[0, 0, 0]", "--set", "render.width=64", "--set",
+                               "render.height=48"} +
+      opaque_flat_water();
+  const Rgb8 bright = to_rgb8(kBright[0], kBright[1], kBright[2]);
+  const Rgb8 medium = to_rgb8(kMedium[0], kMedium[1], kMedium[2]);
+  const Rgb8 dark = to_rgb8(kDark[0], kDark[1], kDark[2]);
+  auto count = [](const Image& img, const Rgb8& c) {
+    int n = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) n += near(img.at(x, y), c, 1);
+    return n;
+  };
+  const Image relative = render_scene(dir, "relative", args);
+  EXPECT_TRUE(near(relative.at(4, 40), medium)) << "calm water in the middle band";
+  EXPECT_TRUE(near(relative.at(60, 40), medium));
+  EXPECT_GT(count(relative, medium), 800);
+  EXPECT_GT(count(relative, bright), 15) << "the slope facing the light";
+  EXPECT_GT(count(relative, dark), 15) << "the slope facing away";
+  const Image absolute = render_scene(
+      dir, "absolute", args + std::vector<std::string>{"--set", "water.bands=absolute"});
+  EXPECT_TRUE(near(absolute.at(4, 40), bright));
+  EXPECT_LT(count(absolute, medium) + count(absolute, dark), 40);
+}
+
+// A reflected ray that misses every object sees the flat sky colour, not the background: on
+// black water that reflects fully, the water shows the sky everywhere but where it reflects
+// the ball.
+TEST(PovgenRender, ReflectedRaysThatMissEverythingSeeTheSky) {
+  ScratchDir dir;
+  write_obj(dir / "water.obj", make_height_grid(5, 4.0, [](double, double) { return 0.0; }));
+  write_obj(dir / "ball.obj", make_sphere(Vec3(0, 0.9, 0), 0.5, 16, 32));
+  const Image img = render_scene(
+      dir, "sky",
+      std::vector<std::string>{"--water", (dir / "water.obj").string(), "--object",
+                               (dir / "ball.obj").string(), "--set", "object.0.color=" + color(kObject),
+                               "--set", "water.bright=[0, 0, 0]", "--set", "water.medium=[0, 0, 0]",
+                               "--set", "water.dark=[0, 0, 0]", "--set", "water.sky=[0, 0.5, 0]",
+                               "--set", "camera.location=[0, 1.0, 6]", "--set",
+                               "camera.look_at=[0, 0.2, 0]", "--set", "render.width=64", "--set",
+                               "render.height=48"} +
+          opaque_flat_water() + std::vector<std::string>{"--set", "water.reflection=1"});
+  const Rgb8 sky = to_rgb8(0, 0.5, 0);
+  int sky_pixels = 0, background = 0, reflected_ball = 0;
+  for (int y = img.height / 2 + 6; y < img.height; ++y)  // below the horizon: water only
+    for (int x = 0; x < img.width; ++x) {
+      const Rgb8 c = img.at(x, y);
+      sky_pixels += near(c, sky, 2);
+      background += near(c, {255, 255, 255}, 2);
+      reflected_ball += orange(c);
+    }
+  EXPECT_GT(sky_pixels, 300);
+  EXPECT_EQ(background, 0) << "reflections show the background";
+  EXPECT_GT(reflected_ball, 10) << "the ball's reflection reads as the ball";
+}
+
+// Outline widths in pixels: two equal spheres, one more than twice as far from the camera as
+// the other, get lines of the same width in the picture (3 px here, measured along the row
+// through each centre).
+TEST(PovgenRender, OutlineWidthInPixelsIsEvenAcrossDepth) {
+  ScratchDir dir;
+  write_obj(dir / "water.obj", make_height_grid(3, 0.5, [](double, double) { return -50.0; }));
+  write_obj(dir / "near.obj", make_sphere(Vec3(-1.0, 0, 0), 0.5, 32, 64));
+  write_obj(dir / "far.obj", make_sphere(Vec3(2.5, 0, -8), 0.5, 32, 64));
+  const int W = 200, H = 100;
+  const Image img = render_scene(
+      dir, "widths",
+      std::vector<std::string>{"--water", (dir / "water.obj").string(), "--object",
+                               (dir / "near.obj").string(), "--object", (dir / "far.obj").string(),
+                               "--set", "outline.width=3", "--set", "object.0.color=" + color(kObject),
+                               "--set", "object.1.color=" + color(kObject), "--set",
+                               "camera.location=[0, 0, 6]", "--set", "camera.look_at=[0, 0, 0]",
+                               "--set", "camera.angle=30", "--set", "render.width=" + std::to_string(W),
+                               "--set", "render.height=" + std::to_string(H)} +
+          opaque_flat_water());
+  // Pixel column of a point (input axes, camera on +z looking at the origin).
+  const double f = (W / 2.0) / std::tan(15 * std::numbers::pi / 180);
+  auto column = [&](double x, double depth) { return W / 2.0 + f * x / depth; };
+  auto line_width = [&](double x, double depth) {
+    const int centre = static_cast<int>(column(x, depth)), y = H / 2;
+    int width = 0;
+    for (int u = centre; u >= 0; --u) {
+      const bool black = near(img.at(u, y), {0, 0, 0}, 8);
+      if (black) ++width;
+      else if (width > 0) break;
+    }
+    return width;
+  };
+  const int near_width = line_width(-1.0, 6), far_width = line_width(2.5, 14);
+  EXPECT_NEAR(near_width, 3, 1);
+  EXPECT_NEAR(far_width, 3, 1);
+  EXPECT_LE(std::abs(near_width - far_width), 1) << near_width << " px vs " << far_width << " px";
+}
+
 TEST(PovgenRender, OutlineAroundASphereIsARingOfTheExpectedWidth) {
   ScratchDir dir;
   write_obj(dir / "water.obj", make_height_grid(3, 0.5, [](double, double) { return -50.0; }));
@@ -236,9 +343,10 @@ TEST(PovgenRender, SubmergedObjectMovesWhenTheIorChangesAndKeepsItsOutline) {
   EXPECT_GT(water.black, 5) << "the outline survives refraction";
 }
 
-// A see-through closed tank of water: the outline shell must not paint the water in the line
-// colour (rays refracted through the volume leave it through the floor and walls).
-TEST(PovgenRender, TransparentClosedWaterIsNotDarkenedByItsShell) {
+// A see-through closed tank of water is a see-through free surface over an opaque body: nothing
+// behind the tank shows through its walls, and the outline shell does not paint the water in
+// the line colour (rays refracted through the surface end on the floor and walls).
+TEST(PovgenRender, TransparentClosedWaterHasAnOpaqueBodyAndIsNotDarkenedByItsShell) {
   ScratchDir dir;
   TriangleMesh box;
   for (int i = 0; i < 8; ++i)
@@ -258,17 +366,19 @@ TEST(PovgenRender, TransparentClosedWaterIsNotDarkenedByItsShell) {
                                "--set", "render.height=48"} +
           opaque_flat_water() +
           std::vector<std::string>{"--set", "water.transmit=0.9", "--set", "render.background=[1, 0, 0]"});
-  int water = 0, dark = 0;
+  int water = 0, dark = 0, see_through = 0;
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
       const Rgb8 c = img.at(x, y);
       if (near(c, {255, 0, 0}, 2)) continue;
       ++water;
-      dark += c[0] < 100;  // the red background seen through the water has r >= 0.9 * 255
+      dark += c[0] + c[1] + c[2] < 60;
+      see_through += c[0] > c[2] + 40;  // the red background mixed in
     }
   ASSERT_GT(water, 300);
   EXPECT_LT(dark, water / 5) << dark << " of " << water << " water pixels in the line colour";
   EXPECT_GT(dark, 0) << "the tank's rim is outlined";
+  EXPECT_EQ(see_through, 0) << "the background shows through the tank";
 }
 
 TEST(PovgenRender, RidgeColourOnABumpAndNotOnFlatWater) {
@@ -374,7 +484,7 @@ TEST(PovgenRender, MantaflowWakeSequence) {
       {"povgen", "--water", (data / "water_####.obj").string(), "--object",
        (data / "sphere_####.obj").string(), "--up", "z", "--out", out.string(), "--set",
        "render.frames=14-15", "--set", "render.width=64", "--set", "render.height=48", "--set",
-       "outline.width=0.02", "--set", "render.antialias=false"});
+       "render.antialias=false"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const Povray p = run_povray(out);
   ASSERT_EQ(p.exit_code, 0) << p.output;

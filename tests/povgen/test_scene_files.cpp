@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cctype>
+
 #include <regex>
 
 namespace toonwater::test {
@@ -60,6 +63,23 @@ TEST(PovgenConfig, ReadsEveryKindOfValueAndOverrides) {
   EXPECT_EQ(c.render.frames->first, 3);
   EXPECT_EQ(c.render.frames->last, 7);
   EXPECT_EQ(c.outline.units, povgen::WidthUnits::world);
+}
+
+TEST(PovgenConfig, BandThresholdsAreRelativeUnlessAbsoluteOnesAreGiven) {
+  EXPECT_EQ(config_from("").water.bands, povgen::BandThresholds::relative);
+  EXPECT_EQ(config_from("[water]\nt_bright = 0.6\n").water.bands, povgen::BandThresholds::absolute);
+  EXPECT_EQ(config_from("[water]\nt_medium = 0.1\nbands = \"relative\"\n").water.bands,
+            povgen::BandThresholds::relative);
+  const auto c = config_from("", {"water.dt_bright=0.1", "water.dt_medium=-0.2"});
+  EXPECT_DOUBLE_EQ(c.water.dt_bright, 0.1);
+  EXPECT_DOUBLE_EQ(c.water.dt_medium, -0.2);
+  EXPECT_NE(config_error("", {"water.dt_medium=0.1"}).find("'water.dt_medium'"), std::string::npos);
+  EXPECT_NE(config_error("", {"water.bands=steep"}).find("'water.bands'"), std::string::npos);
+  EXPECT_NE(config_error("", {"water.body=glass"}).find("'water.body'"), std::string::npos);
+  // Outline widths are in pixels by default; a unit's own default width applies when none is given.
+  EXPECT_EQ(c.outline.units, povgen::WidthUnits::pixels);
+  EXPECT_FALSE(c.outline.width.has_value());
+  EXPECT_EQ(config_from("", {"water.body=clear"}).water.body, povgen::WaterBody::clear);
 }
 
 TEST(PovgenConfig, ErrorsNameTheKey) {
@@ -128,7 +148,7 @@ TEST(PovgenMesh2, ClosedMeshesGetAnInsideVectorAndShellsMoveAlongNormals) {
   for (const Vec3& p : sphere.positions) normals.push_back(p.normalized());
   const povgen::SceneMesh sm = povgen::make_scene_mesh(sphere, normals, true, Axis::y);
   std::string text;
-  povgen::append_shell_mesh2(text, "S", sm, 0.5);
+  povgen::append_shell_mesh2(text, "S", sm, std::vector<double>(sm.positions.size(), 0.5));
   EXPECT_NE(text.find("inside_vector"), std::string::npos);
   EXPECT_EQ(text.find("uv_vectors"), std::string::npos);
   EXPECT_NE(text.find("<0,1.5,0>"), std::string::npos) << text.substr(0, 200);
@@ -192,6 +212,16 @@ TEST(PovgenScene, MinimalSceneContainsOnlyWhatItNeeds) {
   EXPECT_EQ(g.water_inc.find("Water_shell"), std::string::npos);
   EXPECT_EQ(g.water_inc.find("inside_vector"), std::string::npos);
   EXPECT_EQ(g.ini.find("Initial_Frame"), std::string::npos);
+  // The scene's toon.inc holds only the macros it calls: not a word of what it does not use.
+  const std::string toon = read_text(dir / "scene" / "toon.inc");
+  EXPECT_NE(toon.find("#macro Toon_bands("), std::string::npos);
+  std::string everything = g.pov + toon;
+  std::transform(everything.begin(), everything.end(), everything.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  for (const char* absent : {"interior_texture", "no_image", "no_reflection", "ior",
+                             "reflection", "toon_outline_shell", "toon_bands_with_flow",
+                             "toon_object_bands", "toon_silhouette", "clipped_by", "sky"})
+    EXPECT_EQ(everything.find(absent), std::string::npos) << absent;
   EXPECT_FALSE(std::filesystem::exists(dir / "scene" / "obj_water.inc"));
 }
 
@@ -212,9 +242,26 @@ TEST(PovgenScene, FullSceneHasEveryFeature) {
         "Obj_ball_mesh", "Toon_outline_shell(Obj_ball_shell", "no_reflection",
         "Toon_silhouette(Obj_kite_mesh", "phong 0.5", "max_trace_level 10"})
     EXPECT_NE(g.pov.find(present), std::string::npos) << present;
-  // The submerged ball's shell takes the water's ior; the kite (above) has no shell at all.
-  EXPECT_NE(g.pov.find("Toon_outline_shell(Obj_ball_shell, srgb <0, 0, 0>) interior { ior 1.33 }"),
+  // The ball crosses the water line: its shell is split there, the part under it with the
+  // water's ior; the kite (above) has no shell at all.
+  EXPECT_NE(g.pov.find("Toon_outline_shell(Obj_ball_shell, srgb <0, 0, 0>) clipped_by { plane "
+                       "{ y, Obj_ball_water_line } } interior { ior 1.33 }"),
             std::string::npos);
+  EXPECT_NE(g.pov.find("Toon_outline_shell(Obj_ball_shell, srgb <0, 0, 0>) clipped_by { plane "
+                       "{ -y, -Obj_ball_water_line } } no_reflection }"),
+            std::string::npos);
+  EXPECT_NE(g.water_inc.find("#declare Obj_ball_water_line = "), std::string::npos);
+  // A see-through closed volume: free surface and body have their own textures.
+  EXPECT_NE(g.pov.find("#declare Water_surface_texture"), std::string::npos);
+  EXPECT_NE(g.water_inc.find("texture_list { 2, texture { Water_surface_texture }, texture { "
+                             "Water_body_texture } }"),
+            std::string::npos);
+  // Reflected rays that miss everything see a flat sky, which the camera does not see.
+  EXPECT_NE(g.pov.find("hollow no_image no_shadow"), std::string::npos);
+  const std::string toon = read_text(dir / "scene" / "toon.inc");
+  for (const char* macro : {"Toon_bands(", "Toon_bands_with_flow(", "Toon_object_bands(",
+                            "Toon_outline_shell(", "Toon_silhouette("})
+    EXPECT_NE(toon.find(std::string("#macro ") + macro), std::string::npos) << macro;
   EXPECT_EQ(g.pov.find("Obj_kite_shell"), std::string::npos);
   EXPECT_NE(g.water_inc.find("Water_shell"), std::string::npos);
   EXPECT_NE(g.water_inc.find("inside_vector"), std::string::npos);
