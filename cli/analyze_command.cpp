@@ -173,12 +173,10 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--up", args->up, "Up axis of the input (Blender writes z)")
       ->transform(one_of<Axis>({{"x", Axis::x}, {"y", Axis::y}, {"z", Axis::z}}))
       ->default_str("y");
-  const std::map<std::string, FlowCriterion> criteria{{"mean", FlowCriterion::mean},
-                                                      {"paper", FlowCriterion::paper}};
   cmd->add_option("--criterion", args->criterion,
                   "Flow regions on the mean curvature H (crests and troughs, round ones "
                   "included) or the paper's |K| with the sign of H")
-      ->transform(CLI::CheckedTransformer(criteria, CLI::ignore_case))
+      ->transform(one_of<FlowCriterion>({{"mean", FlowCriterion::mean}, {"paper", FlowCriterion::paper}}))
       ->default_str("mean");
   cmd->add_option("--k-threshold", args->k_threshold,
                   "Absolute threshold T: on H (1/length) with mean, on |K| (1/length^2) with "
@@ -199,8 +197,6 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--rest-height", args->rest_height,
                   "Water rest level along the up axis (default: median height of the free surface)")
       ->check(FiniteNumber);
-  const std::map<std::string, Estimator> estimators{{"one-ring", Estimator::one_ring},
-                                                    {"jet", Estimator::jet}};
   cmd->add_option("--estimator", args->estimator,
                   "Curvature estimator: one-ring (the paper's operators, fastest) or jet (cubic "
                   "fits over the two-ring: accurate on irregular and noisy meshes, slower)")
