@@ -68,11 +68,12 @@ void run_povgen(const PovgenArgs& args) {
   std::fprintf(stderr,
                "povgen: %zu frame(s) -> %s (%zu water vertices, %zu degenerate faces left out, "
                "%zu normals replaced, ridge %zu, valley %zu)\n"
-               "  time: read %.3f s, analysis %.3f s, scene writing %.3f s\n"
+               "  render mesh: %zu of %zu water faces kept (water.simplify)\n"
+               "  time: read %.3f s, analysis %.3f s, simplification %.3f s, scene writing %.3f s\n"
                "  render: cd %s && povray scene.ini   (or: toonwater render %s)\n",
                r.frames, args.out.c_str(), r.vertices, r.degenerate_faces, r.replaced_normals,
-               r.ridge_vertices, r.valley_vertices, r.read_seconds, r.analysis_seconds,
-               r.write_seconds, args.out.c_str(), args.out.c_str());
+               r.ridge_vertices, r.valley_vertices, r.faces_kept, r.faces, r.read_seconds,
+               r.analysis_seconds, r.simplify_seconds, r.write_seconds, args.out.c_str(), args.out.c_str());
   for (const std::string& empty : r.empty_frames)
     std::fprintf(stderr, "  warning: %s; that frame shows no water\n", empty.c_str());
   if (!args.maps.empty()) {

@@ -63,6 +63,9 @@ struct WaterConfig {
   double reflection = 0.2;
   double transmit = 0.4;
   double ior = 1.33;
+  // The render mesh is simplified while no surface point moves more than this many pixels on
+  // screen (povgen/simplify.hpp); 0 writes the full mesh.
+  double simplify = 0.5;
 };
 
 enum class WidthUnits { relative, world };

@@ -9,6 +9,7 @@
 #include "povgen/mesh2_writer.hpp"
 #include "povgen/scene_writer.hpp"
 #include "povgen/sequence.hpp"
+#include "povgen/simplify.hpp"
 #include "povgen/stroke_writer.hpp"
 #include "povgen/axes.hpp"
 
@@ -91,13 +92,18 @@ std::string empty_water_include() {
          "#declare Water_shell = union {}\n";
 }
 
+std::vector<TextureCoordinate> texture_coordinates(const PreparedSurface& surface,
+                                                   const LightGeometry& light) {
+  return surface.view_values.empty()
+             ? toon_coordinates(surface.mesh, light, surface.flow_field)
+             : value_coordinates(surface.view_values, surface.view_range);
+}
+
 std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
                          const LightGeometry& light, double shell_offset,
                          ShellFaces shell_faces) {
   std::string text = "// Written by toonwater povgen: meshes for scene.pov.\n";
-  const auto uv = surface.view_values.empty()
-                      ? toon_coordinates(surface.mesh, light, surface.flow_field)
-                      : value_coordinates(surface.view_values, surface.view_range);
+  const auto uv = texture_coordinates(surface, light);
   append_mesh2(text, prefix + "_mesh", surface.mesh, uv);
   if (shell_offset > 0)
     append_shell_mesh2(text, prefix + "_shell", surface.mesh, shell_offset, shell_faces);
@@ -268,6 +274,10 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     water_top = s.mesh.max.y();
 
     const double width = config.outline.enabled ? outline_width(config.outline, s.mesh) : 0;
+    report.faces += s.mesh.triangles.size();
+    report.simplify_seconds +=
+        simplify_water(s, light, config, flow, camera_reach(layout, s.mesh.min, s.mesh.max)).seconds;
+    report.faces_kept += s.mesh.triangles.size();
     const auto start = Clock::now();
     // A see-through closed volume keeps the shell on its free surface only (ShellFaces).
     const ShellFaces shell_faces =

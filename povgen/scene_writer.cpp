@@ -118,6 +118,27 @@ LightGeometry light_geometry(const LightConfig& light, Axis up) {
   return g;
 }
 
+CameraReach camera_reach(const SceneLayout& l, const Vec3& min, const Vec3& max) {
+  const SceneConfig& c = *l.config;
+  CameraReach reach;
+  reach.angle_degrees = c.camera.angle;
+  reach.width = c.render.width;
+  reach.height = c.render.height;
+  if (c.camera.location) {
+    const Vec3 eye = to_povray(*c.camera.location, l.up);
+    reach.nearest_distance = (eye - eye.cwiseMax(min).cwiseMin(max)).norm();
+  } else {
+    // The default camera frames a sphere holding every frame's box at distance R / sin(half),
+    // half the field of view across the image's shorter side (camera_location): no point of
+    // the sphere is nearer than R (1 / sin(half) − 1), and R is at least this box's radius.
+    const double aspect = static_cast<double>(c.render.height) / c.render.width;
+    const double half_h = 0.5 * c.camera.angle * std::numbers::pi / 180.0;
+    const double half = std::min(half_h, std::atan(std::tan(half_h) * aspect));
+    reach.nearest_distance = 0.5 * (max - min).norm() * (1.0 / std::sin(half) - 1.0);
+  }
+  return reach;
+}
+
 std::string water_include_name(long frame) { return "water_" + padded(frame, 4) + ".inc"; }
 
 std::string object_include_name(const std::string& name, bool animated, long frame) {
