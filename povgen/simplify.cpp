@@ -25,6 +25,10 @@ constexpr double max_l_dot_n_change = 0.05;
 constexpr double max_flow_field_change = 0.25;
 constexpr double max_face_turn_degrees = 45.0;
 constexpr float max_aspect_ratio = 10.0f;
+// Largest valence a collapse may leave at the kept vertex: the cost of a collapse, and of the
+// re-evaluation of its neighbours, grows with the valence, and calm water would otherwise end
+// in fans of hundreds of faces.
+constexpr std::size_t max_valence = 16;
 // A boundary vertex is on a straight boundary when it lies this close to the line of its
 // neighbours, relative to the tolerance.
 constexpr double straight_boundary_fraction = 1e-3;
@@ -90,7 +94,8 @@ class ModToonBoundT : public OpenMesh::Decimater::ModBaseT<MeshT> {
   }
 
   float collapse_priority(const CollapseInfo& ci) override {
-    return boundary_allows(ci) && textures_allow(ci) && geometric_bound(ci) <= options_->tolerance
+    MeshT& m = Base::mesh();
+    return m.valence(ci.v0) + m.valence(ci.v1) <= max_valence + 4 && boundary_allows(ci) && textures_allow(ci) && geometric_bound(ci) <= options_->tolerance
                ? float(Base::LEGAL_COLLAPSE)
                : float(Base::ILLEGAL_COLLAPSE);
   }
@@ -240,10 +245,11 @@ SimplifyStats simplify_surface(PreparedSurface& surface, const std::vector<Textu
   OpenMesh::Decimater::ModNormalFlippingT<RenderMesh>::Handle flipping;
   OpenMesh::Decimater::ModAspectRatioT<RenderMesh>::Handle aspect;
   typename ModToonBoundT<RenderMesh>::Handle bound;
-  decimater.add(quadric);
+  // Constraints run in this order and stop at the first refusal: the most selective first.
+  decimater.add(bound);
   decimater.add(flipping);
   decimater.add(aspect);
-  decimater.add(bound);
+  decimater.add(quadric);
   decimater.module(quadric).unset_max_err();  // the priority; the bound is ModToonBoundT's
   decimater.module(flipping).set_max_normal_deviation(max_face_turn_degrees);
   decimater.module(aspect).set_aspect_ratio(max_aspect_ratio);
