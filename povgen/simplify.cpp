@@ -25,10 +25,6 @@ constexpr double max_l_dot_n_change = 0.05;
 constexpr double max_flow_field_change = 0.25;
 constexpr double max_face_turn_degrees = 45.0;
 constexpr float max_aspect_ratio = 10.0f;
-// Largest valence a collapse may leave at the kept vertex: the cost of a collapse, and of the
-// re-evaluation of its neighbours, grows with the valence, and calm water would otherwise end
-// in fans of hundreds of faces.
-constexpr std::size_t max_valence = 16;
 // A boundary vertex is on a straight boundary when it lies this close to the line of its
 // neighbours, relative to the tolerance.
 constexpr double straight_boundary_fraction = 1e-3;
@@ -94,8 +90,7 @@ class ModToonBoundT : public OpenMesh::Decimater::ModBaseT<MeshT> {
   }
 
   float collapse_priority(const CollapseInfo& ci) override {
-    MeshT& m = Base::mesh();
-    return m.valence(ci.v0) + m.valence(ci.v1) <= max_valence + 4 && boundary_allows(ci) && textures_allow(ci) && geometric_bound(ci) <= options_->tolerance
+    return boundary_allows(ci) && textures_allow(ci) && geometric_bound(ci) <= options_->tolerance
                ? float(Base::LEGAL_COLLAPSE)
                : float(Base::ILLEGAL_COLLAPSE);
   }

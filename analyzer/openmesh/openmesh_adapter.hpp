@@ -5,7 +5,7 @@
 //   "toonwater:gaussian"    double   K (curvature.hpp)
 //   "toonwater:mean"        double   H, signed
 //   "toonwater:flow_field"  double   s (flow_regions.hpp); a flow region where |s| >= 1
-//   "toonwater:flow_label"  int      FlowLabel (0 none, 1 ridge, 2 valley)
+//   "toonwater:flow_label"  int      FlowLabel (1 ridge, −1 valley, 0 none)
 //
 // Values are per vertex of the given mesh, in its order, identical to analyze_mesh's on the
 // same vertices and faces (coincident vertices are welded for the analysis and each copy gets
