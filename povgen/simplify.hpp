@@ -8,10 +8,10 @@
 //   constraints  ModNormalFlippingT (no face turns by more than max_face_turn_degrees),
 //                ModAspectRatioT (no sliver worse than max_aspect_ratio), and ModToonBoundT
 //                (below), which bounds what a viewer could see change:
-//     geometry   every original surface point stays within `tolerance` of the simplified
-//                surface: each face carries a bound e_f on that distance, and a collapse of
-//                v0 into v1 gives the faces it changes e = max e_f (star of v0) + d(p0, new
-//                star), refused when e > tolerance;
+//     geometry   the original surface stays within `tolerance` of the simplified one: each
+//                face carries an estimate e_f of that distance which only grows, and a collapse
+//                of v0 into v1 gives the faces it changes e = max e_f (star of v0) + d(p0, new
+//                star), refused when e > tolerance (the tests measure the Hausdorff distance);
 //     textures   the per-vertex texture coordinates u (L·n) and v (the flow field s) stay
 //                within a bound: each vertex carries the range of the original values it
 //                stands for, and a collapse is refused when the range over v0, v1 and v0's
