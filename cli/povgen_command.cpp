@@ -97,13 +97,14 @@ void run_povgen(const PovgenArgs& args) {
   std::fprintf(stderr,
                "povgen: %zu frame(s) -> %s (%zu water vertices, %zu degenerate faces left out, "
                "%zu normals replaced, ridge %zu, valley %zu%s)\n"
-               "  time: read %.3f s, analysis %.3f s, scene writing %.3f s\n"
+               "  render mesh: %zu of %zu water faces kept (water.simplify)\n"
+               "  time: read %.3f s, analysis %.3f s, simplification %.3f s, scene writing %.3f s\n"
                "  render: cd %s && povray scene.ini   (or: toonwater render %s)\n",
                r.frames, args.out.c_str(), r.vertices, r.degenerate_faces, r.replaced_normals,
                r.ridge_vertices, r.valley_vertices,
-               r.empty_frames.empty() ? "" : "; frames without water listed above",
-               r.read_seconds, r.analysis_seconds,
-               r.write_seconds, args.out.c_str(), args.out.c_str());
+               r.empty_frames.empty() ? "" : "; frames without water listed above", r.faces_kept,
+               r.faces, r.read_seconds, r.analysis_seconds, r.simplify_seconds, r.write_seconds,
+               args.out.c_str(), args.out.c_str());
   if (maps) {
     std::fprintf(stderr, "  maps: %zu frame(s) -> %s, shared colour ranges K \u00b1%.6g, H \u00b1%.6g\n",
                  maps->frames, args.maps.c_str(), maps->ranges.gaussian, maps->ranges.mean);

@@ -140,7 +140,7 @@ void read_water(const toml::table& t, WaterConfig& c) {
   for_each_key(t, "water",
                {"shading", "bright", "medium", "dark", "bands", "dt_bright", "dt_medium",
                 "t_bright", "t_medium", "ka", "kd", "ks", "specular_color", "phong_size",
-                "reflection", "sky", "transmit", "ior", "body"},
+                "reflection", "sky", "transmit", "ior", "body", "simplify"},
                [&](const std::string& n, const std::string& key, const toml::node& v) {
                  if (n == "shading")
                    c.shading = read_keyword<WaterShading>(v, key,
@@ -174,6 +174,7 @@ void read_water(const toml::table& t, WaterConfig& c) {
                  if (n == "reflection") c.reflection = read_number_in(v, key, 0.0, 1.0);
                  if (n == "transmit") c.transmit = read_number_in(v, key, 0.0, 1.0);
                  if (n == "ior") c.ior = read_number_in(v, key, 1.0, 3.0);
+                 if (n == "simplify") c.simplify = read_number_in(v, key, 0.0, 100.0);
                });
   if (c.t_medium >= c.t_bright) fail("water.t_medium", "must be less than water.t_bright");
   if (c.dt_medium >= c.dt_bright) fail("water.dt_medium", "must be less than water.dt_bright");

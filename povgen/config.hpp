@@ -82,6 +82,9 @@ struct WaterConfig {
   double transmit = 0.4;
   double ior = 1.33;
   WaterBody body = WaterBody::opaque;
+  // The render mesh is simplified while no surface point moves more than this many pixels on
+  // screen (povgen/simplify.hpp); 0 writes the full mesh.
+  double simplify = 0.5;
 };
 
 // pixels: of an image render.width wide, each shell vertex offset by the size of a pixel at its

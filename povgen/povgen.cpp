@@ -11,6 +11,7 @@
 #include "povgen/scene_directory.hpp"
 #include "povgen/scene_writer.hpp"
 #include "povgen/sequence.hpp"
+#include "povgen/simplify.hpp"
 #include "povgen/stroke_writer.hpp"
 #include "povgen/axes.hpp"
 
@@ -105,13 +106,18 @@ std::string empty_water_include() {
          "#declare Water_shell = union {}\n";
 }
 
+std::vector<TextureCoordinate> texture_coordinates(const PreparedSurface& surface,
+                                                   const LightGeometry& light) {
+  return surface.view_values.empty()
+             ? toon_coordinates(surface.mesh, light, surface.flow_field)
+             : value_coordinates(surface.view_values, surface.view_range);
+}
+
 std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
                          const LightGeometry& light, std::span<const double> shell_offsets,
                          const FaceTextures* textures, const std::vector<bool>* shell_faces) {
   std::string text = "// Written by toonwater povgen: meshes for scene.pov.\n";
-  const auto uv = surface.view_values.empty()
-                      ? toon_coordinates(surface.mesh, light, surface.flow_field)
-                      : value_coordinates(surface.view_values, surface.view_range);
+  const auto uv = texture_coordinates(surface, light);
   append_mesh2(text, prefix + "_mesh", surface.mesh, uv, textures);
   if (!shell_offsets.empty())
     append_shell_mesh2(text, prefix + "_shell", surface.mesh, shell_offsets, shell_faces);
@@ -352,6 +358,10 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     layout.water_max = layout.water_max.cwiseMax(s.mesh.max);
 
     write_animated_objects();
+    report.faces += s.mesh.triangles.size();
+    report.simplify_seconds +=
+        simplify_water(s, light, config, flow, camera_reach(layout, s.mesh.min, s.mesh.max)).seconds;
+    report.faces_kept += s.mesh.triangles.size();
     const auto start = Clock::now();
     const std::vector<double> offsets =
         config.outline.enabled

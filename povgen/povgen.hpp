@@ -52,6 +52,10 @@ PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* f
                                 FlowCoherence* coherence,
                                 WaterShading shading = WaterShading::toon);
 
+// The texture coordinates written per vertex: toon coordinates, or the curvature view's values.
+std::vector<TextureCoordinate> texture_coordinates(const PreparedSurface& surface,
+                                                   const LightGeometry& light);
+
 // The include of a frame whose water mesh is empty: the declarations, holding nothing.
 std::string empty_water_include();
 
@@ -85,10 +89,11 @@ struct PovgenReport {
   std::size_t frames = 0;
   long first_frame = 0, last_frame = 0;
   std::size_t vertices = 0;  // water vertices, all frames
+  std::size_t faces = 0, faces_kept = 0;  // water faces, all frames: analysed, and rendered
   std::size_t degenerate_faces = 0, replaced_normals = 0;
   std::size_t ridge_vertices = 0, valley_vertices = 0;
   std::vector<std::string> empty_frames;  // "PATH: why", frames left without water (no faces)
-  double read_seconds = 0, analysis_seconds = 0, write_seconds = 0;
+  double read_seconds = 0, analysis_seconds = 0, simplify_seconds = 0, write_seconds = 0;
 };
 
 // Called after each frame: frames done, frames in total.

@@ -206,6 +206,18 @@ std::string water_line_declaration(const std::string& object_name, double height
   return "#declare " + water_line_id(object_name) + " = " + num(height) + ";\n";
 }
 
+CameraReach camera_reach(const SceneLayout& l, const Vec3& min, const Vec3& max) {
+  // The camera is placed before any frame is written (frame_camera), so the nearest point of
+  // the box is known exactly.
+  CameraReach reach;
+  reach.angle_degrees = l.camera.angle;
+  reach.width = l.config->render.width;
+  reach.height = l.config->render.height;
+  const Vec3& eye = l.camera.location;
+  reach.nearest_distance = (eye - eye.cwiseMax(min).cwiseMin(max)).norm();
+  return reach;
+}
+
 std::string water_include_name(long frame) { return "water_" + padded(frame, 4) + ".inc"; }
 
 std::string object_include_name(const std::string& name, bool animated, long frame) {

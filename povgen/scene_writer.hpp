@@ -77,6 +77,16 @@ inline constexpr const char* kWaterBodyTexture = "Water_body_texture";
 // The light in POV-Ray's frame: the configured one, or a sun from above, left and front.
 LightGeometry light_geometry(const LightConfig& light, Axis up);
 
+// What the camera is known to be while a frame is written, for the render mesh's
+// simplification (simplify.hpp): no point of the box [min, max] (POV-Ray frame) comes nearer to
+// it than `nearest_distance`, for any sequence the box is part of.
+struct CameraReach {
+  double nearest_distance = 0;
+  double angle_degrees = 0;  // horizontal field of view
+  int width = 0, height = 0;  // image size
+};
+CameraReach camera_reach(const SceneLayout& layout, const Vec3& min, const Vec3& max);
+
 std::string water_include_name(long frame);
 std::string object_include_name(const std::string& object_name, bool animated, long frame);
 // PNG name POV-Ray gives a frame (padded to the digits of the last frame).

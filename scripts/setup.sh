@@ -10,6 +10,7 @@ packages=(
   libeigen3-dev libcli11-dev libtomlplusplus-dev zlib1g-dev
   libopenimageio-dev openimageio-tools fonts-dejavu-core
   povray
+  libopenmesh-dev
   libgtest-dev libbenchmark-dev
   clang-14 libclang-rt-14-dev  # fuzzing (scripts/fuzz.sh)
 )
