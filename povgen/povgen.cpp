@@ -360,7 +360,7 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     write_animated_objects();
     report.faces += s.mesh.triangles.size();
     report.simplify_seconds +=
-        simplify_water(s, light, config, flow, camera_reach(layout, s.mesh.min, s.mesh.max)).seconds;
+        simplify_water(s, light, layout, flow).seconds;
     report.faces_kept += s.mesh.triangles.size();
     const auto start = Clock::now();
     const std::vector<double> offsets =

@@ -189,14 +189,15 @@ std::vector<T> select(const std::vector<T>& values, const std::vector<int>& kept
 
 }  // namespace
 
-SimplifyOptions simplify_options(const WaterConfig& water, const FlowConfig* flow,
-                                 double tolerance) {
+SimplifyOptions simplify_options(const WaterConfig& water, std::pair<double, double> band_thresholds,
+                                 const FlowConfig* flow, double tolerance) {
   SimplifyOptions o;
   o.tolerance = tolerance;
   const bool toon = water.shading == WaterShading::toon;
   // u = 0.5 + 0.4999 · L·n (or · value / range in the curvature view), v = flow_coordinate(s).
   o.u_tolerance = 0.4999 * max_l_dot_n_change;
-  if (toon) o.u_levels = {0.5 + 0.4999 * water.t_medium, 0.5 + 0.4999 * water.t_bright};
+  const auto [t_bright, t_medium] = band_thresholds;
+  if (toon) o.u_levels = {0.5 + 0.4999 * t_medium, 0.5 + 0.4999 * t_bright};
   o.v_tolerance = flow_coordinate(max_flow_field_change) - flow_coordinate(0.0);
   if (toon && flow && flow->enabled) o.v_levels = {flow_coordinate(-1.0), flow_coordinate(1.0)};
   return o;
@@ -284,13 +285,14 @@ SimplifyStats simplify_surface(PreparedSurface& surface, const std::vector<Textu
 }
 
 SimplifyStats simplify_water(PreparedSurface& surface, const LightGeometry& light,
-                             const SceneConfig& config, const FlowConfig* flow,
-                             const CameraReach& camera) {
+                             const SceneLayout& layout, const FlowConfig* flow) {
   const auto start = std::chrono::steady_clock::now();
-  const double tolerance = screen_tolerance(config.water.simplify, camera.nearest_distance,
+  const CameraReach camera = camera_reach(layout, surface.mesh.min, surface.mesh.max);
+  const double tolerance = screen_tolerance(layout.config->water.simplify, camera.nearest_distance,
                                             camera.angle_degrees, camera.width, camera.height);
-  SimplifyStats stats = simplify_surface(surface, texture_coordinates(surface, light),
-                                         simplify_options(config.water, flow, tolerance));
+  SimplifyStats stats = simplify_surface(
+      surface, texture_coordinates(surface, light),
+      simplify_options(layout.config->water, water_thresholds(layout), flow, tolerance));
   stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;

@@ -46,10 +46,11 @@ struct SimplifyStats {
   double seconds = 0;
 };
 
-// The options of the toon (or curvature-view) coordinates written for `water`, with a
-// geometric `tolerance` in world units.
-SimplifyOptions simplify_options(const WaterConfig& water, const FlowConfig* flow,
-                                 double tolerance);
+// The options of the toon (or curvature-view) coordinates written for `water`, whose bands
+// change at L·n = `band_thresholds` (scene_writer.hpp's water_thresholds), with a geometric
+// `tolerance` in world units.
+SimplifyOptions simplify_options(const WaterConfig& water, std::pair<double, double> band_thresholds,
+                                 const FlowConfig* flow, double tolerance);
 
 // The largest world distance that moves no point nearer than `nearest_distance` to the camera
 // by more than `pixels` on a `width`×`height` image with a horizontal field of view of
@@ -64,10 +65,10 @@ double screen_tolerance(double pixels, double nearest_distance, double angle_deg
 SimplifyStats simplify_surface(PreparedSurface& surface, const std::vector<TextureCoordinate>& uv,
                                const SimplifyOptions& options);
 
-// A water frame simplified for the camera: `water.simplify` pixels at the camera's reach, with
-// the texture coordinates the frame writes (`flow`: the frame's flow settings, if any).
+// A water frame simplified for the scene's camera: `water.simplify` pixels at the camera's
+// reach of the frame, with the texture coordinates and band thresholds the frame is written
+// with (`flow`: the frame's flow settings, if any).
 SimplifyStats simplify_water(PreparedSurface& surface, const LightGeometry& light,
-                             const SceneConfig& config, const FlowConfig* flow,
-                             const CameraReach& camera);
+                             const SceneLayout& layout, const FlowConfig* flow);
 
 }  // namespace toonwater::povgen

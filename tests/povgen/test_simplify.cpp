@@ -69,7 +69,8 @@ povgen::SimplifyStats simplify(PreparedSurface& s, double tolerance) {
   povgen::SceneConfig config;
   return povgen::simplify_surface(
       s, povgen::texture_coordinates(s, povgen::light_geometry(config.light, Axis::y)),
-      povgen::simplify_options(config.water, nullptr, tolerance));
+      povgen::simplify_options(config.water, {config.water.t_bright, config.water.t_medium},
+                               nullptr, tolerance));
 }
 
 TEST(Simplify, FlatPlaneSimplifiesToAHandfulOfFacesWithItsOutline) {
@@ -107,13 +108,14 @@ TEST(Simplify, RippleKeepsItsCrestsWithinThePixelBound) {
   config.render.height = 180;
   povgen::SceneLayout layout;
   layout.config = &config;
+  layout.camera = povgen::frame_camera(config, Axis::y, full.min, full.max);
   const povgen::CameraReach reach = povgen::camera_reach(layout, full.min, full.max);
   const double tolerance = povgen::screen_tolerance(0.5, reach.nearest_distance,
                                                     config.camera.angle, 320, 180);
   ASSERT_GT(tolerance, 0.0);
   ASSERT_LT(tolerance, 0.01);
   const povgen::SimplifyStats stats = povgen::simplify_water(
-      s, povgen::light_geometry(config.light, Axis::y), config, nullptr, reach);
+      s, povgen::light_geometry(config.light, Axis::y), layout, nullptr);
   ASSERT_TRUE(stats.simplified);
   EXPECT_LT(stats.faces_after, stats.faces_before / 2);
   EXPECT_GT(stats.faces_after, 200u);  // the ripple needs its triangles
