@@ -18,16 +18,8 @@ namespace fs = std::filesystem;
 
 std::vector<long> frames_to_render(const FarmRequest& request, const SceneFrames& scene) {
   const fs::path dir = fs::absolute(request.scene_dir);
-  long first = scene.animation ? scene.first : 0, last = scene.animation ? scene.last : 0;
-  if (request.frames && scene.animation) {
-    if (request.frames->first < scene.first || request.frames->last > scene.last)
-      throw InputError(dir.string() + ": frames " + format_range(*request.frames) +
-                       " are outside the scene's " + format_range({scene.first, scene.last}));
-    first = request.frames->first;
-    last = request.frames->last;
-  }
   std::vector<long> frames;
-  for (long f = first; f <= last; ++f) {
+  for (const long f : requested_frames(dir, scene, request.frames)) {
     std::error_code ec;
     const fs::path image = frame_image_path(dir, scene, f);
     if (request.force || !fs::is_regular_file(image, ec) || fs::file_size(image, ec) == 0)

@@ -103,24 +103,6 @@ std::string read_all(const fs::path& p) {
   return ss.str();
 }
 
-// The frames to render: the request's range, checked against the scene's, or every frame.
-std::vector<long> requested_frames(const fs::path& dir, const SceneFrames& ini,
-                                   const std::optional<FrameRange>& range) {
-  if (!ini.animation) return {0};
-  long first = ini.first, last = ini.last;
-  if (range) {
-    if (range->first < ini.first || range->last > ini.last)
-      throw InputError(dir.string() + ": frames " + std::to_string(range->first) + "-" +
-                       std::to_string(range->last) + " are outside the scene's " +
-                       std::to_string(ini.first) + "-" + std::to_string(ini.last));
-    first = range->first;
-    last = range->last;
-  }
-  std::vector<long> frames;
-  for (long f = first; f <= last; ++f) frames.push_back(f);
-  return frames;
-}
-
 fs::path checked_scene_dir(const fs::path& scene_dir) {
   const fs::path dir = fs::absolute(scene_dir);
   if (!fs::is_regular_file(dir / "scene.pov"))
@@ -137,6 +119,23 @@ std::string povray_threads(int jobs) {
 
 SceneFrames read_scene_frames(const fs::path& scene_dir) {
   return read_ini_frames(checked_scene_dir(scene_dir) / "scene.ini");
+}
+
+std::vector<long> requested_frames(const fs::path& dir, const SceneFrames& ini,
+                                   const std::optional<FrameRange>& range) {
+  if (!ini.animation) return {0};
+  long first = ini.first, last = ini.last;
+  if (range) {
+    if (range->first < ini.first || range->last > ini.last)
+      throw InputError(dir.string() + ": frames " + std::to_string(range->first) + "-" +
+                       std::to_string(range->last) + " are outside the scene's " +
+                       std::to_string(ini.first) + "-" + std::to_string(ini.last));
+    first = range->first;
+    last = range->last;
+  }
+  std::vector<long> frames;
+  for (long f = first; f <= last; ++f) frames.push_back(f);
+  return frames;
 }
 
 fs::path frame_image_path(const fs::path& scene_dir, const SceneFrames& frames, long frame) {
@@ -274,13 +273,11 @@ RenderReport render_frames_in_one_process(const RenderRequest& request,
       fs::remove(dir / ("render_" + std::to_string(frames[i]) + ".log"), ec);
       ++report.rendered;
     }
-    std::string failure;
-    if (end < frames.size()) {
+    if (end < frames.size()) {  // frames[end] failed
+      std::string failure;
       if (status == 127) failure = "cannot run '" + request.povray + "' (is POV-Ray installed?)";
       else if (status != 0) failure = povray_error_message(read_all(log));
       else failure = "POV-Ray wrote no image";
-    }
-    if (!failure.empty()) {
       const long frame = frames[end];
       const fs::path kept_log = dir / ("render_" + std::to_string(frame) + ".log");
       fs::rename(log, kept_log, ec);

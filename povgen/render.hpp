@@ -50,6 +50,11 @@ struct SceneFrames {
 // Throws InputError when the directory holds no povgen scene.
 SceneFrames read_scene_frames(const std::filesystem::path& scene_dir);
 
+// The frames of `range` (default: every frame; 0 for a single image). Throws InputError naming
+// `scene_dir` when the range is outside the scene's.
+std::vector<long> requested_frames(const std::filesystem::path& scene_dir, const SceneFrames& frames,
+                                   const std::optional<FrameRange>& range);
+
 // Where POV-Ray writes the image of `frame` (ignored for a single image) in `scene_dir`.
 std::filesystem::path frame_image_path(const std::filesystem::path& scene_dir,
                                        const SceneFrames& frames, long frame);
