@@ -8,6 +8,7 @@ namespace toonwater::cli {
 void add_analyze_command(CLI::App& app);
 void add_povgen_command(CLI::App& app);
 void add_render_command(CLI::App& app);
+void add_render_task_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_report_command(CLI::App& app);
 

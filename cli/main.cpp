@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
   toonwater::cli::add_analyze_command(app);
   toonwater::cli::add_povgen_command(app);
   toonwater::cli::add_render_command(app);
+  toonwater::cli::add_render_task_command(app);
   toonwater::cli::add_simulate_command(app);
   toonwater::cli::add_report_command(app);
 

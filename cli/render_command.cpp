@@ -1,5 +1,6 @@
-// toonwater render DIR [--jobs N] [--frames A-B]
+// toonwater render DIR [--jobs N] [--frames A-B] [farm options: render_farm_command.cpp]
 #include "cli/commands.hpp"
+#include "cli/render_farm.hpp"
 
 #include "cli/progress.hpp"
 #include "cli/validators.hpp"
@@ -69,7 +70,11 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--jobs", args->jobs, "Frames rendered at the same time (default: cores)")
       ->check(PositiveNumber);
   cmd->add_option("--frames", args->frames, "Frame range A-B (default: all)");
-  cmd->callback([args] { run_render(*args); });
+  auto farm = std::make_shared<FarmArgs>();
+  add_render_farm_options(cmd, farm);
+  cmd->callback([args, farm] {
+    if (!run_render_on_farm(args->dir, args->frames, *farm)) run_render(*args);
+  });
 }
 
 }  // namespace toonwater::cli

@@ -22,16 +22,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct IniFrames {
-  bool animation = false;
-  long first = 0, last = 0;
-  std::string output_name = "frame";  // Output_File_Name, without its quotes
-};
-
-IniFrames read_ini_frames(const fs::path& ini) {
+SceneFrames read_ini_frames(const fs::path& ini) {
   std::ifstream in(ini);
   if (!in) throw InputError(ini.string() + ": no povgen scene here (scene.ini missing)");
-  IniFrames f;
+  SceneFrames f;
   bool has_first = false, has_last = false;
   const auto frame_number = [&](const std::string& text) {
     long n = 0;
@@ -138,7 +132,49 @@ std::string read_all(const fs::path& p) {
   return ss.str();
 }
 
+fs::path checked_scene_dir(const fs::path& scene_dir) {
+  const fs::path dir = fs::absolute(scene_dir);
+  if (!fs::is_regular_file(dir / "scene.pov"))
+    throw InputError(dir.string() + ": no povgen scene here (scene.pov missing)");
+  return dir;
+}
+
+std::string povray_threads(int jobs) {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  return "+WT" + std::to_string(std::max(1u, cores / static_cast<unsigned>(jobs)));
+}
+
 }  // namespace
+
+SceneFrames read_scene_frames(const fs::path& scene_dir) {
+  return read_ini_frames(checked_scene_dir(scene_dir) / "scene.ini");
+}
+
+std::vector<long> requested_frames(const fs::path& dir, const SceneFrames& ini,
+                                   const std::optional<FrameRange>& range) {
+  if (!ini.animation) return {0};
+  long first = ini.first, last = ini.last;
+  if (range) {
+    if (range->first < ini.first || range->last > ini.last)
+      throw InputError(dir.string() + ": frames " + std::to_string(range->first) + "-" +
+                       std::to_string(range->last) + " are outside the scene's " +
+                       std::to_string(ini.first) + "-" + std::to_string(ini.last));
+    first = range->first;
+    last = range->last;
+  }
+  std::vector<long> frames;
+  for (long f = first; f <= last; ++f) frames.push_back(f);
+  return frames;
+}
+
+fs::path frame_image_path(const fs::path& scene_dir, const SceneFrames& frames, long frame) {
+  if (!frames.animation) return scene_dir / frames.output_name;
+  // POV-Ray pads the frame number to the digits of the final frame.
+  std::string number = std::to_string(frame);
+  const std::size_t digits = std::to_string(frames.last).size();
+  if (number.size() < digits) number.insert(0, digits - number.size(), '0');
+  return scene_dir / (frames.output_name + number + ".png");
+}
 
 std::string povray_error_message(const std::string& log) {
   std::istringstream in(log);
@@ -154,31 +190,13 @@ std::string povray_error_message(const std::string& log) {
 
 RenderReport render_frames(const RenderRequest& request, const RenderProgressFn& progress) {
   const auto start = std::chrono::steady_clock::now();
-  const fs::path dir = fs::absolute(request.scene_dir);
-  if (!fs::is_regular_file(dir / "scene.pov"))
-    throw InputError(dir.string() + ": no povgen scene here (scene.pov missing)");
-  const IniFrames ini = read_ini_frames(dir / "scene.ini");
+  const fs::path dir = checked_scene_dir(request.scene_dir);
+  const SceneFrames ini = read_ini_frames(dir / "scene.ini");
   remove_stale_temporaries(dir);  // frames of runs that were killed
-
-  std::vector<long> frames;
-  if (ini.animation) {
-    long first = ini.first, last = ini.last;
-    if (request.frames) {
-      if (request.frames->first < ini.first || request.frames->last > ini.last)
-        throw InputError(dir.string() + ": frames " + std::to_string(request.frames->first) + "-" +
-                         std::to_string(request.frames->last) + " are outside the scene's " +
-                         std::to_string(ini.first) + "-" + std::to_string(ini.last));
-      first = request.frames->first;
-      last = request.frames->last;
-    }
-    for (long f = first; f <= last; ++f) frames.push_back(f);
-  } else {
-    frames.push_back(0);
-  }
+  const std::vector<long> frames = requested_frames(dir, ini, request.frames);
 
   const int jobs = std::clamp<int>(request.jobs, 1, static_cast<int>(frames.size()));
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const std::string threads = "+WT" + std::to_string(std::max(1u, cores / static_cast<unsigned>(jobs)));
+  const std::string threads = povray_threads(jobs);
 
   RenderReport report;
   std::mutex mutex;
@@ -244,6 +262,75 @@ RenderReport render_frames(const RenderRequest& request, const RenderProgressFn&
   std::sort(report.failures.begin(), report.failures.end(),
             [](const FrameFailure& a, const FrameFailure& b) { return a.frame < b.frame; });
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+RenderReport render_frames_in_one_process(const RenderRequest& request,
+                                          const RenderProgressFn& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const fs::path dir = checked_scene_dir(request.scene_dir);
+  const SceneFrames ini = read_ini_frames(dir / "scene.ini");
+  const std::vector<long> frames = requested_frames(dir, ini, request.frames);
+
+  RenderReport report;
+  std::size_t next = 0;
+  while (next < frames.size() && !stop_requested(request.stop)) {
+    const long first = frames[next], last = frames.back();
+    const std::string work_name = ".render-" + std::to_string(first) + "-" + std::to_string(last) +
+                                  ".tmp-" + std::to_string(::getpid());
+    const fs::path work = dir / work_name, log = work / "render.log";
+    std::error_code ec;
+    fs::remove_all(work, ec);
+    fs::create_directory(work, ec);
+    if (ec) throw OutputError("cannot create " + work.string() + ": " + ec.message());
+    std::vector<std::string> args{request.povray, "scene.ini", povray_threads(1),
+                                  "+O" + work_name + "/" + ini.output_name};
+    if (ini.animation) {
+      args.push_back("+SF" + std::to_string(first));
+      args.push_back("+EF" + std::to_string(last));
+    }
+    args.insert(args.end(), request.extra_arguments.begin(), request.extra_arguments.end());
+    const int status = run_povray(dir, args, log, request.stop);
+    if (stop_requested(request.stop)) {
+      fs::remove_all(work, ec);  // interrupted: nothing of this run stays
+      break;
+    }
+    // The frames whose images are kept: all when POV-Ray succeeded, else those before the
+    // first frame without an image, less the last one after a signal (it may be cut short) or
+    // when every image is there (the failure belongs to the last frame).
+    std::size_t end = next;
+    while (end < frames.size() && fs::is_regular_file(frame_image_path(work, ini, frames[end])))
+      ++end;
+    if (status != 0 && (status >= 128 || end == frames.size()) && end > next) --end;
+    for (std::size_t i = next; i < end; ++i) {
+      const fs::path image = frame_image_path(work, ini, frames[i]);
+      fs::rename(image, dir / image.filename(), ec);
+      if (ec) throw OutputError("cannot move " + image.string() + " into place: " + ec.message());
+      fs::remove(dir / ("render_" + std::to_string(frames[i]) + ".log"), ec);
+      ++report.rendered;
+    }
+    if (end < frames.size()) {  // frames[end] failed
+      std::string failure;
+      if (status == 127) failure = "cannot run '" + request.povray + "' (is POV-Ray installed?)";
+      else if (status != 0) failure = povray_error_message(read_all(log));
+      else failure = "POV-Ray wrote no image";
+      const long frame = frames[end];
+      const fs::path kept_log = dir / ("render_" + std::to_string(frame) + ".log");
+      fs::rename(log, kept_log, ec);
+      report.failures.push_back({frame, failure + " (log: " + kept_log.filename().string() + ")"});
+      ++end;
+    }
+    fs::remove_all(work, ec);
+    next = end;
+    if (progress) progress(next, frames.size(), elapsed());
+  }
+  if (stop_requested(request.stop))
+    throw OutputError(dir.string() + ": interrupted after " + std::to_string(report.rendered) +
+                      " of " + std::to_string(frames.size()) + " frame(s)");
+  report.seconds = elapsed();
   return report;
 }
 

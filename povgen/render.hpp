@@ -48,12 +48,40 @@ struct RenderReport {
   double seconds = 0;
 };
 
+// The frames of a scene directory, from its scene.ini.
+struct SceneFrames {
+  bool animation = false;             // false: a single image, Output_File_Name itself
+  long first = 0, last = 0;           // Initial_Frame, Final_Frame
+  std::string output_name = "frame";  // Output_File_Name, without its quotes
+};
+
+// Throws InputError when the directory holds no povgen scene.
+SceneFrames read_scene_frames(const std::filesystem::path& scene_dir);
+
+// The frames of `range` (default: every frame; 0 for a single image). Throws InputError naming
+// `scene_dir` when the range is outside the scene's.
+std::vector<long> requested_frames(const std::filesystem::path& scene_dir, const SceneFrames& frames,
+                                   const std::optional<FrameRange>& range);
+
+// Where POV-Ray writes the image of `frame` (ignored for a single image) in `scene_dir`.
+std::filesystem::path frame_image_path(const std::filesystem::path& scene_dir,
+                                       const SceneFrames& frames, long frame);
+
 // Called after each frame: frames done, total, seconds since the start.
 using RenderProgressFn = std::function<void(std::size_t, std::size_t, double)>;
 
 // Throws InputError when the directory holds no povgen scene or the range is outside it.
 // Throws InterruptedError when `request.stop` interrupted the run.
 RenderReport render_frames(const RenderRequest& request, const RenderProgressFn& progress);
+
+// Renders the request's frames in one POV-Ray process over the range (+SF/+EF): POV-Ray's start-up
+// is paid once, not per frame. This is what a render-farm task runs. `request.jobs` is ignored
+// (POV-Ray gets every core). The images go to a hidden temporary directory and are renamed into
+// DIR when POV-Ray has ended. When it fails, the images of the frames before the failed one are
+// kept (POV-Ray had moved on from them; after a signal the last image is not trusted), the failed
+// frame is reported with POV-Ray's message and its log, and a new process takes the frames after it.
+RenderReport render_frames_in_one_process(const RenderRequest& request,
+                                          const RenderProgressFn& progress);
 
 // The error lines of a POV-Ray log: lines mentioning an error, else its last line.
 std::string povray_error_message(const std::string& log);

@@ -13,6 +13,7 @@ packages=(
   libopenmesh-dev
   libgtest-dev libbenchmark-dev
   clang-14 libclang-rt-14-dev  # fuzzing (scripts/fuzz.sh)
+  slurm-wlm munge parallel     # render farms (render --on slurm|parallel) and their tests
 )
 
 missing=()
