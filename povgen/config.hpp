@@ -115,7 +115,7 @@ struct FlowConfig {
   double line_width = 2.0;                     // pixels
   std::optional<Color> line_color;  // default: the region colours (lines), the outline colour (both)
   Color ridge_color{1.0, 1.0, 1.0};
-  Color valley_color{0.04, 0.16, 0.42};
+  Color valley_color{0.02, 0.06, 0.22};
   bool coherence = true;                   // carry regions from frame to frame (flow_coherence.hpp)
   Estimator estimator = Estimator::one_ring;  // curvature estimator (analysis.hpp)
 };
