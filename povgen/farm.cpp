@@ -28,6 +28,15 @@ std::vector<long> frames_to_render(const FarmRequest& request, const SceneFrames
   return frames;
 }
 
+FarmWork farm_work(const FarmRequest& request, const SceneFrames& scene) {
+  FarmRequest all = request;
+  all.force = true;
+  FarmWork work;
+  work.frames = frames_to_render(request, scene);
+  work.skipped = frames_to_render(all, scene).size() - work.frames.size();
+  return work;
+}
+
 std::vector<FrameRange> split_into_tasks(const std::vector<long>& frames, long per_task) {
   std::vector<FrameRange> tasks;
   for (const long f : frames) {

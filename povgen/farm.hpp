@@ -39,6 +39,14 @@ using FarmProgressFn = std::function<void(const std::string&)>;
 // The request's frames that still need rendering, in order.
 std::vector<long> frames_to_render(const FarmRequest& request, const SceneFrames& scene);
 
+// The frames a farm run renders, and how many of those asked for it skips because their image
+// is already complete.
+struct FarmWork {
+  std::vector<long> frames;
+  std::size_t skipped = 0;
+};
+FarmWork farm_work(const FarmRequest& request, const SceneFrames& scene);
+
 // Runs of consecutive frames, each at most `per_task` long.
 std::vector<FrameRange> split_into_tasks(const std::vector<long>& frames, long per_task);
 

@@ -25,13 +25,9 @@ FarmReport render_on_parallel(const FarmRequest& request, const ParallelOptions&
   const SceneFrames scene = read_scene_frames(dir);
   if (!fs::is_regular_file(options.hosts_file))
     throw InputError(options.hosts_file + ": no such hosts file (--hosts)");
-  FarmRequest all = request;
-  all.force = true;
-  const std::vector<long> wanted = frames_to_render(all, scene);
-  const std::vector<long> frames = frames_to_render(request, scene);
-
+  const auto [frames, skipped] = farm_work(request, scene);
   FarmReport report;
-  report.skipped = wanted.size() - frames.size();
+  report.skipped = skipped;
   if (!frames.empty()) {
     const fs::path farm = dir / ".farm";
     std::error_code ec;

@@ -104,13 +104,9 @@ FarmReport render_on_slurm(const FarmRequest& request, const SlurmOptions& optio
   const auto start = std::chrono::steady_clock::now();
   const fs::path dir = fs::absolute(request.scene_dir);
   const SceneFrames scene = read_scene_frames(dir);
-  FarmRequest all = request;
-  all.force = true;
-  const std::vector<long> wanted = frames_to_render(all, scene);
-  const std::vector<long> frames = frames_to_render(request, scene);
-
+  const auto [frames, skipped] = farm_work(request, scene);
   FarmReport report;
-  report.skipped = wanted.size() - frames.size();
+  report.skipped = skipped;
   if (!frames.empty()) {
     const std::vector<FrameRange> tasks = split_into_tasks(frames, request.frames_per_task);
     report.job_id = submit(dir, tasks, 0, request, options);
