@@ -104,6 +104,7 @@ TEST(Simplify, RippleKeepsItsCrestsWithinThePixelBound) {
   const povgen::SceneMesh full = s.mesh;
   povgen::SceneConfig config;
   config.camera.location = Vec3(0, 2.5, -2.5);
+  config.water.simplify = 0.5;
   config.render.width = 320;
   config.render.height = 180;
   povgen::SceneLayout layout;
