@@ -35,7 +35,7 @@
 // Labels are set only on the free surface (free_surface.hpp). The paper restricts its work to a
 // region of interest around displaced water; here the whole free surface costs a few
 // milliseconds, so no region is ever cut off: `region_of_interest` reports the bounding box of
-// the regions (flow_lines.hpp traces inside it only).
+// the regions.
 #pragma once
 
 #include "analyzer/curvature.hpp"
