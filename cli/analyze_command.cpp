@@ -10,6 +10,7 @@
 #include "analyzer/maps/map_writer.hpp"
 #include "analyzer/maps/sequence_maps.hpp"
 #include "analyzer/mesh_reader.hpp"
+#include "images/image_codec.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -101,6 +102,7 @@ void check_outputs(const AnalyzeArgs& args) {
 
 void run_analyze(const AnalyzeArgs& args) {
   check_outputs(args);
+  if (!args.maps.empty()) image_codec();  // a missing image module fails before any work
   // Temporaries that killed runs left where this one writes.
   for (const std::string& path : {args.csv, args.ply})
     if (!path.empty() && path != "-")

@@ -4,6 +4,7 @@
 
 #include "analyzer/atomic_file.hpp"
 #include "analyzer/mesh_reader.hpp"
+#include "images/image_codec.hpp"
 #include "povgen/config.hpp"
 #include "povgen/render.hpp"
 
@@ -45,7 +46,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("toonwater ") + TOONWATER_VERSION);
   app.footer("Run `toonwater help SUBCOMMAND` or `toonwater SUBCOMMAND --help` for its options.\n"
              "Exit codes: 0 success, 2 bad input, 3 output failure, 4 interrupted, "
-             "5 POV-Ray failed, 1 internal error.");
+             "5 POV-Ray failed, 6 image module missing, 1 internal error.");
   // Parse errors in one line, like every other error (CLI11 adds a second by default).
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return "toonwater: error: " + printable(e.what()) + " (see --help)\n";
@@ -98,6 +99,8 @@ int main(int argc, char** argv) {
     return fail(e.what(), exit_code::output_failed);
   } catch (const toonwater::povgen::PovrayError& e) {
     return fail(e.what(), exit_code::povray_failed);
+  } catch (const toonwater::ImageModuleError& e) {
+    return fail(e.what(), exit_code::incomplete_install);
   } catch (const std::filesystem::filesystem_error& e) {
     // A file operation without its own message: name the file and the reason only.
     const std::string path = e.path1().empty() ? "" : e.path1().string() + ": ";

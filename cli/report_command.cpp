@@ -1,6 +1,7 @@
 // toonwater report [--out DIR] [--quick | --full] [--data DIR]
 #include "cli/commands.hpp"
 
+#include "images/image_codec.hpp"
 #include "report/report.hpp"
 
 #include <chrono>
@@ -19,6 +20,7 @@ struct ReportArgs {
 };
 
 void run_report(const ReportArgs& args) {
+  image_codec();  // the report reads renders back: a missing image module fails before any work
   report::ReportOptions options;
   options.out_dir = args.out;
   options.data_dir = args.data;

@@ -44,7 +44,7 @@ struct LightConfig {
 
 // Cartoon Water Shader (paper eq. 2-3).
 // How the water is drawn: the Cartoon Water Shader, or coloured by its Gaussian or mean
-// curvature with the curvature maps' diverging colour map (analyzer/maps/colormap.hpp) over
+// curvature with the curvature maps' diverging colour map (analyzer/colormap.hpp) over
 // a range shared by the whole sequence — a view of surfaces that are not height fields.
 enum class WaterShading { toon, gaussian, mean };
 

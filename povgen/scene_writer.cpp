@@ -1,6 +1,6 @@
 #include "povgen/scene_writer.hpp"
 
-#include "analyzer/maps/colormap.hpp"
+#include "analyzer/colormap.hpp"
 
 #include "povgen/axes.hpp"
 #include "povgen/povgen.hpp"
@@ -72,7 +72,7 @@ const Vec3 kViewDirection = Vec3(0.0, -0.5, 0.8660254);
 // Share of the picture's half-width and half-height the framed box may take.
 constexpr double kFrameFill = 0.92;
 
-// The diverging colour map of the curvature maps (analyzer/maps/colormap.hpp) as a POV-Ray
+// The diverging colour map of the curvature maps (analyzer/colormap.hpp) as a POV-Ray
 // colour map over u in [0, 1]: u = 0.5 + 0.4999 t for t in [−1, 1], sampled every 0.1 in t.
 std::string curvature_view_pigment() {
   std::string s = "pigment { uv_mapping gradient x color_map {";

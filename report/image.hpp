@@ -1,4 +1,5 @@
-// An RGB image read back from a render (OpenImageIO), for measurements on rendered pixels.
+// An RGB image read back from a render (the image codec, images/image_codec.hpp), for
+// measurements on rendered pixels.
 #pragma once
 
 #include <array>

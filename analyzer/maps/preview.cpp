@@ -1,10 +1,10 @@
 // Preview images (see preview.hpp): map pixels coloured one to one, then a legend panel with a
-// colour bar and its numeric range as text. Text is drawn by OpenImageIO (FreeType) with an
-// explicitly named font: OpenImageIO has no usable default font on Debian.
+// colour bar and its numeric range as text. Text is drawn by the image codec (OpenImageIO's
+// FreeType, images/image_codec.hpp) with an explicitly named font: OpenImageIO has no usable
+// default font on Debian.
 #include "analyzer/maps/preview.hpp"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
+#include "images/image_codec.hpp"
 
 #include <algorithm>
 #include <array>
@@ -36,20 +36,19 @@ void fill_rect(PreviewImage& image, int x0, int y0, int x1, int y1, const Rgb8& 
     for (int x = x0; x < x1; ++x) put(image, x, y, colour);
 }
 
-enum class Align { left, centre, right };
+using Align = TextAlign;
 
 void draw_text(PreviewImage& image, int x, int baseline, const std::string& text, Align align) {
-  OIIO::ImageBuf buffer(OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::UINT8),
-                        image.rgb.data());
+  const ImageCodec& codec = image_codec();
   const std::array<float, 3> colour{text_colour[0] / 255.0f, text_colour[1] / 255.0f,
                                     text_colour[2] / 255.0f};
-  const auto align_x = align == Align::left     ? OIIO::ImageBufAlgo::TextAlignX::Left
-                       : align == Align::centre ? OIIO::ImageBufAlgo::TextAlignX::Center
-                                                : OIIO::ImageBufAlgo::TextAlignX::Right;
-  if (!OIIO::ImageBufAlgo::render_text(buffer, x, baseline, text, font_size, TOONWATER_MAP_FONT,
-                                       colour, align_x))
+  try {
+    codec.draw_text({image.width, image.height, image.rgb.data()}, x, baseline, text, font_size,
+                    TOONWATER_MAP_FONT, colour, align);
+  } catch (const std::runtime_error& e) {
     throw std::runtime_error("maps: cannot draw text with " TOONWATER_MAP_FONT ": " +
-                             buffer.geterror() + " (install fonts-dejavu-core)");
+                             std::string(e.what()) + " (install fonts-dejavu-core)");
+  }
 }
 
 std::string number(double value, bool sign = false) {

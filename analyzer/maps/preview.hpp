@@ -5,7 +5,7 @@
 // panel below it is `legend_height` pixels high and the image at least `min_width` wide.
 #pragma once
 
-#include "analyzer/maps/colormap.hpp"
+#include "analyzer/colormap.hpp"
 #include "analyzer/maps/top_down_map.hpp"
 
 #include <cstdint>

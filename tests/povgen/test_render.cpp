@@ -2,7 +2,7 @@
 // Colours are sRGB in the config and in the PNG, so flat pixels are the configured colours × 255.
 #include "tests/povgen/povgen_test_util.hpp"
 
-#include "analyzer/maps/colormap.hpp"
+#include "analyzer/colormap.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>

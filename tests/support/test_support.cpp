@@ -27,6 +27,11 @@ ScratchDir::~ScratchDir() {
 }
 
 CommandResult run_toonwater(const std::vector<std::string>& args) {
+  return run_program(TOONWATER_EXECUTABLE, args);
+}
+
+CommandResult run_program(const std::filesystem::path& executable,
+                          const std::vector<std::string>& args) {
   int pipe_fds[2];
   if (::pipe(pipe_fds) != 0) throw std::runtime_error("pipe failed");
   const pid_t pid = ::fork();
@@ -37,7 +42,7 @@ CommandResult run_toonwater(const std::vector<std::string>& args) {
     ::close(pipe_fds[0]);
     ::close(pipe_fds[1]);
     std::vector<char*> argv;
-    std::string exe = TOONWATER_EXECUTABLE;
+    std::string exe = executable.string();
     argv.push_back(exe.data());
     std::vector<std::string> copies = args;
     for (auto& a : copies) argv.push_back(a.data());

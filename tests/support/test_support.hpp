@@ -28,6 +28,9 @@ struct CommandResult {
 
 // Runs the toonwater executable with the given arguments (no shell involved).
 CommandResult run_toonwater(const std::vector<std::string>& args);
+// The same for another executable (a copy of toonwater elsewhere, say).
+CommandResult run_program(const std::filesystem::path& executable,
+                          const std::vector<std::string>& args);
 
 std::string read_text(const std::filesystem::path& path);
 void write_text(const std::filesystem::path& path, const std::string& text);

@@ -1,7 +1,7 @@
 // Preview colours (see colormap.hpp). RdBu control points from ColorBrewer 2.0, reversed so
 // that negative values are blue; piecewise linear in sRGB between the 11 classes, sampled into
 // a table.
-#include "analyzer/maps/colormap.hpp"
+#include "analyzer/colormap.hpp"
 
 #include <algorithm>
 #include <cmath>
