@@ -6,9 +6,8 @@
 #include "cli/validators.hpp"
 
 #include "analyzer/atomic_file.hpp"
-#include "analyzer/maps/sequence_maps.hpp"
+#include "images/image_codec.hpp"
 #include "povgen/povgen.hpp"
-#include "povgen/sequence.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -40,6 +39,7 @@ struct PovgenArgs {
 };
 
 void run_povgen(const PovgenArgs& args) {
+  if (!args.maps.empty()) image_codec();  // a missing image module fails before any work
   povgen::ConfigSources sources;
   if (!args.config.empty()) sources.file = args.config;
   sources.object_patterns = args.objects;
@@ -54,23 +54,7 @@ void run_povgen(const PovgenArgs& args) {
   request.out_dir = args.out;
   request.force = args.force;
 
-  // The maps are written once every scene file is complete, and renamed into place only with
-  // the scene (OutputBatch): both outputs are replaced, or neither.
-  std::optional<OutputBatch> maps_batch;
-  std::optional<SequenceMaps> maps;
-  if (!args.maps.empty()) {
-    request.before_commit = [&] {
-      if (std::filesystem::is_directory(args.maps)) remove_stale_temporaries(args.maps);
-      std::vector<std::filesystem::path> frames;
-      for (const auto& [number, path] : povgen::find_sequence(args.water, request.base_dir).frames)
-        frames.push_back(path);
-      const AnalyzeOptions options =
-          povgen::analysis_options(config.flow, args.up, povgen::WaterShading::toon);
-      maps_batch.emplace();
-      maps = write_sequence_maps(frames, options, MapOptions{}, args.maps, config.flow.coherence,
-                                 request.water_transform ? &*request.water_transform : nullptr);
-    };
-  }
+  request.maps_dir = args.maps;
 
   // Ctrl-C stops between frames; the scene directory is then left as it was.
   std::signal(SIGINT, request_povgen_stop);
@@ -88,7 +72,6 @@ void run_povgen(const PovgenArgs& args) {
     shown.finish_line();
     throw;
   }
-  if (maps_batch) maps_batch->commit();
   // From here on a signal ends the run at once (removing any temporary file), as before povgen.
   remove_temporaries_on_signals();
   if (povgen_stop_requested) throw InterruptedError(args.out + ": interrupted");
@@ -105,9 +88,9 @@ void run_povgen(const PovgenArgs& args) {
                r.empty_frames.empty() ? "" : "; frames without water listed above", r.faces_kept,
                r.faces, r.read_seconds, r.analysis_seconds, r.simplify_seconds, r.write_seconds,
                args.out.c_str(), args.out.c_str());
-  if (maps) {
+  if (!args.maps.empty()) {
     std::fprintf(stderr, "  maps: %zu frame(s) -> %s, shared colour ranges K \u00b1%.6g, H \u00b1%.6g\n",
-                 maps->frames, args.maps.c_str(), maps->ranges.gaussian, maps->ranges.mean);
+                 r.map_frames, args.maps.c_str(), r.map_ranges.gaussian, r.map_ranges.mean);
   }
 }
 

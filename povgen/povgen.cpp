@@ -2,6 +2,9 @@
 
 #include "analyzer/analysis.hpp"
 #include "analyzer/atomic_file.hpp"
+#include "analyzer/frame_source.hpp"
+#include "analyzer/maps/map_writer.hpp"
+#include "analyzer/maps/sequence_maps.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "analyzer/topology.hpp"
 #include "analyzer/vertex_normals.hpp"
@@ -13,7 +16,6 @@
 #include "povgen/sequence.hpp"
 #include "povgen/simplify.hpp"
 #include "povgen/stroke_writer.hpp"
-#include "povgen/axes.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -31,10 +33,17 @@ double seconds_since(Clock::time_point start) {
 
 bool is_closed(const MeshTopology& t) { return t.boundary_edges == 0 && t.nonmanifold_edges == 0; }
 
-struct ObjectSource {
-  ObjectPlacement placement;
-  Sequence sequence;
-};
+// Weld, topology and orientation only: what a scene without flow regions or a curvature view
+// needs of a mesh (its normals are angle-weighted, prepare_surface).
+Analysis geometry_analysis(TriangleMesh input) {
+  Analysis a;
+  a.input_vertices = input.positions.size();
+  WeldedMesh welded = weld_coincident_vertices(std::move(input));
+  a.surface = std::move(welded.mesh);
+  a.topology = analyze_topology(a.surface);
+  a.flipped_faces = orient_consistently(a.surface, a.topology.vertex_faces);
+  return a;
+}
 
 }  // namespace
 
@@ -51,39 +60,79 @@ AnalyzeOptions analysis_options(const FlowConfig& flow, Axis up, WaterShading sh
   return options;
 }
 
-PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,
-                                FlowCoherence* coherence, WaterShading shading) {
+const FlowConfig* scene_flow(const SceneConfig& config) {
+  return config.flow.enabled || config.water.shading != WaterShading::toon ? &config.flow
+                                                                           : nullptr;
+}
+
+std::optional<AnalyzeOptions> water_analysis(const SceneConfig& config, Axis up, bool maps) {
+  if (maps) return analysis_options(config.flow, up, WaterShading::toon);
+  if (!scene_flow(config)) return std::nullopt;
+  return analysis_options(config.flow, up, config.water.shading);
+}
+
+PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow,
+                                WaterShading shading) {
   const auto start = Clock::now();
   PreparedSurface out;
-  if (flow) {
-    AnalyzeOptions options = analysis_options(*flow, up, shading);
-    options.coherence = shading == WaterShading::toon ? coherence : nullptr;
-    Analysis a = analyze_mesh(std::move(input), options);
-    out.mesh = make_scene_mesh(a.surface, a.curvature.normal, is_closed(a.topology), up);
-    if (shading == WaterShading::toon) {
-      if (flow->style != FlowStyle::regions) {
-        // Strokes taper over 3 % of the scene's size: resolution-free, like the field.
-        out.flow_lines = trace_flow_lines(a.surface, a.flow, 0.03 * a.flow.scale_length);
-        for (FlowLine& line : out.flow_lines)
-          for (Vec3& p : line.points) p = to_povray(p, up);
-      }
-      out.flow_field = std::move(a.flow.field);
-      out.ridge_vertices = a.flow.ridge_vertices;
-      out.valley_vertices = a.flow.valley_vertices;
-    } else {
-      out.view_values =
-          shading == WaterShading::gaussian ? a.curvature.gaussian : a.curvature.mean;
+  if (!flow) {
+    const std::vector<Vec3> normals = angle_weighted_normals(a.surface, a.topology.vertex_faces);
+    out.mesh = make_scene_mesh(a.surface, normals, is_closed(a.topology), up);
+    out.analysis_seconds = seconds_since(start);
+    return out;
+  }
+  out.mesh = make_scene_mesh(a.surface, a.curvature.normal, is_closed(a.topology), up);
+  if (shading == WaterShading::toon) {
+    if (flow->style != FlowStyle::regions) {
+      // Strokes taper over 3 % of the scene's size: resolution-free, like the field.
+      out.flow_lines = trace_flow_lines(a.surface, a.flow, 0.03 * a.flow.scale_length);
+      for (FlowLine& line : out.flow_lines)
+        for (Vec3& p : line.points) p = to_povray(p, up);
     }
+    out.flow_field = std::move(a.flow.field);
+    out.ridge_vertices = a.flow.ridge_vertices;
+    out.valley_vertices = a.flow.valley_vertices;
   } else {
-    WeldedMesh welded = weld_coincident_vertices(std::move(input));
-    const MeshTopology topology = analyze_topology(welded.mesh);
-    orient_consistently(welded.mesh, topology.vertex_faces);
-    const std::vector<Vec3> normals = angle_weighted_normals(welded.mesh, topology.vertex_faces);
-    out.mesh = make_scene_mesh(welded.mesh, normals, is_closed(topology), up);
+    out.view_values = shading == WaterShading::gaussian ? a.curvature.gaussian : a.curvature.mean;
   }
   out.analysis_seconds = seconds_since(start);
   return out;
 }
+
+PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,
+                                FlowCoherence* coherence, WaterShading shading) {
+  const auto start = Clock::now();
+  Analysis a;
+  if (flow) {
+    AnalyzeOptions options = analysis_options(*flow, up, shading);
+    options.coherence = shading == WaterShading::toon ? coherence : nullptr;
+    a = analyze_mesh(std::move(input), options);
+  } else {
+    a = geometry_analysis(std::move(input));
+  }
+  const double analysis_seconds = seconds_since(start);
+  PreparedSurface out = prepare_surface(std::move(a), up, flow, shading);
+  out.analysis_seconds += analysis_seconds;
+  return out;
+}
+
+namespace {
+
+// The curvature view's colour range (CurvatureRanges): every vertex, weighted by its area.
+void add_view_samples(const Analysis& a, CurvatureRanges& ranges) {
+  ranges.add_edge_length(a.flow.median_edge_length > 0.0 ? a.flow.median_edge_length
+                                                         : median_edge_length(a.surface));
+  for (std::size_t v = 0; v < a.surface.positions.size(); ++v)
+    ranges.add(a.curvature.gaussian[v], a.curvature.mean[v], a.curvature.area[v]);
+}
+
+double view_range(const CurvatureRanges& ranges, WaterShading shading) {
+  const MapRanges r = ranges.ranges(MapOptions{}.percentile);
+  const double range = shading == WaterShading::gaussian ? r.gaussian : r.mean;
+  return range > 0.0 ? range : 1.0;  // nothing measured: everything at the middle colour
+}
+
+}  // namespace
 
 double water_line(const SceneMesh& water, const Vec3& lo, const Vec3& hi) {
   const Vec3 grow = 0.25 * (hi - lo);
@@ -125,8 +174,16 @@ std::string mesh_include(const PreparedSurface& surface, const std::string& pref
   return text;
 }
 
-PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& request,
-                            const ProgressFn& progress, const std::atomic<bool>* stop) {
+namespace {
+
+struct ObjectSource {
+  ObjectPlacement placement;
+  Sequence sequence;
+};
+
+// Frame selection: the water sequence cut to render.frames. POV-Ray renders every frame number
+// from first to last, so the sequence must not have gaps.
+Sequence select_frames(const SceneConfig& config, const PovgenRequest& request) {
   Sequence water = find_sequence(request.water_pattern, request.base_dir);
   if (config.render.frames && !water.single_file) {
     auto& f = water.frames;
@@ -146,21 +203,17 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
                        std::to_string(config.render.frames->first) + "-" +
                        std::to_string(config.render.frames->last));
   }
-  // POV-Ray renders every frame number from first to last: the sequence must not have gaps.
   const long first = water.frames.begin()->first, last = water.frames.rbegin()->first;
   for (long f = first; f <= last; ++f)
     if (!water.frames.count(f))
       throw InputError(request.water_pattern + ": frame " + std::to_string(f) +
                        " is missing (frames " + std::to_string(first) + "-" +
                        std::to_string(last) + " must all exist)");
+  return water;
+}
 
-  SceneLayout layout;
-  layout.config = &config;
-  layout.up = request.up;
-  layout.animation = water.frames.size() > 1;
-  layout.first_frame = layout.animation ? first : 0;
-  layout.last_frame = layout.animation ? last : 0;
-
+// The objects: a static object's one file, or an animated object's file for every water frame.
+std::vector<ObjectSource> find_objects(const SceneConfig& config, const Sequence& water) {
   std::vector<ObjectSource> objects;
   for (const ObjectConfig& oc : config.objects) {
     ObjectSource o;
@@ -175,234 +228,322 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     }
     objects.push_back(std::move(o));
   }
+  return objects;
+}
 
-  SceneDirectory scene(request.out_dir, request.force);
-  const fs::path out_dir = scene.staging();
-  // A curvature view needs the analysis whether or not flow regions are drawn.
-  const WaterShading shading = config.water.shading;
-  const FlowConfig* flow =
-      config.flow.enabled || shading != WaterShading::toon ? &config.flow : nullptr;
-  const LightGeometry light = light_geometry(config.light, request.up);
-  PovgenReport report;
-  report.first_frame = layout.first_frame;
-  report.last_frame = layout.last_frame;
+// What the frames are read for. A pass over the water frames before the frame loop (the survey)
+// is needed only for what the whole sequence shares: the box the default camera frames, the
+// curvature view's colour range, the curvature maps' view and ranges.
+struct WaterPlan {
+  const FlowConfig* flow = nullptr;  // the scene's flow settings; null: geometry only
+  WaterShading shading = WaterShading::toon;
+  bool maps = false;
+  bool camera_box = false;  // the camera is not configured
+  FrameSourceOptions survey, frames;
+  bool needs_survey() const { return camera_box || shading != WaterShading::toon || maps; }
+};
+
+WaterPlan plan_water(const SceneConfig& config, const PovgenRequest& request, std::size_t frames) {
+  WaterPlan plan;
+  plan.flow = scene_flow(config);
+  plan.shading = config.water.shading;
+  plan.maps = !request.maps_dir.empty();
+  plan.camera_box = !(config.camera.location && config.camera.look_at);
+  FrameSourceOptions options;
+  options.transform = request.water_transform;
+  options.analysis = water_analysis(config, request.up, plan.maps);
+  // The survey reads the water's box; it analyses only for the colour ranges.
+  plan.survey = options;
+  if (plan.shading == WaterShading::toon && !plan.maps) plan.survey.analysis.reset();
+  // Flow regions are carried from frame to frame so that they do not flicker
+  // (flow_coherence.hpp); the maps' labels show them as the scene renders them.
+  plan.frames = options;
+  plan.frames.coherent =
+      config.flow.coherence &&
+      (plan.maps || (plan.flow && plan.shading == WaterShading::toon && frames > 1));
+  return plan;
+}
+
+// What the survey finds over the whole sequence.
+struct SequenceSurvey {
   bool have_box = false;
-
-  auto write = [&](const fs::path& name, const std::string& text) {
-    const auto start = Clock::now();
-    write_file_atomically(out_dir / name, text);
-    report.write_seconds += seconds_since(start);
-  };
-  auto load = [&](const fs::path& path) {
-    const auto start = Clock::now();
-    InputMesh m = read_mesh(path);
-    report.read_seconds += seconds_since(start);
-    return m;
-  };
-  // A water frame in world coordinates; throws EmptyMeshError for a frame with no liquid.
-  auto load_water = [&](const fs::path& path) {
-    InputMesh m = load(path);
-    if (request.water_transform) apply_transform(*request.water_transform, m.mesh);
-    return m;
-  };
-  // The box of the water and objects over the sequence frames the default camera; it needs a
-  // first pass over every mesh unless the camera is configured.
-  bool have_scene_box = false;
-  Vec3 scene_min = Vec3::Zero(), scene_max = Vec3::Zero();
-  auto grow_scene_box = [&](const TriangleMesh& m) {
-    for (const Vec3& position : m.positions) {
-      const Vec3 p = to_povray(position, request.up);
-      scene_min = have_scene_box ? Vec3(scene_min.cwiseMin(p)) : p;
-      scene_max = have_scene_box ? Vec3(scene_max.cwiseMax(p)) : p;
-      have_scene_box = true;
-    }
-  };
-  if (!(config.camera.location && config.camera.look_at)) {
-    for (const auto& [frame, path] : water.frames) {
-      try {
-        grow_scene_box(load_water(path).mesh);
-      } catch (const EmptyMeshError&) {
-      }
-    }
-    for (const ObjectSource& o : objects) {
-      if (!o.placement.animated) {
-        grow_scene_box(load(o.sequence.frames.begin()->second).mesh);
-        continue;
-      }
-      for (const auto& [frame, path] : water.frames) grow_scene_box(load(o.sequence.frames.at(frame)).mesh);
-    }
+  Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();  // POV-Ray frame
+  CurvatureRanges view;                                  // the curvature view's colour range
+  std::optional<MapPlanner> maps;
+  void grow_box(const Vec3& lower, const Vec3& upper, Axis up) {
+    const Vec3 a = to_povray(lower, up), b = to_povray(upper, up);  // a signed permutation
+    box_min = have_box ? Vec3(box_min.cwiseMin(a.cwiseMin(b))) : Vec3(a.cwiseMin(b));
+    box_max = have_box ? Vec3(box_max.cwiseMax(a.cwiseMax(b))) : Vec3(a.cwiseMax(b));
+    have_box = true;
   }
-  layout.camera = frame_camera(config, request.up, scene_min, scene_max);
+};
 
+// Everything one run of generate_scene shares between its steps.
+struct SceneRun {
+  SceneRun(const SceneConfig& c, const PovgenRequest& r, const Sequence& w)
+      : config(c), request(r), water(w) {}
+  const SceneConfig& config;
+  const PovgenRequest& request;
+  const Sequence& water;
+  std::vector<ObjectSource> objects;
+  WaterPlan plan;
+  SceneLayout layout;
+  LightGeometry light;
+  fs::path out_dir;  // the staging directory
+  PovgenReport report;
   struct Box {
     Vec3 min = Vec3::Zero(), max = Vec3::Zero();
   };
-  std::vector<Box> object_box(objects.size());
-  std::vector<bool> submerged(objects.size(), false);
-  auto write_object = [&](std::size_t i, const fs::path& path, long frame) {
-    const ObjectConfig& oc = *objects[i].placement.config;
-    const PreparedSurface s = prepare_surface(load(path).mesh, request.up, nullptr, nullptr);
-    if (s.mesh.triangles.empty())
-      throw InputError(path.string() + ": object '" + oc.name + "': all " +
-                       std::to_string(s.mesh.degenerate_faces) +
-                       " faces are degenerate (zero area)");
+  std::vector<Box> object_box;
+  std::vector<bool> submerged;
+  double view_range = 0;
+  std::optional<MapView> map_view;
+  MapRanges map_ranges;
+  bool have_water_box = false;
+
+  void write(const fs::path& name, const std::string& text) {
     const auto start = Clock::now();
-    const std::vector<double> offsets =
-        config.outline.enabled && oc.outline
-            ? shell_offsets(config.outline, s.mesh, layout.camera, config.render.width)
-            : std::vector<double>{};
-    std::string text = mesh_include(s, "Obj_" + oc.name, light, offsets);
+    write_file_atomically(out_dir / name, text);
     report.write_seconds += seconds_since(start);
-    write(object_include_name(oc.name, objects[i].placement.animated, frame), text);
-    object_box[i] = {s.mesh.min, s.mesh.max};
+  }
+  TriangleMesh read_object(const fs::path& path) {
+    const auto start = Clock::now();
+    InputMesh m = read_mesh(path);
+    report.read_seconds += seconds_since(start);
+    return std::move(m.mesh);
+  }
+};
+
+// The survey: one read of every water frame (and the objects' meshes for the camera's box).
+SequenceSurvey survey_sequence(SceneRun& run) {
+  SequenceSurvey survey;
+  if (!run.plan.needs_survey()) return survey;
+  if (run.plan.maps) survey.maps.emplace(run.request.up);
+  FrameSource source(run.plan.survey);
+  for (const auto& [frame, path] : run.water.frames) {
+    const SourceFrame f = source.read(path);
+    run.report.read_seconds += f.read_seconds;
+    if (!f.has_water()) continue;
+    if (run.plan.camera_box) survey.grow_box(f.lower, f.upper, run.request.up);
+    if (!f.analysis) continue;
+    if (run.plan.shading != WaterShading::toon) add_view_samples(*f.analysis, survey.view);
+    if (survey.maps) survey.maps->add(*f.analysis);
+  }
+  run.report.water_reads += source.reads();
+  if (!run.plan.camera_box) return survey;
+  auto grow = [&](const TriangleMesh& m) {
+    for (const Vec3& p : m.positions) survey.grow_box(p, p, run.request.up);
   };
-  // Per frame, each outlined object's water line (see ObjectPlacement) when the water refracts.
-  const bool refracts = shading == WaterShading::toon && config.water.transmit > 0;
-  auto water_lines = [&](const SceneMesh* frame_water) {
-    std::string text;
-    if (!refracts || !config.outline.enabled) return text;
-    for (std::size_t i = 0; i < objects.size(); ++i) {
-      const ObjectConfig& oc = *objects[i].placement.config;
-      if (!oc.outline) continue;
-      const Box& b = object_box[i];
-      const double line = frame_water ? water_line(*frame_water, b.min, b.max)
-                                      : b.min.y() - (b.max - b.min).norm() - 1.0;
-      submerged[i] = submerged[i] || line > b.min.y();
-      text += water_line_declaration(oc.name, line);
+  for (const ObjectSource& o : run.objects) {
+    if (!o.placement.animated) {
+      grow(run.read_object(o.sequence.frames.begin()->second));
+      continue;
     }
-    return text;
-  };
+    for (const auto& [frame, path] : run.water.frames)
+      grow(run.read_object(o.sequence.frames.at(frame)));
+  }
+  return survey;
+}
+
+// One object's include for a frame (0 for a static object), and its box for the water line.
+void write_object(SceneRun& run, std::size_t i, const fs::path& path, long frame) {
+  const ObjectConfig& oc = *run.objects[i].placement.config;
+  const PreparedSurface s =
+      prepare_surface(geometry_analysis(run.read_object(path)), run.request.up, nullptr);
+  if (s.mesh.triangles.empty())
+    throw InputError(path.string() + ": object '" + oc.name + "': all " +
+                     std::to_string(s.mesh.degenerate_faces) + " faces are degenerate (zero area)");
+  const auto start = Clock::now();
+  const std::vector<double> offsets =
+      run.config.outline.enabled && oc.outline
+          ? shell_offsets(run.config.outline, s.mesh, run.layout.camera, run.config.render.width)
+          : std::vector<double>{};
+  std::string text = mesh_include(s, "Obj_" + oc.name, run.light, offsets);
+  run.report.write_seconds += seconds_since(start);
+  run.write(object_include_name(oc.name, run.objects[i].placement.animated, frame), text);
+  run.object_box[i] = {s.mesh.min, s.mesh.max};
+}
+
+void write_animated_objects(SceneRun& run, long frame, long written_frame) {
+  for (std::size_t i = 0; i < run.objects.size(); ++i)
+    if (run.objects[i].placement.animated)
+      write_object(run, i, run.objects[i].sequence.frames.at(frame), written_frame);
+}
+
+bool refracts(const SceneRun& run) {
+  return run.config.water.shading == WaterShading::toon && run.config.water.transmit > 0;
+}
+
+// Per frame, each outlined object's water line (see ObjectPlacement) when the water refracts.
+std::string water_lines(SceneRun& run, const SceneMesh* frame_water) {
+  std::string text;
+  if (!refracts(run) || !run.config.outline.enabled) return text;
+  for (std::size_t i = 0; i < run.objects.size(); ++i) {
+    const ObjectConfig& oc = *run.objects[i].placement.config;
+    if (!oc.outline) continue;
+    const SceneRun::Box& b = run.object_box[i];
+    const double line = frame_water ? water_line(*frame_water, b.min, b.max)
+                                    : b.min.y() - (b.max - b.min).norm() - 1.0;
+    run.submerged[i] = run.submerged[i] || line > b.min.y();
+    text += water_line_declaration(oc.name, line);
+  }
+  return text;
+}
+
+// A frame with no liquid: the scene still needs its include, with nothing in it.
+void write_empty_frame(SceneRun& run, long frame, long written_frame, const std::string& why) {
+  if (run.water.frames.size() == 1) throw InputError(why);
+  run.report.empty_frames.push_back(why);
+  write_animated_objects(run, frame, written_frame);
+  run.write(water_include_name(written_frame), empty_water_include() + water_lines(run, nullptr));
+}
+
+// The water include of one frame that has water.
+void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long written_frame) {
+  const SceneConfig& config = run.config;
+  s.view_range = run.view_range;
+  run.report.analysis_seconds += s.analysis_seconds;
+  run.report.vertices += s.mesh.positions.size();
+  run.report.degenerate_faces += s.mesh.degenerate_faces;
+  run.report.replaced_normals += s.mesh.replaced_normals;
+  run.report.ridge_vertices += s.ridge_vertices;
+  run.report.valley_vertices += s.valley_vertices;
+  if (!run.have_water_box) {
+    run.layout.water_min = s.mesh.min;
+    run.layout.water_max = s.mesh.max;
+    run.have_water_box = true;
+  }
+  run.layout.water_min = run.layout.water_min.cwiseMin(s.mesh.min);
+  run.layout.water_max = run.layout.water_max.cwiseMax(s.mesh.max);
+
+  write_animated_objects(run, frame, written_frame);
+  run.report.faces += s.mesh.triangles.size();
+  run.report.simplify_seconds += simplify_water(s, run.light, run.layout, run.plan.flow).seconds;
+  run.report.faces_kept += s.mesh.triangles.size();
+  const auto start = Clock::now();
+  const std::vector<double> offsets =
+      config.outline.enabled
+          ? shell_offsets(config.outline, s.mesh, run.layout.camera, config.render.width)
+          : std::vector<double>{};
+  // A see-through closed volume (WaterBody): an opaque body gives free surface and body their
+  // own textures (scene.pov); a clear one keeps the shell on the free surface only, as rays
+  // refracted through the volume leave it through the floor and walls and would meet the
+  // inside of a closed shell there, painting the water in the line colour.
+  std::optional<FaceTextures> textures;
+  std::vector<bool> upward;
+  const bool see_through_volume = s.mesh.closed && refracts(run);
+  if (see_through_volume) upward = upward_faces(s.mesh);
+  if (see_through_volume && config.water.body == WaterBody::opaque) {
+    run.layout.closed_water = true;
+    textures.emplace();
+    textures->names = {kWaterSurfaceTexture, kWaterBodyTexture};
+    textures->index.resize(upward.size());
+    for (std::size_t f = 0; f < upward.size(); ++f) textures->index[f] = upward[f] ? 0 : 1;
+  }
+  const bool free_surface_shell = see_through_volume && config.water.body == WaterBody::clear;
+  const std::string text = mesh_include(s, "Water", run.light, offsets,
+                                        textures ? &*textures : nullptr,
+                                        free_surface_shell ? &upward : nullptr) +
+                           water_lines(run, &s.mesh);
+  run.report.write_seconds += seconds_since(start);
+  run.write(water_include_name(written_frame), text);
+}
+
+// The frame loop: each water frame read and analysed once, its include written, and its maps
+// from the same analysis.
+void write_frames(SceneRun& run, const ProgressFn& progress, const std::atomic<bool>* stop) {
+  FrameSource source(run.plan.frames);
+  std::size_t done = 0;
+  for (const auto& [frame, path] : run.water.frames) {
+    if (stop && stop->load())
+      throw InterruptedError(run.request.out_dir.string() + ": interrupted");
+    const long written_frame = run.layout.animation ? frame : 0;
+    SourceFrame f = source.read(path);
+    run.report.read_seconds += f.read_seconds;
+    run.report.analysis_seconds += f.analysis_seconds;
+    if (!f.has_water()) {
+      write_empty_frame(run, frame, written_frame, f.empty);
+    } else {
+      if (run.map_view) {
+        const auto start = Clock::now();
+        write_maps(run.request.maps_dir, frame_stem(path), *f.analysis, *run.map_view,
+                   run.map_ranges);
+        run.report.maps_seconds += seconds_since(start);
+        ++run.report.map_frames;
+      }
+      PreparedSurface s =
+          f.analysis ? prepare_surface(std::move(*f.analysis), run.request.up, run.plan.flow,
+                                       run.plan.shading)
+                     : prepare_surface(geometry_analysis(std::move(f.mesh)), run.request.up,
+                                       nullptr);
+      // POV-Ray rejects a mesh2 without faces: a frame of zero-area faces only has no water.
+      if (s.mesh.triangles.empty())
+        write_empty_frame(run, frame, written_frame,
+                          path.string() + ": all " + std::to_string(s.mesh.degenerate_faces) +
+                              " faces are degenerate (zero area)");
+      else
+        write_water_frame(run, s, frame, written_frame);
+    }
+    ++run.report.frames;
+    if (progress) progress(++done, run.water.frames.size());
+  }
+  run.report.water_reads += source.reads();
+}
+
+}  // namespace
+
+PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& request,
+                            const ProgressFn& progress, const std::atomic<bool>* stop) {
+  const Sequence water = select_frames(config, request);
+  SceneRun run(config, request, water);
+  run.objects = find_objects(config, water);
+  run.plan = plan_water(config, request, water.frames.size());
+  run.layout.config = &config;
+  run.layout.up = request.up;
+  run.layout.animation = water.frames.size() > 1;
+  run.layout.first_frame = run.layout.animation ? water.frames.begin()->first : 0;
+  run.layout.last_frame = run.layout.animation ? water.frames.rbegin()->first : 0;
+  run.light = light_geometry(config.light, request.up);
+  run.report.first_frame = run.layout.first_frame;
+  run.report.last_frame = run.layout.last_frame;
+  run.object_box.resize(run.objects.size());
+  run.submerged.assign(run.objects.size(), false);
+
+  if (!request.maps_dir.empty() && fs::is_directory(request.maps_dir))
+    remove_stale_temporaries(request.maps_dir);
+  SceneDirectory scene(request.out_dir, request.force);
+  run.out_dir = scene.staging();
+  // With maps, every file of the scene and the maps is renamed into place at the end, together
+  // (OutputBatch): both outputs are replaced, or neither.
+  std::optional<OutputBatch> batch;
+  if (run.plan.maps) batch.emplace();
+
+  SequenceSurvey survey = survey_sequence(run);
+  run.layout.camera = frame_camera(config, request.up, survey.box_min, survey.box_max);
+  if (run.plan.shading != WaterShading::toon) run.view_range = view_range(survey.view, run.plan.shading);
+  if (survey.maps) {
+    const MapOptions map_options;
+    run.map_view = survey.maps->view(map_options);
+    run.map_ranges = survey.maps->ranges(map_options.percentile);
+    run.report.map_ranges = run.map_ranges;
+  }
 
   // Static objects first.
-  for (std::size_t i = 0; i < objects.size(); ++i)
-    if (!objects[i].placement.animated)
-      write_object(i, objects[i].sequence.frames.begin()->second, 0);
+  for (std::size_t i = 0; i < run.objects.size(); ++i)
+    if (!run.objects[i].placement.animated)
+      write_object(run, i, run.objects[i].sequence.frames.begin()->second, 0);
+  write_frames(run, progress, stop);
 
-  // A curvature view's colour range is the sequence's: the 98th percentile of |value| over
-  // all frames (at most 100k samples a frame), found in a first pass.
-  double view_range = 0;
-  if (shading != WaterShading::toon) {
-    std::vector<double> magnitudes;
-    for (const auto& [frame, path] : water.frames) {
-      InputMesh input;
-      try {
-        input = load_water(path);
-      } catch (const EmptyMeshError&) {
-        continue;
-      }
-      const PreparedSurface p =
-          prepare_surface(std::move(input.mesh), request.up, flow, nullptr, shading);
-      const std::size_t stride = std::max<std::size_t>(1, p.view_values.size() / 100000);
-      for (std::size_t v = 0; v < p.view_values.size(); v += stride)
-        magnitudes.push_back(std::abs(p.view_values[v]));
-    }
-    if (!magnitudes.empty()) {
-      const auto at = magnitudes.begin() + static_cast<std::ptrdiff_t>(
-                                               0.98 * static_cast<double>(magnitudes.size() - 1));
-      std::nth_element(magnitudes.begin(), at, magnitudes.end());
-      view_range = *at;
-    }
-    if (!(view_range > 0.0)) view_range = 1.0;  // a flat surface: everything at the middle colour
+  for (std::size_t i = 0; i < run.objects.size(); ++i) {
+    run.objects[i].placement.submerged = run.submerged[i];
+    run.layout.objects.push_back(run.objects[i].placement);
   }
-
-  // Flow regions are carried from frame to frame so they do not flicker (flow_coherence.hpp).
-  FlowCoherence coherence;
-  std::size_t done = 0;
-  for (const auto& [frame, path] : water.frames) {
-    if (stop && stop->load()) throw InterruptedError(request.out_dir.string() + ": interrupted");
-    const long written_frame = layout.animation ? frame : 0;
-    auto write_animated_objects = [&] {
-      for (std::size_t i = 0; i < objects.size(); ++i)
-        if (objects[i].placement.animated)
-          write_object(i, objects[i].sequence.frames.at(frame), written_frame);
-    };
-    // A frame with no liquid: the scene still needs its include, with nothing in it.
-    auto write_empty_frame = [&](const std::string& why) {
-      if (water.frames.size() == 1) throw InputError(why);
-      report.empty_frames.push_back(why);
-      write_animated_objects();
-      write(water_include_name(written_frame), empty_water_include() + water_lines(nullptr));
-      ++report.frames;
-      if (progress) progress(++done, water.frames.size());
-    };
-    InputMesh input;
-    try {
-      input = load_water(path);
-    } catch (const EmptyMeshError& empty) {
-      write_empty_frame(empty.what());
-      continue;
-    }
-    const bool coherent = flow && flow->coherence && water.frames.size() > 1;
-    PreparedSurface s = prepare_surface(std::move(input.mesh), request.up, flow,
-                                        coherent ? &coherence : nullptr, shading);
-    // POV-Ray rejects a mesh2 without faces: a frame of zero-area faces only has no water.
-    if (s.mesh.triangles.empty()) {
-      write_empty_frame(path.string() + ": all " + std::to_string(s.mesh.degenerate_faces) +
-                        " faces are degenerate (zero area)");
-      continue;
-    }
-    s.view_range = view_range;
-    report.analysis_seconds += s.analysis_seconds;
-    report.vertices += s.mesh.positions.size();
-    report.degenerate_faces += s.mesh.degenerate_faces;
-    report.replaced_normals += s.mesh.replaced_normals;
-    report.ridge_vertices += s.ridge_vertices;
-    report.valley_vertices += s.valley_vertices;
-    if (s.mesh.positions.empty()) throw InputError(path.string() + ": the water mesh is empty");
-    if (!have_box) {
-      layout.water_min = s.mesh.min;
-      layout.water_max = s.mesh.max;
-      have_box = true;
-    }
-    layout.water_min = layout.water_min.cwiseMin(s.mesh.min);
-    layout.water_max = layout.water_max.cwiseMax(s.mesh.max);
-
-    write_animated_objects();
-    report.faces += s.mesh.triangles.size();
-    report.simplify_seconds +=
-        simplify_water(s, light, layout, flow).seconds;
-    report.faces_kept += s.mesh.triangles.size();
-    const auto start = Clock::now();
-    const std::vector<double> offsets =
-        config.outline.enabled
-            ? shell_offsets(config.outline, s.mesh, layout.camera, config.render.width)
-            : std::vector<double>{};
-    // A see-through closed volume (WaterBody): an opaque body gives free surface and body their
-    // own textures (scene.pov); a clear one keeps the shell on the free surface only, as rays
-    // refracted through the volume leave it through the floor and walls and would meet the
-    // inside of a closed shell there, painting the water in the line colour.
-    std::optional<FaceTextures> textures;
-    std::vector<bool> upward;
-    const bool see_through_volume = s.mesh.closed && refracts;
-    if (see_through_volume) upward = upward_faces(s.mesh);
-    if (see_through_volume && config.water.body == WaterBody::opaque) {
-      layout.closed_water = true;
-      textures.emplace();
-      textures->names = {kWaterSurfaceTexture, kWaterBodyTexture};
-      textures->index.resize(upward.size());
-      for (std::size_t f = 0; f < upward.size(); ++f) textures->index[f] = upward[f] ? 0 : 1;
-    }
-    const bool free_surface_shell = see_through_volume && config.water.body == WaterBody::clear;
-    const std::string text =
-        mesh_include(s, "Water", light, offsets, textures ? &*textures : nullptr,
-                     free_surface_shell ? &upward : nullptr) +
-        water_lines(&s.mesh);
-    report.write_seconds += seconds_since(start);
-    write(water_include_name(written_frame), text);
-    ++report.frames;
-    if (progress) progress(++done, water.frames.size());
-  }
-
-  for (std::size_t i = 0; i < objects.size(); ++i) {
-    objects[i].placement.submerged = submerged[i];
-    layout.objects.push_back(objects[i].placement);
-  }
-  write("toon.inc", scene_toon_inc(layout));
-  write("scene.ini", scene_ini(layout));
-  write("scene.pov", scene_pov(layout));
-  if (request.before_commit) request.before_commit();
+  run.write("toon.inc", scene_toon_inc(run.layout));
+  run.write("scene.ini", scene_ini(run.layout));
+  run.write("scene.pov", scene_pov(run.layout));
+  if (batch) batch->commit();
   scene.commit();
-  return report;
+  return run.report;
 }
 
 }  // namespace toonwater::povgen

@@ -11,8 +11,10 @@
 #pragma once
 
 #include "analyzer/affine_transform.hpp"
+#include "analyzer/analysis.hpp"
 #include "analyzer/flow_coherence.hpp"
 #include "analyzer/flow_lines.hpp"
+#include "analyzer/maps/map_planner.hpp"
 #include "povgen/config.hpp"
 #include "povgen/mesh2_writer.hpp"
 #include "povgen/scene_mesh.hpp"
@@ -40,14 +42,25 @@ struct PreparedSurface {
   double analysis_seconds = 0;  // weld, topology, normals (and curvature and flow when asked)
 };
 
-// The analysis a scene's flow settings ask for.
+// The one mapping from the scene's configuration to the analysis of its water frames:
+// `scene_flow` is the flow settings the scene draws with (flow regions, or a curvature view,
+// which needs the curvature whether or not flow regions are drawn), null when it needs the
+// geometry only; `water_analysis` the options a water frame is analysed with, nothing for the
+// geometry only. Curvature maps (`maps`) need the flow regions (their labels and free surface)
+// whatever the scene draws. `analysis_options` is the part both share: the flow settings, with
+// flow regions for the toon shading only.
+const FlowConfig* scene_flow(const SceneConfig& config);
+std::optional<AnalyzeOptions> water_analysis(const SceneConfig& config, Axis up, bool maps);
 AnalyzeOptions analysis_options(const FlowConfig& flow, Axis up, WaterShading shading);
 
-// Welds and orients the input; computes curvature and the flow field only when `flow` is given,
-// angle-weighted normals otherwise. With `coherence`, the field is made coherent with the
+// The scene's surface from an analysis: with `flow`, its curvature normals and, as `shading`
+// asks, the flow field (and lines) or the per-vertex K or H of a curvature view; without,
+// angle-weighted normals of the welded, oriented surface (the analysis then needs no more
+// than weld, topology and orientation).
+PreparedSurface prepare_surface(Analysis analysis, Axis up, const FlowConfig* flow,
+                                WaterShading shading = WaterShading::toon);
+// The same from a mesh, analysed here: with `coherence`, the field is made coherent with the
 // frames it saw before (a sequence's frames in order).
-// With a curvature `shading`, keeps the per-vertex K or H for the view (curvature is computed
-// for it even without flow).
 PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,
                                 FlowCoherence* coherence,
                                 WaterShading shading = WaterShading::toon);
@@ -79,10 +92,11 @@ struct PovgenRequest {
   Axis up = Axis::y;
   std::filesystem::path out_dir;
   bool force = false;  // write into a non-empty directory that is not a toonwater scene
-  // Called once every scene file is complete, just before DIR is replaced: an exception from it
-  // leaves DIR as it was. (The CLI writes the --maps outputs here, so that both or neither are
-  // replaced.)
-  std::function<void()> before_commit;
+  // Also the curvature maps of the water frames (analyzer/maps: STEM.exr, STEM_K.png, ...) into
+  // this directory, from the scene's own reads and analyses of its frames, with one view and one
+  // colour range for the sequence; they are replaced with the scene: both, or neither.
+  // Empty: no maps.
+  std::filesystem::path maps_dir;
 };
 
 struct PovgenReport {
@@ -94,13 +108,21 @@ struct PovgenReport {
   std::size_t ridge_vertices = 0, valley_vertices = 0;
   std::vector<std::string> empty_frames;  // "PATH: why", frames left without water (no faces)
   double read_seconds = 0, analysis_seconds = 0, simplify_seconds = 0, write_seconds = 0;
+  // Water mesh files read, all passes: once per frame, twice where the sequence shares
+  // something (the default camera's box, a curvature view's range, the maps' view and ranges).
+  std::size_t water_reads = 0;
+  std::size_t map_frames = 0;  // frames with maps (those with water)
+  MapRanges map_ranges;        // the maps' shared colour ranges
+  double maps_seconds = 0;
 };
 
 // Called after each frame: frames done, frames in total.
 using ProgressFn = std::function<void(std::size_t, std::size_t)>;
 
+// Frame selection, objects, a survey of the sequence where it shares something, then the frame
+// loop: each water frame read, analysed (frame_source.hpp) and written once, with its maps.
 // Throws InputError, ConfigError or OutputError; when `stop` becomes true it stops between
-// frames and throws InterruptedError. On any failure DIR is left as it was.
+// frames and throws InterruptedError. On any failure DIR (and the maps) are left as they were.
 PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& request,
                             const ProgressFn& progress, const std::atomic<bool>* stop);
 

@@ -21,8 +21,7 @@ void MapPlanner::add(const Analysis& analysis) {
 void MapPlanner::add(const TriangleMesh& surface, const CurvatureField& curvature,
                      std::span<const std::uint8_t> free_surface, double median_edge) {
   ++frames_;
-  if (median_edge > 0.0 && std::isfinite(median_edge))
-    median_edge_ = median_edge_ > 0.0 ? std::min(median_edge_, median_edge) : median_edge;
+  ranges_.add_edge_length(median_edge);
 
   const Vec3 u_axis = map_u_axis(up_), v_axis = map_v_axis(up_);
   const Vec3 up_axis = u_axis.cross(v_axis);
@@ -43,8 +42,7 @@ void MapPlanner::add(const TriangleMesh& surface, const CurvatureField& curvatur
       extent_.u_max = std::max(extent_.u_max, u);
       extent_.v_min = std::min(extent_.v_min, w);
       extent_.v_max = std::max(extent_.v_max, w);
-      gaussian_.add(curvature.gaussian[v], projected_area / 3.0);
-      mean_.add(curvature.mean[v], projected_area / 3.0);
+      ranges_.add(curvature.gaussian[v], curvature.mean[v], projected_area / 3.0);
     }
   }
 }
@@ -67,7 +65,7 @@ MapView MapPlanner::view(const MapOptions& options) const {
   if (options.size) {
     pixel_size = longer / std::clamp(*options.size, 1, max_size);
   } else {
-    pixel_size = median_edge_ / std::max(options.pixels_per_edge, 1e-6);
+    pixel_size = ranges_.median_edge() / std::max(options.pixels_per_edge, 1e-6);
     if (pixel_size > 0.0) pixel_size = std::max(pixel_size, longer / max_size);
   }
   if (!(pixel_size > 0.0)) pixel_size = longer > 0.0 ? longer : 1.0;  // a point or a line
@@ -85,11 +83,6 @@ MapView MapPlanner::view(const MapOptions& options) const {
   return view;
 }
 
-MapRanges MapPlanner::ranges(double percentile) const {
-  constexpr double flat_radius_in_edges = 1e4;
-  const double min_mean = median_edge_ > 0.0 ? 1.0 / (flat_radius_in_edges * median_edge_) : 0.0;
-  return {std::max(gaussian_.quantile(percentile), min_mean * min_mean),
-          std::max(mean_.quantile(percentile), min_mean)};
-}
+MapRanges MapPlanner::ranges(double percentile) const { return ranges_.ranges(percentile); }
 
 }  // namespace toonwater

@@ -11,12 +11,9 @@
 // Extent: the union of the frames' mapped faces (n·up > 0, on the free surface: see
 // top_down_map.hpp) seen from above, unless a box is given. Pixel size: the smallest median edge length of the frames over
 // `pixels_per_edge`, unless a size is given; the longer side is capped at `max_size`.
-// Ranges: the 98th percentile of |K| and |H| over the mapped faces of all frames
-// pooled, each vertex weighted by the area it covers in the map (a third of the projected area
-// of its upward faces), i.e. the share of map pixels; see robust_range.hpp for the precision.
-// A range is never below the curvature of a radius of 10⁴ median edge lengths ℓ
-// (|H| = 10⁻⁴/ℓ, |K| = 10⁻⁸/ℓ²): flatter than that is flat, and a plane's round-off shows as
-// the zero colour instead of being stretched over the whole colour map.
+// Ranges: CurvatureRanges (robust_range.hpp) over the mapped faces of all frames pooled, each
+// vertex weighted by the area it covers in the map (a third of the projected area of its upward
+// faces), i.e. the share of map pixels.
 #pragma once
 
 #include "analyzer/analysis.hpp"
@@ -35,12 +32,6 @@ struct MapOptions {
   double percentile = 0.98;    // of |value|, for the colour ranges
 };
 
-// Colour maps of K and H span [−gaussian, +gaussian] and [−mean, +mean].
-struct MapRanges {
-  double gaussian = 0;
-  double mean = 0;
-};
-
 class MapPlanner {
  public:
   explicit MapPlanner(Axis up) : up_(up) {}
@@ -57,8 +48,7 @@ class MapPlanner {
   std::size_t frames_ = 0;
   MapBox extent_{};
   bool has_extent_ = false;
-  double median_edge_ = 0;  // smallest over frames; 0 when unknown
-  AbsQuantileHistogram gaussian_, mean_;
+  CurvatureRanges ranges_;
 };
 
 }  // namespace toonwater

@@ -1,7 +1,7 @@
 // Weighted quantile of |value| from a log-binned histogram (see robust_range.hpp). A positive
-// float's bit pattern grows with its value, so the pattern shifted right by 17 bits (dropping
-// all but the exponent and the top 6 mantissa bits) is a monotone bin index: 2^14 bins, 64 per
-// octave, no logarithm needed.
+// float's bit pattern grows with its value, so the pattern shifted right by 13 bits (dropping
+// all but the exponent and the top 10 mantissa bits) is a monotone bin index: 2^18 bins (2 MB),
+// 1024 per octave, no logarithm needed.
 #include "analyzer/maps/robust_range.hpp"
 
 #include <algorithm>
@@ -12,7 +12,7 @@
 namespace toonwater {
 namespace {
 
-constexpr int dropped_bits = 17;
+constexpr int dropped_bits = 13;
 constexpr std::size_t bin_count = std::size_t{1} << (31 - dropped_bits);
 
 std::size_t bin_of(double magnitude) {
@@ -52,6 +52,23 @@ double AbsQuantileHistogram::quantile(double q) const {
     if (cumulative >= target && weight_[b] > 0.0) return b == 0 ? 0.0 : upper_edge(b);
   }
   return upper_edge(bin_count - 1);
+}
+
+void CurvatureRanges::add(double gaussian, double mean, double weight) {
+  gaussian_.add(gaussian, weight);
+  mean_.add(mean, weight);
+}
+
+void CurvatureRanges::add_edge_length(double median_edge) {
+  if (median_edge > 0.0 && std::isfinite(median_edge))
+    median_edge_ = median_edge_ > 0.0 ? std::min(median_edge_, median_edge) : median_edge;
+}
+
+MapRanges CurvatureRanges::ranges(double percentile) const {
+  constexpr double flat_radius_in_edges = 1e4;
+  const double min_mean = median_edge_ > 0.0 ? 1.0 / (flat_radius_in_edges * median_edge_) : 0.0;
+  return {std::max(gaussian_.quantile(percentile), min_mean * min_mean),
+          std::max(mean_.quantile(percentile), min_mean)};
 }
 
 }  // namespace toonwater

@@ -1,8 +1,9 @@
-// Maps of a frame sequence with one shared view and one shared colour range (map_planner.hpp),
-// in two passes over the files so that only one frame's analysis is in memory at a time:
-// pass 1 reads and analyses every frame into a MapPlanner, pass 2 reads and analyses each
-// frame again and writes its maps (map_writer.hpp) as STEM.exr, STEM_K.png, ... where STEM is
-// the frame file's stem.
+// Maps of a frame sequence alone, with one shared view and one shared colour range
+// (map_planner.hpp), in two passes over the files (frame_source.hpp) so that only one frame's
+// analysis is in memory at a time: pass 1 reads and analyses every frame into a MapPlanner,
+// pass 2 reads and analyses each frame again and writes its maps (map_writer.hpp) as STEM.exr,
+// STEM_K.png, ... where STEM is the frame file's stem. (`toonwater povgen --maps` writes the
+// maps from the scene's own two passes instead: povgen/povgen.hpp.)
 #pragma once
 
 #include "analyzer/affine_transform.hpp"

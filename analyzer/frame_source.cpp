@@ -1,0 +1,51 @@
+// A sequence's frames, read and analysed once a pass (see frame_source.hpp).
+#include "analyzer/frame_source.hpp"
+
+#include "analyzer/mesh_reader.hpp"
+
+#include <chrono>
+
+namespace toonwater {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+}  // namespace
+
+SourceFrame FrameSource::read(const std::filesystem::path& path) {
+  SourceFrame frame;
+  frame.path = path;
+  auto start = Clock::now();
+  InputMesh input;
+  ++reads_;
+  try {
+    input = read_mesh(path);
+  } catch (const EmptyMeshError& empty) {
+    frame.empty = empty.what();
+    frame.read_seconds = seconds_since(start);
+    return frame;
+  }
+  if (options_.transform) apply_transform(*options_.transform, input.mesh);
+  frame.read_seconds = seconds_since(start);
+  frame.lower = frame.upper = input.mesh.positions.front();  // EmptyMeshError: at least one
+  for (const Vec3& p : input.mesh.positions) {
+    frame.lower = frame.lower.cwiseMin(p);
+    frame.upper = frame.upper.cwiseMax(p);
+  }
+  if (!options_.analysis) {
+    frame.mesh = std::move(input.mesh);
+    return frame;
+  }
+  start = Clock::now();
+  AnalyzeOptions analysis = *options_.analysis;
+  analysis.coherence = options_.coherent ? &coherence_ : nullptr;
+  frame.analysis = analyze_mesh(std::move(input.mesh), analysis);
+  frame.analysis_seconds = seconds_since(start);
+  return frame;
+}
+
+}  // namespace toonwater

@@ -1,0 +1,94 @@
+// One frame source for the scene and its maps (analyzer/frame_source.hpp): povgen reads each
+// water frame once in its frame loop, and once more only in a survey of the sequence where the
+// sequence shares something (the default camera's box, a curvature view's colour range, the
+// maps' view and ranges). It used to read a frame up to five times (camera box, view range,
+// frame loop and the maps' own two passes, with a second coherence run of its own). The maps
+// written from the scene's analyses equal those of the maps' own two passes.
+#include "analyzer/maps/sequence_maps.hpp"
+#include "povgen/config.hpp"
+#include "povgen/povgen.hpp"
+#include "tests/povgen/povgen_test_util.hpp"
+#include "tests/support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace toonwater::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::size_t frame_count = 3;
+
+void write_frames(const fs::path& dir) {
+  for (std::size_t f = 0; f < frame_count; ++f) {
+    const double phase = 0.4 * static_cast<double>(f);
+    write_obj(dir / ("water_000" + std::to_string(f + 1) + ".obj"),
+              make_height_grid(25, 1.0, [&](double x, double z) {
+                return 0.08 * std::sin(5 * x + phase) * std::cos(4 * z);
+              }));
+  }
+}
+
+povgen::PovgenReport generate(const fs::path& dir, const std::string& out,
+                              const std::vector<std::string>& overrides, bool maps) {
+  povgen::ConfigSources sources;
+  sources.overrides = overrides;
+  const povgen::SceneConfig config = povgen::load_config(sources);
+  povgen::PovgenRequest request;
+  request.water_pattern = (dir / "water_####.obj").string();
+  request.base_dir = dir;
+  request.out_dir = dir / out;
+  if (maps) request.maps_dir = dir / (out + "_maps");
+  return povgen::generate_scene(config, request, {}, nullptr);
+}
+
+TEST(PovgenFrameReads, MapsAndACurvatureViewReadEachFrameOnceAPass) {
+  ScratchDir dir;
+  write_frames(dir.path());
+  const povgen::PovgenReport r = generate(dir.path(), "mean", {"water.shading=mean"}, true);
+  EXPECT_EQ(r.frames, frame_count);
+  EXPECT_EQ(r.map_frames, frame_count);
+  // The survey and the frame loop: two reads a frame, not five.
+  EXPECT_EQ(r.water_reads, 2 * frame_count);
+  for (const char* stem : {"water_0001", "water_0002", "water_0003"}) {
+    EXPECT_TRUE(fs::exists(dir / "mean_maps" / (std::string(stem) + ".exr"))) << stem;
+    EXPECT_TRUE(fs::exists(dir / "mean_maps" / (std::string(stem) + "_label.png"))) << stem;
+  }
+}
+
+TEST(PovgenFrameReads, AToonSceneThatSharesNothingReadsEachFrameOnce) {
+  ScratchDir dir;
+  write_frames(dir.path());
+  const povgen::PovgenReport r =
+      generate(dir.path(), "toon", {"camera.location=[0, 3, -3]", "camera.look_at=[0, 0, 0]"}, false);
+  EXPECT_EQ(r.frames, frame_count);
+  EXPECT_EQ(r.water_reads, frame_count);
+  // The default camera frames the sequence's box: one survey read a frame.
+  EXPECT_EQ(generate(dir.path(), "framed", {}, false).water_reads, 2 * frame_count);
+}
+
+// The maps from povgen's own frames and coherence run are the maps of the sequence alone.
+TEST(PovgenFrameReads, SceneMapsEqualTheSequenceMaps) {
+  ScratchDir dir;
+  write_frames(dir.path());
+  const povgen::PovgenReport r = generate(dir.path(), "toon", {}, true);
+  std::vector<fs::path> frames;
+  for (std::size_t f = 0; f < frame_count; ++f)
+    frames.push_back(dir / ("water_000" + std::to_string(f + 1) + ".obj"));
+  const SequenceMaps alone =
+      write_sequence_maps(frames, povgen::analysis_options(povgen::FlowConfig{}, Axis::y,
+                                                           povgen::WaterShading::toon),
+                          MapOptions{}, dir / "alone", true);
+  EXPECT_EQ(r.map_ranges.gaussian, alone.ranges.gaussian);
+  EXPECT_EQ(r.map_ranges.mean, alone.ranges.mean);
+  for (const char* stem : {"water_0001", "water_0002", "water_0003"})
+    for (const char* suffix : {".exr", "_K.png", "_H.png", "_label.png"}) {
+      const std::string name = std::string(stem) + suffix;
+      EXPECT_EQ(read_text(dir / "toon_maps" / name), read_text(dir / "alone" / name)) << name;
+    }
+}
+
+}  // namespace
+}  // namespace toonwater::test
