@@ -12,7 +12,7 @@
 #include "analyzer/analysis.hpp"
 
 #include "analyzer/mesh.hpp"
-#include "povgen/render_quality.hpp"
+#include "povgen/render_presets.hpp"
 
 #include <array>
 #include <filesystem>
@@ -140,7 +140,7 @@ struct FrameRange {
 struct RenderConfig {
   int width = 640;
   int height = 480;
-  RenderQuality quality = RenderQuality::final;  // render_quality.hpp
+  RenderQuality quality = RenderQuality::final;  // render_presets.hpp
   bool antialias = true;  // false: off whatever the quality
   std::optional<FrameRange> frames;  // default: every frame found
   Color background{0.93, 0.96, 1.0};
