@@ -1,4 +1,4 @@
-// `toonwater report`: runs the measurements of issue 5 and writes, into one directory,
+// `toonwater report`: runs the measurements below and writes, into one directory,
 //   report.md              the report: tables, plots, and when each estimator is the better choice
 //   curvature_errors.csv   every sample of the curvature study (curvature_study.hpp)
 //   pipeline.csv           the Table 1 timings (pipeline_timing.hpp)
