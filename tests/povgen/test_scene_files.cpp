@@ -5,6 +5,7 @@
 #include "povgen/scene_mesh.hpp"
 #include "tests/povgen/povgen_test_util.hpp"
 #include "tests/support/scene_config.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
