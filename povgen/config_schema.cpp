@@ -1,5 +1,6 @@
 #include "povgen/config_schema.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -7,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <set>
+#include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -60,7 +62,8 @@ struct Integer {
       const double d = f->get();
       if (!std::isfinite(d)) throw key_error(key, "must be finite");
       if (d != std::floor(d)) throw key_error(key, "must be a whole number");
-      v = std::fabs(d) < 1e18 ? static_cast<std::int64_t>(d) : std::numeric_limits<std::int64_t>::max();
+      using limits = std::numeric_limits<std::int64_t>;
+      v = std::fabs(d) < 1e18 ? static_cast<std::int64_t>(d) : d < 0 ? limits::min() : limits::max();
     } else {
       throw key_error(key, "must be a whole number");
     }
