@@ -13,6 +13,7 @@
 #include "analyzer/analytic_surfaces.hpp"
 #include "analyzer/flow_coherence.hpp"
 #include "analyzer/mesh_reader.hpp"
+#include "analyzer/obj_writer.hpp"
 #include "analyzer/weld.hpp"
 
 #include <benchmark/benchmark.h>
@@ -20,10 +21,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <charconv>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <string>
 
@@ -47,24 +46,7 @@ fs::path obj_file(std::int64_t vertices) {
   const fs::path path = fs::temp_directory_path() /
                         ("toonwater-bench-wave-" + std::to_string(grid_size(vertices)) + ".obj");
   if (fs::exists(path)) return path;
-  const TriangleMesh& m = wave_mesh(vertices);
-  std::string text;
-  char number[32];
-  auto append = [&](double value) {
-    text += ' ';
-    text.append(number, std::to_chars(number, number + sizeof number, value).ptr);
-  };
-  for (const Vec3& p : m.positions) {
-    text += 'v';
-    append(p.x());
-    append(p.y());
-    append(p.z());
-    text += '\n';
-  }
-  for (const Triangle& t : m.triangles)
-    text += "f " + std::to_string(t[0] + 1) + ' ' + std::to_string(t[1] + 1) + ' ' +
-            std::to_string(t[2] + 1) + '\n';
-  std::ofstream(path, std::ios::binary) << text;
+  write_obj(path, wave_mesh(vertices));
   return path;
 }
 

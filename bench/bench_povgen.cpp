@@ -4,6 +4,7 @@
 // --benchmark_filter=Povray).
 #include "analyzer/analytic_surfaces.hpp"
 #include "analyzer/atomic_file.hpp"
+#include "analyzer/obj_writer.hpp"
 #include "povgen/config.hpp"
 #include "povgen/mesh2_writer.hpp"
 #include "povgen/povgen.hpp"
@@ -93,15 +94,7 @@ void BM_PovrayRender(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const fs::path dir = scratch("povray" + std::to_string(n));
   const TriangleMesh water = wave_field(n);
-  {
-    std::string obj;
-    for (const Vec3& p : water.positions)
-      obj += "v " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " " + std::to_string(p.z()) + "\n";
-    for (const Triangle& t : water.triangles)
-      obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
-             std::to_string(t[2] + 1) + "\n";
-    write_file_atomically(dir / "water.obj", obj);
-  }
+  write_obj(dir / "water.obj", water);
   povgen::ConfigSources sources;
   sources.overrides = {"render.antialias=false"};
   const povgen::SceneConfig config = povgen::load_config(sources);
@@ -183,19 +176,7 @@ void BM_SimplifiedRender(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const fs::path dir = scratch("simplify" + std::to_string(n));
   const TriangleMesh water = calm_with_ripple(n);
-  {
-    std::string obj;
-    char line[96];
-    for (const Vec3& p : water.positions) {
-      std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", p.x(), p.y(), p.z());
-      obj += line;
-    }
-    for (const Triangle& t : water.triangles) {
-      std::snprintf(line, sizeof line, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
-      obj += line;
-    }
-    write_file_atomically(dir / "water.obj", obj);
-  }
+  write_obj(dir / "water.obj", water);
   auto generate = [&](const std::string& simplify) {
     povgen::ConfigSources sources;
     sources.overrides = {"render.antialias=false", "render.width=640", "render.height=360",

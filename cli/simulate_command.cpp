@@ -3,7 +3,7 @@
 #include "cli/progress.hpp"
 
 #include "analyzer/atomic_file.hpp"
-#include "examples/sim/obj_writer.hpp"
+#include "analyzer/obj_writer.hpp"
 #include "examples/sim/scenarios.hpp"
 
 #include <chrono>
@@ -32,8 +32,8 @@ void run_simulate(const SimulateArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   std::size_t files = 0, water_vertices = 0;
   auto sink = [&](const std::string& name, const TriangleMesh& mesh) {
-    sim::write_obj(fs::path(args.out) / name, mesh,
-                   "toonwater simulate " + args.scenario + ": " + name + " (y up)");
+    write_obj(fs::path(args.out) / name, mesh,
+               "toonwater simulate " + args.scenario + ": " + name + " (y up)");
     ++files;
     if (name.starts_with("water_")) water_vertices = mesh.positions.size();
   };

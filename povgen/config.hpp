@@ -1,8 +1,11 @@
 // Scene configuration: every key of scene.toml, with the paper's choices as defaults.
 //
-// Loaded from TOML (toml++); `--set key=value` overrides any key before validation. Unknown keys
-// and values of the wrong type or out of range are errors naming the key (ConfigError). Only
-// validated values leave this module: finite numbers, colours in [0, 1], known keywords and
+// Loaded from TOML (toml++, behind povgen/toml_guard.hpp); `--set key=value` overrides any key
+// before validation (povgen/config_overrides.hpp). Every key is read through one table
+// (povgen/config_schema.hpp) that gives its type, range, default and help once. Unknown keys and
+// values of the wrong type or out of range are errors naming the key (ConfigError), and the file
+// and line where the value comes from a file. Only validated values leave this module: finite
+// numbers, whole numbers where a count or a size is meant, colours in [0, 1], known keywords and
 // object names reduced to POV-Ray identifiers.
 //
 // Positions and directions are in the input's axes (the meshes' own coordinates); the scene
@@ -12,7 +15,7 @@
 #include "analyzer/analysis.hpp"
 
 #include "analyzer/mesh.hpp"
-#include "povgen/render_quality.hpp"
+#include "povgen/render_presets.hpp"
 
 #include <array>
 #include <filesystem>
@@ -27,6 +30,9 @@ class ConfigError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// "config: 'KEY' MESSAGE", the form of every error about one key.
+ConfigError key_error(const std::string& key, const std::string& message);
 
 using Color = std::array<double, 3>;  // sRGB in [0, 1], as picked on screen
 
@@ -140,7 +146,7 @@ struct FrameRange {
 struct RenderConfig {
   int width = 640;
   int height = 480;
-  RenderQuality quality = RenderQuality::final;  // render_quality.hpp
+  RenderQuality quality = RenderQuality::final;  // render_presets.hpp
   bool antialias = true;  // false: off whatever the quality
   std::optional<FrameRange> frames;  // default: every frame found
   Color background{0.93, 0.96, 1.0};
@@ -167,6 +173,17 @@ struct ConfigSources {
 };
 
 SceneConfig load_config(const ConfigSources& sources);
+
+// One key of scene.toml as the schema defines it, for documentation and its checks.
+struct ConfigKey {
+  std::string key;            // "water.ior"; an object's keys as "object.name"
+  std::string type;           // "number from 1 to 3", "colour [r, g, b] in 0-1", ...
+  std::string default_value;  // as documented: 1.33, [1,1,1], "toon", or what decides it
+  std::string help;           // one line
+};
+
+// Every key, section by section in the order of the documentation.
+std::vector<ConfigKey> config_keys();
 
 // Parses "A-B" or "A" (frame numbers, A <= B). Throws ConfigError naming `key`.
 FrameRange parse_frame_range(const std::string& text, const std::string& key);

@@ -1,4 +1,4 @@
-// Curvature error against run time (issue 5, part 1): every estimator on analytic surfaces —
+// Curvature error against run time: every estimator on analytic surfaces —
 // sphere (icosphere), UV sphere (thin pole fans), torus, ellipsoid, saddle, height field — sampled regularly, with jittered vertices
 // (moved within the surface by up to 0.2 of the grid step, an irregular triangulation) and with
 // noise (moved off the surface in a random direction by up to 2% of the mean edge length, as

@@ -1,4 +1,4 @@
-// The paper's Table 1 for toonwater (issue 5, part 4): per input frame, its vertices, the flow
+// The paper's Table 1 for toonwater: per input frame, its vertices, the flow
 // analysis time (weld, topology, curvature, flow regions: analyze_mesh, with each estimator),
 // the scene writing time (povgen) and POV-Ray's parse + trace time for the scene povgen wrote.
 #pragma once

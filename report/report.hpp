@@ -1,8 +1,8 @@
-// `toonwater report`: runs the measurements of issue 5 and writes, into one directory,
+// `toonwater report`: runs the measurements below and writes, into one directory,
 //   report.md              the report: tables, plots, and when each estimator is the better choice
 //   curvature_errors.csv   every sample of the curvature study (curvature_study.hpp)
 //   pipeline.csv           the Table 1 timings (pipeline_timing.hpp)
-//   render_quality.csv     render presets against a reference render (render_quality.hpp)
+//   render_quality.csv     render presets against a reference render (render_error_study.hpp)
 //   error_{K,H}_{regular,jittered,noisy}.svg, render_error.svg   error against run time, log–log
 //   flow_ripples.csv, flow_mean.png, flow_paper.png   the flow criteria compared (flow_study.hpp)
 // Every number in them comes from this run.
@@ -11,7 +11,7 @@
 #include "report/curvature_study.hpp"
 #include "report/flow_study.hpp"
 #include "report/pipeline_timing.hpp"
-#include "report/render_quality.hpp"
+#include "report/render_error_study.hpp"
 
 #include <filesystem>
 #include <functional>

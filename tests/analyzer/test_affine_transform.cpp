@@ -4,6 +4,7 @@
 #include "analyzer/affine_transform.hpp"
 
 #include "analyzer/analytic_surfaces.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>

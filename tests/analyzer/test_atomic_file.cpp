@@ -17,17 +17,10 @@ namespace toonwater {
 namespace {
 
 namespace fs = std::filesystem;
+using test::entries;
 using test::read_text;
 using test::ScratchDir;
 using test::write_text;
-
-std::vector<std::string> entries(const fs::path& directory) {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(directory))
-    names.push_back(entry.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
 
 // The OutputError message of writing `contents` to `path`, or "" when it succeeds.
 std::string write_error(const fs::path& path, std::string_view contents) {

@@ -4,7 +4,9 @@
 // counts and gzip bombs allocate nothing large; and analyze and povgen take numbered sequences.
 #include "analyzer/analytic_surfaces.hpp"
 #include "analyzer/mesh_reader.hpp"
+#include "analyzer/obj_writer.hpp"
 #include "tests/support/largest_allocation.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -283,17 +285,9 @@ TEST_F(BobjReader, AnalyzeReadsACacheFrameInWorldCoordinates) {
   // The same surface in world coordinates for a domain 4 m across centred at (1, -2, 0.5): the
   // map x -> 4 x + (1, -2, 0.5) is exact in double for these float coordinates.
   const InputMesh cached = read_mesh(cache / "fluid_mesh_0007.bobj.gz");
-  std::string obj;
-  char line[128];
-  for (const Vec3& p : cached.mesh.positions) {
-    const Vec3 world = 4.0 * p + Vec3(1, -2, 0.5);
-    std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", world.x(), world.y(), world.z());
-    obj += line;
-  }
-  for (const Triangle& t : cached.mesh.triangles)
-    obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
-           std::to_string(t[2] + 1) + "\n";
-  write_text(dir_ / "world.obj", obj);
+  TriangleMesh world = cached.mesh;
+  for (Vec3& p : world.positions) p = 4.0 * p + Vec3(1, -2, 0.5);
+  write_obj(dir_ / "world.obj", world);
 
   const auto analyze = [&](std::vector<std::string> args, const std::string& csv) {
     args.insert(args.end(), {"--up", "z", "--csv", (dir_ / csv).string()});

@@ -155,7 +155,7 @@ TEST(CurvatureAccuracy, JitteredMeshesStayBounded) {
   EXPECT_LT(wave.mean, 0.5);
   const Errors saddle = relative_errors(make_saddle(129, 0.5, {0.2, 7}));
   EXPECT_LT(saddle.gaussian, 0.2);
-  EXPECT_TRUE(std::isfinite(saddle.mean));
+  EXPECT_LT(saddle.mean, 0.65);  // measured 0.52: bounded, not converging
 }
 
 TEST(CurvatureAccuracy, SphereSignFollowsWinding) {

@@ -8,7 +8,9 @@
 // of the grid step within the surface, which keeps every triangle from folding over.
 #include "analyzer/analysis.hpp"
 #include "analyzer/curvature_jet.hpp"
+#include "analyzer/obj_writer.hpp"
 #include "tests/analyzer/curvature_test_util.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -253,11 +255,7 @@ std::vector<double> csv_column(const std::string& text, int column) {
 TEST(CurvatureJet, AnalyzeCommandTakesEstimatorAndSmoothing) {
   const AnalyticSurface s = make_saddle(65, 0.5, jittered);
   ScratchDir dir;
-  std::ostringstream obj;
-  obj.precision(17);
-  for (const Vec3& p : s.mesh.positions) obj << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-  for (const Triangle& t : s.mesh.triangles) obj << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
-  write_text(dir / "saddle.obj", obj.str());
+  write_obj(dir / "saddle.obj", s.mesh);
 
   auto mean_error = [&](const std::vector<std::string>& options) {
     std::vector<std::string> args = {"analyze", (dir / "saddle.obj").string(), "--csv",

@@ -1,6 +1,7 @@
 // `toonwater analyze` as a user runs it: bad input gives one line naming the file (and line) and a
 // non-zero exit without touching existing outputs; a good run writes one row per input vertex.
 #include "analyzer/mesh_reader.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -15,6 +16,7 @@ namespace toonwater {
 namespace {
 
 namespace fs = std::filesystem;
+using test::entries;
 using test::read_text;
 using test::run_toonwater;
 using test::ScratchDir;
@@ -25,14 +27,6 @@ std::vector<std::string> lines_of(const std::string& text) {
   std::stringstream stream(text);
   for (std::string line; std::getline(stream, line);) lines.push_back(line);
   return lines;
-}
-
-std::vector<std::string> entries(const fs::path& directory) {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(directory))
-    names.push_back(entry.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
 }
 
 const std::string good_csv = "x,y,z,gaussian,mean,k1,k2,area,label,flow\n0,0,0,0,0,0,0,0,0,0\n";

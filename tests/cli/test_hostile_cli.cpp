@@ -1,6 +1,7 @@
 // The toonwater program under faults and hostile use: it never reports a success that did not
 // happen, never clobbers a file it did not write, and answers every mistake with one printable
 // line and the documented exit code (cli/exit_codes.hpp).
+#include "analyzer/obj_writer.hpp"
 #include "cli/exit_codes.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -79,19 +80,18 @@ bool printable_lines(const std::string& text) {
 
 // A wavy 6 x 6 grid as OBJ (y up), shifted by `dy`.
 std::string grid_obj(double dy = 0) {
-  std::string s;
+  TriangleMesh m;
   constexpr int n = 6;
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i)
-      s += "v " + std::to_string(i * 0.2) + " " + std::to_string(dy + 0.05 * ((i + j) % 2)) + " " +
-           std::to_string(j * 0.2) + "\n";
+      m.positions.emplace_back(i * 0.2, dy + 0.05 * ((i + j) % 2), j * 0.2);
   for (int j = 0; j + 1 < n; ++j)
     for (int i = 0; i + 1 < n; ++i) {
-      const int a = j * n + i + 1, b = a + 1, c = a + n, d = c + 1;
-      s += "f " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(b) + "\n";
-      s += "f " + std::to_string(b) + " " + std::to_string(c) + " " + std::to_string(d) + "\n";
+      const int a = j * n + i, b = a + 1, c = a + n, d = c + 1;
+      m.triangles.push_back({a, c, b});
+      m.triangles.push_back({b, c, d});
     }
-  return s;
+  return obj_text(m);
 }
 
 // Every regular file of `dir` by name, with its content (hidden files included).

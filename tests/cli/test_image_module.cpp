@@ -3,6 +3,7 @@
 // and one that does fails before any work with one line naming the module and exit code 6
 // (incomplete installation), writing nothing.
 #include "cli/exit_codes.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,7 @@
 // Each example rendered at 96×54 (two frames), its images checked for the feature it shows.
 // The examples' own configs are used, with a few --set overrides that make a feature easy to
 // find in the pixels (e.g. a magenta ridge colour).
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <OpenImageIO/imageio.h>

@@ -2,11 +2,11 @@
 #include "analyzer/mesh_reader.hpp"
 #include "examples/sim/body_displacement.hpp"
 #include "examples/sim/mesh_builders.hpp"
-#include "examples/sim/obj_writer.hpp"
 #include "examples/sim/scenarios.hpp"
 #include "examples/sim/water_figure.hpp"
 #include "examples/sim/wave_scene.hpp"
 #include "examples/sim/wave_solver.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -253,12 +253,6 @@ TEST(WaterFigure, BonesStayInsideTheBody) {
       ASSERT_EQ(crossings % 2, 1) << "bone point " << p.transpose() << " at t = " << t;
     }
   }
-}
-
-TEST(ObjWriter, RefusesNonFiniteCoordinates) {
-  TriangleMesh m = uv_sphere(Vec3::Zero(), 1, 4, 8);
-  m.positions[3].y() = std::nan("");
-  EXPECT_THROW(obj_text(m, "bad"), std::invalid_argument);
 }
 
 // The simulate command: names and counts of the files, meshes that read back as written.

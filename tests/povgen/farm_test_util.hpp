@@ -3,6 +3,7 @@
 #pragma once
 
 #include "tests/povgen/povgen_test_util.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <filesystem>

@@ -5,20 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <numbers>
 #include <stdexcept>
 
 namespace toonwater::test {
-
-void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh) {
-  std::ofstream out(path);
-  out.precision(17);
-  for (const Vec3& p : mesh.positions) out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-  for (const Triangle& t : mesh.triangles)
-    out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
-  if (!out) throw std::runtime_error("cannot write " + path.string());
-}
 
 TriangleMesh make_height_grid(int n, double h, const std::function<double(double, double)>& height) {
   TriangleMesh m;

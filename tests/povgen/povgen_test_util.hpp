@@ -1,8 +1,9 @@
-// Helpers for the povgen tests: test meshes written as OBJ, running POV-Ray in a scene
+// Helpers for the povgen tests: test meshes (written with analyzer/obj_writer.hpp), running POV-Ray in a scene
 // directory, and reading its PNGs back with OpenImageIO.
 #pragma once
 
 #include "analyzer/mesh.hpp"
+#include "analyzer/obj_writer.hpp"  // write_obj, for the test meshes
 
 #include <array>
 #include <cstdint>
@@ -12,8 +13,6 @@
 #include <vector>
 
 namespace toonwater::test {
-
-void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh);
 
 // Square grid over [−h, h]² in the plane normal to y (y-up input), heights from `height(x, z)`,
 // faces wound so that normals point up (+y).

@@ -10,6 +10,7 @@
 // (The Water_ and Obj_ prefixes of the identifiers are the writer's own; what follows Obj_ comes
 // from a name and must be [A-Za-z0-9_].)
 #include "tests/povgen/povgen_test_util.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>

@@ -7,6 +7,7 @@
 // No timing is asserted: the signal is sent once the progress display shows a few frames done, and
 // the sequences are long enough that the run is still going then. Waits are generous.
 #include "tests/povgen/povgen_test_util.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>

@@ -3,6 +3,7 @@
 // is absent), written by povgen with nothing configured but the picture size, rendered at
 // 480×270 without antialiasing and read back pixel by pixel.
 #include "tests/povgen/povgen_test_util.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>

@@ -3,6 +3,7 @@
 #include "tests/povgen/povgen_test_util.hpp"
 
 #include "analyzer/colormap.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>

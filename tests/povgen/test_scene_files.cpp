@@ -4,6 +4,8 @@
 #include "povgen/mesh2_writer.hpp"
 #include "povgen/scene_mesh.hpp"
 #include "tests/povgen/povgen_test_util.hpp"
+#include "tests/support/scene_config.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -15,27 +17,6 @@
 
 namespace toonwater::test {
 namespace {
-
-using povgen::ConfigError;
-using povgen::load_config;
-
-povgen::SceneConfig config_from(const std::string& toml, std::vector<std::string> overrides = {}) {
-  ScratchDir dir;
-  write_text(dir / "scene.toml", toml);
-  povgen::ConfigSources sources;
-  sources.file = dir / "scene.toml";
-  sources.overrides = std::move(overrides);
-  return load_config(sources);
-}
-
-std::string config_error(const std::string& toml, std::vector<std::string> overrides = {}) {
-  try {
-    config_from(toml, std::move(overrides));
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 TEST(PovgenConfig, DefaultsAreThePapersChoices) {
   const auto c = config_from("");

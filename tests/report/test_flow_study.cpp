@@ -3,7 +3,7 @@
 // from above, regions have smooth boundaries and no specks.
 #include "report/flow_study.hpp"
 
-#include "examples/sim/obj_writer.hpp"
+#include "analyzer/obj_writer.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -90,7 +90,7 @@ TEST(FlowStudy, MaskMetricsTellSmoothFromStaircaseAndCountSpecks) {
 // edges (boundary within 1.15× its one-cell-smoothed length) and no specks.
 TEST(FlowStudy, RenderedRippleRegionsHaveSmoothBoundaries) {
   test::ScratchDir dir;
-  sim::write_obj(dir / "ripple.obj", ripple_mesh(61, 0.0), "ripple");
+  write_obj(dir / "ripple.obj", ripple_mesh(61, 0.0), "ripple");
   const std::vector<SequenceFlowStudy> studies = run_sequence_flow_study(
       (dir / "ripple.obj").string(), Axis::z, dir.path(), dir / "pictures", 8.0);
   ASSERT_EQ(studies.size(), 2u);

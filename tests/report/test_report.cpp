@@ -1,6 +1,7 @@
 // toonwater report: the reduced run CI makes (--quick), read back from its CSV files, and the
 // SVG plot writer. The quick run renders with POV-Ray at 160×120.
 #include "report/svg_plot.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -90,8 +91,16 @@ TEST(Report, QuickRunHasFiniteNumbersAndErrorsFallingOnRegularMeshes) {
   ASSERT_EQ(quality.size(), 4u);
   EXPECT_EQ(quality[1][0], "draft");
   EXPECT_EQ(quality[3][0], "final");
-  for (std::size_t i = 1; i < quality.size(); ++i)
+  for (std::size_t i = 1; i < quality.size(); ++i) {
     for (std::size_t c = 1; c < 6; ++c) EXPECT_TRUE(std::isfinite(number(quality[i][c]))) << i << c;
+    EXPECT_GE(number(quality[i][1]), 80.0) << i;  // width: half of 160 at the least
+    EXPECT_GE(number(quality[i][2]), 60.0) << i;
+    EXPECT_GT(number(quality[i][3]), 0.0) << i;   // seconds
+    EXPECT_GE(number(quality[i][4]), 0.0) << i;   // RMSE of RGB in [0, 1]
+    EXPECT_LE(number(quality[i][4]), 1.0) << i;
+    EXPECT_GE(number(quality[i][5]), 0.0) << i;   // a share of the pixels
+    EXPECT_LE(number(quality[i][5]), 1.0) << i;
+  }
   EXPECT_EQ(number(quality[1][1]) * 2, number(quality[3][1]));
   EXPECT_LT(number(quality[3][4]), number(quality[1][4]));  // RMSE
   EXPECT_LT(number(quality[3][5]), number(quality[1][5]));  // pixels in another band

@@ -1,4 +1,5 @@
-// Helpers shared by the tests: scratch directories, running the toonwater executable, files.
+// Helpers shared by the tests: scratch directories, files, ../shared. Running the toonwater
+// program: run_toonwater.hpp.
 #pragma once
 
 #include <filesystem>
@@ -21,18 +22,10 @@ class ScratchDir {
   std::filesystem::path path_;
 };
 
-struct CommandResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
-
-// Runs the toonwater executable with the given arguments (no shell involved).
-CommandResult run_toonwater(const std::vector<std::string>& args);
-// The same for another executable (a copy of toonwater elsewhere, say).
-CommandResult run_program(const std::filesystem::path& executable,
-                          const std::vector<std::string>& args);
-
 std::string read_text(const std::filesystem::path& path);
+
+// The names of the entries of `directory` (hidden ones included), sorted.
+std::vector<std::string> entries(const std::filesystem::path& directory);
 void write_text(const std::filesystem::path& path, const std::string& text);
 
 // ../shared beside the project root, or an empty path when it is absent.

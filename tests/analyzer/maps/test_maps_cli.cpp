@@ -1,26 +1,18 @@
 // `toonwater analyze MESH --maps DIR`: the files, the summary line, and bad options.
 #include "analyzer/analytic_surfaces.hpp"
+#include "analyzer/obj_writer.hpp"
 #include "tests/analyzer/maps/map_test_util.hpp"
+#include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <sstream>
 
 namespace toonwater {
 namespace {
 
 namespace fs = std::filesystem;
-
-void write_obj(const fs::path& path, const TriangleMesh& mesh) {
-  std::ostringstream obj;
-  obj.precision(17);
-  for (const Vec3& p : mesh.positions) obj << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-  for (const Triangle& t : mesh.triangles)
-    obj << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
-  test::write_text(path, obj.str());
-}
 
 TEST(MapsCli, AnalyzeWritesMapsAndPrintsTheirRanges) {
   test::ScratchDir dir;

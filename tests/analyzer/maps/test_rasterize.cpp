@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 namespace toonwater {
 namespace {
@@ -201,10 +202,17 @@ TEST(MapRasterize, ValuesBeyondFloatRangeAreClampedNotInfinite) {
   add_square(mesh, 1.0, 0.0);
   const MapView view{Axis::z, {-1, -1, 1, 1}, 8, 8, 0.25};
   const TopDownMap map = rasterize_top_down(mesh, constant_curvature(4, 1e300, -1e300), {}, {}, view);
+  constexpr float largest = std::numeric_limits<float>::max();
+  std::size_t covered = 0;
   for (std::size_t i = 0; i < map.alpha.size(); ++i) {
     ASSERT_TRUE(std::isfinite(map.gaussian[i]));
     ASSERT_TRUE(std::isfinite(map.mean[i]));
+    if (map.alpha[i] == 0) continue;
+    ++covered;
+    EXPECT_EQ(map.gaussian[i], largest);  // clamped to float's range, sign kept
+    EXPECT_EQ(map.mean[i], -largest);
   }
+  EXPECT_GT(covered, map.alpha.size() / 4);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // Two-pass sequence maps from files: one view and one colour range shared by every frame.
 #include "analyzer/analytic_surfaces.hpp"
+#include "analyzer/obj_writer.hpp"
 #include "analyzer/maps/sequence_maps.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "tests/analyzer/maps/map_test_util.hpp"
@@ -7,21 +8,11 @@
 
 #include <gtest/gtest.h>
 
-#include <sstream>
 
 namespace toonwater {
 namespace {
 
 namespace fs = std::filesystem;
-
-void write_obj(const fs::path& path, const TriangleMesh& mesh) {
-  std::ostringstream obj;
-  obj.precision(17);
-  for (const Vec3& p : mesh.positions) obj << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-  for (const Triangle& t : mesh.triangles)
-    obj << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
-  test::write_text(path, obj.str());
-}
 
 TEST(SequenceMaps, FramesShareViewAndRange) {
   test::ScratchDir dir;

@@ -1,5 +1,5 @@
 // Render quality presets, chosen by `[render] quality` and measured against a reference by
-// `toonwater report` (report/render_quality.hpp):
+// `toonwater report` (report/render_error_study.hpp):
 //
 //   preset    size              antialiasing
 //   draft     half width/height off

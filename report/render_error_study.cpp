@@ -1,6 +1,6 @@
-// Rendering error against run time; see render_quality.hpp. Presets reach POV-Ray as command-
+// Rendering error against run time; see render_error_study.hpp. Presets reach POV-Ray as command-
 // line options after scene.ini (+W +H +A/-A +R), which override the ini's values.
-#include "report/render_quality.hpp"
+#include "report/render_error_study.hpp"
 
 #include "report/image.hpp"
 

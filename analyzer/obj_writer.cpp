@@ -1,26 +1,27 @@
-#include "examples/sim/obj_writer.hpp"
+#include "analyzer/obj_writer.hpp"
 
 #include "analyzer/atomic_file.hpp"
 
 #include <charconv>
-#include <cmath>
 #include <stdexcept>
 
-namespace toonwater::sim {
+namespace toonwater {
 
 std::string obj_text(const TriangleMesh& mesh, std::string_view comment) {
   std::string out;
   out.reserve(64 * mesh.positions.size() + 32 * mesh.triangles.size() + comment.size() + 4);
-  out += "# ";
-  out += comment;
-  out += '\n';
+  if (!comment.empty()) {
+    out += "# ";
+    out += comment;
+    out += '\n';
+  }
   char buf[32];
   auto put_index = [&](std::int32_t index) {
     const auto r = std::to_chars(buf, buf + sizeof buf, index);
     out.append(buf, r.ptr);
   };
   auto put_coordinate = [&](double value) {
-    const auto r = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, 9);
+    const auto r = std::to_chars(buf, buf + sizeof buf, value);  // shortest round trip
     out.append(buf, r.ptr);
   };
   for (const Vec3& p : mesh.positions) {
@@ -48,4 +49,4 @@ void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh,
   write_file_atomically(path, obj_text(mesh, comment));
 }
 
-}  // namespace toonwater::sim
+}  // namespace toonwater

@@ -1,4 +1,4 @@
-#include "povgen/render_quality.hpp"
+#include "povgen/render_presets.hpp"
 
 namespace toonwater::povgen {
 
