@@ -77,7 +77,7 @@ PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* f
   } else {
     WeldedMesh welded = weld_coincident_vertices(std::move(input));
     const MeshTopology topology = analyze_topology(welded.mesh);
-    orient_consistently(welded.mesh, topology.vertex_faces);
+    orient_consistently(welded.mesh, topology);
     const std::vector<Vec3> normals = angle_weighted_normals(welded.mesh, topology.vertex_faces);
     out.mesh = make_scene_mesh(welded.mesh, normals, is_closed(topology), up);
   }
