@@ -70,11 +70,13 @@ struct Patches {
 
 Patches find_patches(const TriangleMesh& mesh, const std::vector<std::uint8_t>& upward) {
   DisjointSets sets(mesh.positions.size());
-  for (const Triangle& t : mesh.triangles)
-    for (int c = 0; c < 3; ++c) {
-      const std::int32_t a = t[c], b = t[(c + 1) % 3];
-      if (upward[a] && upward[b]) sets.join(a, b);
-    }
+  for (const Triangle& t : mesh.triangles) {
+    const bool up0 = upward[t[0]], up1 = upward[t[1]], up2 = upward[t[2]];
+    // With all three upward, two edges join the face; its third edge would add nothing.
+    if (up0 && up1) sets.join(t[0], t[1]);
+    if (up1 && up2) sets.join(t[1], t[2]);
+    if (up2 && up0 && !up1) sets.join(t[2], t[0]);
+  }
   Patches patches;
   patches.of_vertex.assign(mesh.positions.size(), -1);
   std::vector<std::int32_t> index_of_root(mesh.positions.size(), -1);
