@@ -57,7 +57,9 @@
 #include "analyzer/vertex_normals.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -97,6 +99,14 @@ double mollification_needed(double xa2, double xb2, double ab2) {
   return (mollification_slack * longest - slack) / (1.0 - mollification_slack);
 }
 
+// 2^-e for the binary exponent e of m ≥ 0, from its exponent bits alone (a few integer
+// operations, where std::ilogb and std::ldexp are calls), so that m · 2^-e lies in [1, 2). Kept
+// finite at the ends: subnormals take e = −1023, and m ≥ 2^1023, inf and NaN take e = 1022.
+double power_of_two_below(double m) {
+  const std::uint64_t biased = std::min<std::uint64_t>((std::bit_cast<std::uint64_t>(m) >> 52) & 0x7ff, 2045);
+  return std::bit_cast<double>((2046 - biased) << 52);
+}
+
 // Whether re + i·im lies in [π, 2π) (see gather_one_ring).
 bool in_lower_half(double re, double im) { return im < 0.0 || (im == 0.0 && re < 0.0); }
 
@@ -124,13 +134,15 @@ void add_laplacian_terms(OneRing& ring, double la, double lb, double lab, const 
   ring.laplacian -= cot_b * xa + cot_a * xb;
 }
 
-// The angle sum Σθ is accumulated as the argument of the product of the unit complex numbers
-// (cos θ + i sin θ) = (u·v + i|u×v|)/(|u||v|), counting the turns as the product enters the
+// The angle sum Σθ is accumulated as the argument of the product of the complex numbers
+// u·v + i|u×v| = |u||v| (cos θ + i sin θ), counting the turns as the product enters the
 // lower half-plane [π, 2π) — Im < 0, or Im = 0 with Re < 0, so that the exact angles of π/2 and π
 // of a grid and a collinear face, which leave Im at ±0, count too (each θ ≤ π, so a step can
 // cross π at most once). The deficit of a nearly flat vertex is then the small argument itself,
 // not the difference of two numbers near 2π, and it costs one atan2 per vertex instead of one
-// per corner.
+// per corner. The product is not normalised by |u||v| (a square root and a division per
+// corner) but brought back to a magnitude in [1, 2) after each step by a power of two, which is
+// exact: the argument is that of the unit product up to round-off.
 //
 // Without `intrinsic`, the Laplacian's cotangents come from the faces' positions; with it, from
 // its faces and lengths. Angles, normal and area always come from the mesh's own faces.
@@ -160,12 +172,12 @@ OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double 
     const double dot_b = xb.dot(ab);     // at b: between b→x and b→a
 
     // Written out: std::complex's operator* and abs guard against inf/NaN at several times the cost.
-    const double inverse_length = 1.0 / std::sqrt(xa2 * xb2);  // 1 / (|xa| |xb|)
-    const double c = dot_x * inverse_length, s = double_area * inverse_length;
-    const double next_re = turn_re * c - turn_im * s, next_im = turn_re * s + turn_im * c;
+    const double next_re = turn_re * dot_x - turn_im * double_area;
+    const double next_im = turn_re * double_area + turn_im * dot_x;
     turns += !in_lower_half(turn_re, turn_im) && in_lower_half(next_re, next_im);
-    turn_re = next_re;
-    turn_im = next_im;
+    const double normaliser = power_of_two_below(std::max(std::abs(next_re), std::abs(next_im)));
+    turn_re = next_re * normaliser;
+    turn_im = next_im * normaliser;
 
     const double longest2 = std::max({xa2, xb2, ab2});
     ring.normal += corner_normal_term(cross, double_area, dot_x, longest2);
