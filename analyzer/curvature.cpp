@@ -84,8 +84,14 @@ constexpr double normal_deviation_secant = 1.0154266118857451;  // 1 / cos(10°)
 
 // 2^-e with e the binary exponent of the largest |coordinate|: multiplying by it is exact.
 double power_of_two_scale(const std::vector<Vec3>& positions) {
-  double largest = 0.0;
-  for (const Vec3& p : positions) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  const std::size_t workers = worker_count(positions.size());
+  std::vector<double> largest_of(workers, 0.0);
+  parallel_chunks(positions.size(), workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
+    double largest = 0.0;
+    for (std::size_t v = begin; v < end; ++v) largest = std::max(largest, positions[v].cwiseAbs().maxCoeff());
+    largest_of[worker] = largest;
+  });
+  const double largest = *std::max_element(largest_of.begin(), largest_of.end());
   if (largest == 0.0 || !std::isfinite(largest)) return 1.0;
   return std::ldexp(1.0, -std::ilogb(largest));
 }
@@ -268,14 +274,23 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   const double scale = power_of_two_scale(mesh.positions);
   const double scale2 = scale * scale;
 
+  // The arrays are zero-filled as they are sized, and the filling (the first touch of every
+  // page) costs about as much as a tenth of the gather: half of them on each of two cores.
   CurvatureField field;
-  field.normal.resize(n);
-  field.area.resize(n);
-  field.gaussian.resize(n);
-  field.mean.resize(n);
-  field.k1.resize(n);
-  field.k2.resize(n);
-  field.status.resize(n);
+  parallel_chunks(2, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t half = begin; half < end; ++half) {
+      if (half == 0) {
+        field.normal.resize(n);
+        field.area.resize(n);
+        field.status.resize(n);
+      } else {
+        field.gaussian.resize(n);
+        field.mean.resize(n);
+        field.k1.resize(n);
+        field.k2.resize(n);
+      }
+    }
+  });
 
   // Each vertex gathers from its own faces (compressed rows, no halfedges), so the vertices
   // split over the cores with no shared writes. The first pass also finds the mollification
@@ -342,8 +357,9 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
     field.intrinsic_flips = intrinsic.flips;
     gather_all(&intrinsic);
   }
-  field.degenerate_faces = counts.shapeless;
-  for (const Triangle& t : mesh.triangles) field.degenerate_faces += has_repeated_corner(t);
+  // The rows hold three entries for each face without a repeated corner, and none for the others.
+  field.degenerate_faces =
+      counts.shapeless + mesh.triangles.size() - topology.vertex_faces.face_indices.size() / 3;
   field.mollified_faces = counts.mollified;
   field.mollification = counts.mollification / scale;
   field.cap_faces = counts.caps;
