@@ -29,7 +29,7 @@ Analysis analyze_mesh(TriangleMesh input, const AnalyzeOptions& options) {
 
   start = Clock::now();
   a.topology = analyze_topology(a.surface);
-  a.flipped_faces = orient_consistently(a.surface, a.topology.vertex_faces);
+  a.flipped_faces = orient_consistently(a.surface, a.topology);
   a.times.topology = seconds_since(start);
 
   start = Clock::now();

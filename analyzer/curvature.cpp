@@ -57,7 +57,9 @@
 #include "analyzer/vertex_normals.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -82,8 +84,14 @@ constexpr double normal_deviation_secant = 1.0154266118857451;  // 1 / cos(10°)
 
 // 2^-e with e the binary exponent of the largest |coordinate|: multiplying by it is exact.
 double power_of_two_scale(const std::vector<Vec3>& positions) {
-  double largest = 0.0;
-  for (const Vec3& p : positions) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  const std::size_t workers = worker_count(positions.size());
+  std::vector<double> largest_of(workers, 0.0);
+  parallel_chunks(positions.size(), workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
+    double largest = 0.0;
+    for (std::size_t v = begin; v < end; ++v) largest = std::max(largest, positions[v].cwiseAbs().maxCoeff());
+    largest_of[worker] = largest;
+  });
+  const double largest = *std::max_element(largest_of.begin(), largest_of.end());
   if (largest == 0.0 || !std::isfinite(largest)) return 1.0;
   return std::ldexp(1.0, -std::ilogb(largest));
 }
@@ -95,6 +103,14 @@ double mollification_needed(double xa2, double xb2, double ab2) {
   const double slack = la + lb + lab - 2.0 * longest;
   // slack + δ ≥ ε (longest + δ)
   return (mollification_slack * longest - slack) / (1.0 - mollification_slack);
+}
+
+// 2^-e for the binary exponent e of m ≥ 0, from its exponent bits alone (a few integer
+// operations, where std::ilogb and std::ldexp are calls), so that m · 2^-e lies in [1, 2). Kept
+// finite at the ends: subnormals take e = −1023, and m ≥ 2^1023, inf and NaN take e = 1022.
+double power_of_two_below(double m) {
+  const std::uint64_t biased = std::min<std::uint64_t>((std::bit_cast<std::uint64_t>(m) >> 52) & 0x7ff, 2045);
+  return std::bit_cast<double>((2046 - biased) << 52);
 }
 
 // Whether re + i·im lies in [π, 2π) (see gather_one_ring).
@@ -124,13 +140,15 @@ void add_laplacian_terms(OneRing& ring, double la, double lb, double lab, const 
   ring.laplacian -= cot_b * xa + cot_a * xb;
 }
 
-// The angle sum Σθ is accumulated as the argument of the product of the unit complex numbers
-// (cos θ + i sin θ) = (u·v + i|u×v|)/(|u||v|), counting the turns as the product enters the
+// The angle sum Σθ is accumulated as the argument of the product of the complex numbers
+// u·v + i|u×v| = |u||v| (cos θ + i sin θ), counting the turns as the product enters the
 // lower half-plane [π, 2π) — Im < 0, or Im = 0 with Re < 0, so that the exact angles of π/2 and π
 // of a grid and a collinear face, which leave Im at ±0, count too (each θ ≤ π, so a step can
 // cross π at most once). The deficit of a nearly flat vertex is then the small argument itself,
 // not the difference of two numbers near 2π, and it costs one atan2 per vertex instead of one
-// per corner.
+// per corner. The product is not normalised by |u||v| (a square root and a division per
+// corner) but brought back to a magnitude in [1, 2) after each step by a power of two, which is
+// exact: the argument is that of the unit product up to round-off.
 //
 // Without `intrinsic`, the Laplacian's cotangents come from the faces' positions; with it, from
 // its faces and lengths. Angles, normal and area always come from the mesh's own faces.
@@ -160,12 +178,12 @@ OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double 
     const double dot_b = xb.dot(ab);     // at b: between b→x and b→a
 
     // Written out: std::complex's operator* and abs guard against inf/NaN at several times the cost.
-    const double inverse_length = 1.0 / std::sqrt(xa2 * xb2);  // 1 / (|xa| |xb|)
-    const double c = dot_x * inverse_length, s = double_area * inverse_length;
-    const double next_re = turn_re * c - turn_im * s, next_im = turn_re * s + turn_im * c;
+    const double next_re = turn_re * dot_x - turn_im * double_area;
+    const double next_im = turn_re * double_area + turn_im * dot_x;
     turns += !in_lower_half(turn_re, turn_im) && in_lower_half(next_re, next_im);
-    turn_re = next_re;
-    turn_im = next_im;
+    const double normaliser = power_of_two_below(std::max(std::abs(next_re), std::abs(next_im)));
+    turn_re = next_re * normaliser;
+    turn_im = next_im * normaliser;
 
     const double longest2 = std::max({xa2, xb2, ab2});
     ring.normal += corner_normal_term(cross, double_area, dot_x, longest2);
@@ -256,14 +274,23 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   const double scale = power_of_two_scale(mesh.positions);
   const double scale2 = scale * scale;
 
+  // The arrays are zero-filled as they are sized, and the filling (the first touch of every
+  // page) costs about as much as a tenth of the gather: half of them on each of two cores.
   CurvatureField field;
-  field.normal.resize(n);
-  field.area.resize(n);
-  field.gaussian.resize(n);
-  field.mean.resize(n);
-  field.k1.resize(n);
-  field.k2.resize(n);
-  field.status.resize(n);
+  parallel_chunks(2, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t half = begin; half < end; ++half) {
+      if (half == 0) {
+        field.normal.resize(n);
+        field.area.resize(n);
+        field.status.resize(n);
+      } else {
+        field.gaussian.resize(n);
+        field.mean.resize(n);
+        field.k1.resize(n);
+        field.k2.resize(n);
+      }
+    }
+  });
 
   // Each vertex gathers from its own faces (compressed rows, no halfedges), so the vertices
   // split over the cores with no shared writes. The first pass also finds the mollification
@@ -330,8 +357,9 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
     field.intrinsic_flips = intrinsic.flips;
     gather_all(&intrinsic);
   }
-  field.degenerate_faces = counts.shapeless;
-  for (const Triangle& t : mesh.triangles) field.degenerate_faces += has_repeated_corner(t);
+  // The rows hold three entries for each face without a repeated corner, and none for the others.
+  field.degenerate_faces =
+      counts.shapeless + mesh.triangles.size() - topology.vertex_faces.face_indices.size() / 3;
   field.mollified_faces = counts.mollified;
   field.mollification = counts.mollification / scale;
   field.cap_faces = counts.caps;

@@ -16,9 +16,19 @@ void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_fac
                          std::vector<double>& values, int steps) {
   if (steps <= 0) return;
   const std::size_t n = values.size();
+  // Each vertex's two terms, zero off the members, side by side: a corner costs one 16-byte
+  // load and no branch (a vertex is read as a corner of all its faces' neighbours, 18 times).
+  struct Terms {
+    double weight, weighted;
+  };
+  std::vector<Terms> terms(n);
   std::vector<double> next(n);
   const std::size_t workers = worker_count(n);
   for (int step = 0; step < steps; ++step) {
+    parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v)
+        terms[v] = member[v] ? Terms{vertex_area[v], vertex_area[v] * values[v]} : Terms{0.0, 0.0};
+    });
     parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
         next[v] = values[v];
@@ -26,9 +36,8 @@ void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_fac
         double weight = 0.0, weighted = 0.0;
         for (std::int32_t f : vertex_faces.of(static_cast<std::int32_t>(v))) {
           for (std::int32_t c : mesh.triangles[f]) {
-            if (!member[c]) continue;
-            weight += vertex_area[c];
-            weighted += vertex_area[c] * values[c];
+            weight += terms[c].weight;
+            weighted += terms[c].weighted;
           }
         }
         if (weight > 0.0) next[v] = weighted / weight;

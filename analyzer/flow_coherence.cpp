@@ -49,6 +49,9 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
   }
   pending_ = FlowFrame{};
   pending_.edge_length = flow.median_edge_length;
+  pending_.positions.reserve(flow.free_surface_vertices);
+  pending_.field.reserve(flow.free_surface_vertices);
+  pending_.label.reserve(flow.free_surface_vertices);
   for (std::size_t v = 0; v < n; ++v) {
     if (!any_surface || !flow.free_surface[v]) continue;
     const std::int32_t p = predecessor_[v];

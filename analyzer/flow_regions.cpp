@@ -5,6 +5,7 @@
 #include "analyzer/disjoint_sets.hpp"
 #include "analyzer/flow_coherence.hpp"
 #include "analyzer/free_surface.hpp"
+#include "analyzer/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -78,19 +79,26 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   // The vertices in regions, numbered compactly: regions are a small part of the surface.
   std::vector<std::int32_t> member_index(n, -1);
   std::vector<std::int32_t> members;
-  for (std::size_t v = 0; v < n; ++v)
-    if (region_sign(field[v]) != FlowLabel::none) {
+  std::vector<std::int8_t> sign(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    sign[v] = region_sign(field[v]);
+    if (sign[v] != FlowLabel::none) {
       member_index[v] = static_cast<std::int32_t>(members.size());
       members.push_back(static_cast<std::int32_t>(v));
     }
-  // Regions: vertices of one sign joined along the edges between them.
+  }
+  // Regions: vertices of one sign joined along the edges between them. The signs are a byte a
+  // vertex, so the pass over the faces, most of which touch no region, stays in cache.
   DisjointSets sets(members.size());
-  for (const Triangle& t : mesh.triangles)
-    for (int c = 0; c < 3; ++c) {
-      const std::int32_t a = member_index[t[c]], b = member_index[t[(c + 1) % 3]];
-      if (a >= 0 && b >= 0 && region_sign(field[t[c]]) == region_sign(field[t[(c + 1) % 3]]))
-        sets.join(a, b);
-    }
+  for (const Triangle& t : mesh.triangles) {
+    const std::int8_t s0 = sign[t[0]], s1 = sign[t[1]], s2 = sign[t[2]];
+    if ((s0 | s1 | s2) == 0) continue;
+    // A face of one sign is joined by two of its edges; its third would add nothing.
+    if (s0 != FlowLabel::none && s0 == s1) sets.join(member_index[t[0]], member_index[t[1]]);
+    if (s1 != FlowLabel::none && s1 == s2) sets.join(member_index[t[1]], member_index[t[2]]);
+    if (s2 != FlowLabel::none && s2 == s0 && s0 != s1)
+      sets.join(member_index[t[2]], member_index[t[0]]);
+  }
   const std::size_t m = members.size();
   std::vector<double> region_area(m, 0.0), region_peak(m, 0.0), factor(m, 1.0);
   for (std::size_t i = 0; i < m; ++i) {
@@ -148,16 +156,20 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   // The vertices that carry the field: free surface, curvature defined, and not on the free
   // surface's border, where marching cubes rounds the water into a wall (a fillet one or two
   // cells wide, as curved as a crest but no flow line).
-  std::vector<std::uint8_t> member(n, 0);
-  double surface_area = 0.0;
-  for (std::size_t v = 0; v < n; ++v) {
-    if (!flow.free_surface[v] || curvature.status[v] == CurvatureStatus::undefined) continue;
-    surface_area += curvature.area[v];
-    bool inside = true;
-    for (std::int32_t f : vertex_faces.of(static_cast<std::int32_t>(v)))
-      for (std::int32_t w : mesh.triangles[f]) inside = inside && flow.free_surface[w];
-    member[v] = inside;
-  }
+  std::vector<std::uint8_t> member(n);
+  const std::size_t workers = worker_count(n);
+  parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      bool inside = flow.free_surface[v] && curvature.status[v] != CurvatureStatus::undefined;
+      for (std::int32_t f : vertex_faces.of(static_cast<std::int32_t>(v)))
+        for (std::int32_t w : mesh.triangles[f]) inside = inside && flow.free_surface[w];
+      member[v] = inside;
+    }
+  });
+  double surface_area = 0.0;  // summed in vertex order, so it does not depend on the core count
+  for (std::size_t v = 0; v < n; ++v)
+    if (flow.free_surface[v] && curvature.status[v] != CurvatureStatus::undefined)
+      surface_area += curvature.area[v];
   flow.scale_length = std::sqrt(surface_area);
   const double length = flow.scale_length;
   const FlowDefaults defaults = flow_defaults(options.criterion);
@@ -169,16 +181,18 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
 
   std::vector<double> field(n, 0.0);
   if (flow.threshold > 0.0 && std::isfinite(flow.threshold)) {
-    for (std::size_t v = 0; v < n; ++v) {
-      if (!member[v]) continue;
-      const double mean = curvature.mean[v];
-      const double s = options.criterion == FlowCriterion::mean
-                           ? mean / flow.threshold
-                           : std::copysign(std::abs(curvature.gaussian[v]), mean) / flow.threshold;
-      // Only H = 0 exactly (or −0) gives the paper's field the sign of zero: it is not a region.
-      field[v] = options.criterion == FlowCriterion::paper && mean == 0.0 ? 0.0 : s;
-      if (!std::isfinite(field[v])) field[v] = 0.0;
-    }
+    parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) {
+        if (!member[v]) continue;
+        const double mean = curvature.mean[v];
+        const double s = options.criterion == FlowCriterion::mean
+                             ? mean / flow.threshold
+                             : std::copysign(std::abs(curvature.gaussian[v]), mean) / flow.threshold;
+        // Only H = 0 exactly (or −0) gives the paper's field the sign of zero: it is not a region.
+        field[v] = options.criterion == FlowCriterion::paper && mean == 0.0 ? 0.0 : s;
+        if (!std::isfinite(field[v])) field[v] = 0.0;
+      }
+    });
     smooth_vertex_field(mesh, vertex_faces, curvature.area, member, field,
                         options.smoothing_steps.value_or(defaults.smoothing_steps));
   }

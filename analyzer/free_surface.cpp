@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <span>
 
 namespace toonwater {
 namespace {
@@ -51,14 +53,13 @@ std::vector<std::uint8_t> upward_vertices(const TriangleMesh& mesh, const Vertex
 }
 
 // Median of at most 100k values sampled evenly from `values` (which it reorders).
-double sampled_median(std::vector<double>& values) {
+double sampled_median(std::span<double> values) {
   if (values.empty()) return 0.0;
   const std::size_t stride = std::max<std::size_t>(1, values.size() / 100000);
   std::size_t kept = 0;
   for (std::size_t i = 0; i < values.size(); i += stride) values[kept++] = values[i];
-  values.resize(kept);
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(kept / 2);
-  std::nth_element(values.begin(), middle, values.end());
+  std::nth_element(values.begin(), middle, values.begin() + static_cast<std::ptrdiff_t>(kept));
   return *middle;
 }
 
@@ -70,11 +71,13 @@ struct Patches {
 
 Patches find_patches(const TriangleMesh& mesh, const std::vector<std::uint8_t>& upward) {
   DisjointSets sets(mesh.positions.size());
-  for (const Triangle& t : mesh.triangles)
-    for (int c = 0; c < 3; ++c) {
-      const std::int32_t a = t[c], b = t[(c + 1) % 3];
-      if (upward[a] && upward[b]) sets.join(a, b);
-    }
+  for (const Triangle& t : mesh.triangles) {
+    const bool up0 = upward[t[0]], up1 = upward[t[1]], up2 = upward[t[2]];
+    // With all three upward, two edges join the face; its third edge would add nothing.
+    if (up0 && up1) sets.join(t[0], t[1]);
+    if (up1 && up2) sets.join(t[1], t[2]);
+    if (up2 && up0 && !up1) sets.join(t[2], t[0]);
+  }
   Patches patches;
   patches.of_vertex.assign(mesh.positions.size(), -1);
   std::vector<std::int32_t> index_of_root(mesh.positions.size(), -1);
@@ -96,17 +99,24 @@ FreeSurface select_free_surface(const TriangleMesh& mesh, const VertexFaces& ver
   surface.selected = upward_vertices(mesh, vertex_faces, up, options.min_up_component);
   const Patches patches = find_patches(mesh, surface.selected);
 
-  std::vector<std::vector<double>> heights(patches.count);
+  // The heights patch by patch in one array (a counting sort, in vertex order within a patch).
+  std::vector<std::size_t> patch_begin(patches.count + 1, 0);
+  for (std::int32_t p : patches.of_vertex)
+    if (p >= 0) ++patch_begin[p + 1];
+  std::vector<std::size_t> patch_size(patches.count);
+  for (std::size_t p = 0; p < patches.count; ++p) patch_size[p] = patch_begin[p + 1];
+  std::partial_sum(patch_begin.begin(), patch_begin.end(), patch_begin.begin());
+  std::vector<double> heights(patch_begin.back());
+  std::vector<std::size_t> fill(patch_begin.begin(), patch_begin.end() - 1);
   for (std::size_t v = 0; v < mesh.positions.size(); ++v)
-    if (patches.of_vertex[v] >= 0) heights[patches.of_vertex[v]].push_back(mesh.positions[v][up]);
+    if (patches.of_vertex[v] >= 0) heights[fill[patches.of_vertex[v]]++] = mesh.positions[v][up];
   std::size_t largest = 0;
   for (std::size_t p = 1; p < patches.count; ++p)
-    if (heights[p].size() > heights[largest].size()) largest = p;
-  std::vector<std::size_t> patch_size(patches.count);
-  for (std::size_t p = 0; p < patches.count; ++p) patch_size[p] = heights[p].size();
+    if (patch_size[p] > patch_size[largest]) largest = p;
 
   std::vector<double> median(patches.count);
-  for (std::size_t p = 0; p < patches.count; ++p) median[p] = sampled_median(heights[p]);
+  for (std::size_t p = 0; p < patches.count; ++p)
+    median[p] = sampled_median(std::span(heights).subspan(patch_begin[p], patch_size[p]));
   surface.rest_height =
       options.rest_height.value_or(patches.count > 0 ? median[largest] : 0.0);
 

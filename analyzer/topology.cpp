@@ -6,6 +6,7 @@
 // mesh size (valences are small) and needs no halfedge structure.
 #include "analyzer/topology.hpp"
 
+#include "analyzer/disjoint_sets.hpp"
 #include "analyzer/parallel.hpp"
 
 #include <algorithm>
@@ -45,6 +46,7 @@ std::pair<std::int32_t, std::int32_t> other_corners(const Triangle& t, std::int3
 struct RingNeighbour {
   std::int32_t vertex;
   std::int32_t face_count;  // faces around the centre that contain the edge centre–vertex
+  std::int32_t outgoing;    // of those, the faces whose winding runs centre → vertex
   std::int32_t root;        // union-find over the ring, to test that it is one cycle
 };
 
@@ -56,7 +58,7 @@ std::int32_t find_root(std::vector<RingNeighbour>& ring, std::int32_t i) {
 std::int32_t ring_slot(std::vector<RingNeighbour>& ring, std::int32_t vertex) {
   for (std::size_t i = 0; i < ring.size(); ++i)
     if (ring[i].vertex == vertex) return static_cast<std::int32_t>(i);
-  ring.push_back({vertex, 0, static_cast<std::int32_t>(ring.size())});
+  ring.push_back({vertex, 0, 0, static_cast<std::int32_t>(ring.size())});
   return static_cast<std::int32_t>(ring.size() - 1);
 }
 
@@ -64,26 +66,30 @@ struct VertexEdges {
   VertexKind kind;
   std::size_t boundary_edges;     // edges from this vertex with one face
   std::size_t nonmanifold_edges;  // edges from this vertex with three or more faces
+  std::size_t misoriented_edges;  // edges from it with two faces that wind them the same way
 };
 
 VertexEdges classify_vertex(const TriangleMesh& mesh, const VertexFaces& vf, std::int32_t v,
                             std::vector<RingNeighbour>& ring) {
   const auto faces = vf.of(v);
-  if (faces.empty()) return {VertexKind::isolated, 0, 0};
+  if (faces.empty()) return {VertexKind::isolated, 0, 0, 0};
   ring.clear();
   for (std::int32_t f : faces) {
+    // The face winds v → a → b → v: the edge to a leaves v, the edge to b enters it.
     const auto [a, b] = other_corners(mesh.triangles[f], v);
     const std::int32_t sa = ring_slot(ring, a);
     const std::int32_t sb = ring_slot(ring, b);
     ++ring[sa].face_count;
+    ++ring[sa].outgoing;
     ++ring[sb].face_count;
     ring[find_root(ring, sa)].root = find_root(ring, sb);
   }
-  VertexEdges result{VertexKind::interior, 0, 0};
+  VertexEdges result{VertexKind::interior, 0, 0, 0};
   std::int32_t roots = 0;
   for (std::size_t i = 0; i < ring.size(); ++i) {
     if (ring[i].face_count == 1) ++result.boundary_edges;
     if (ring[i].face_count >= 3) ++result.nonmanifold_edges;
+    if (ring[i].face_count == 2 && ring[i].outgoing != 1) ++result.misoriented_edges;
     if (find_root(ring, static_cast<std::int32_t>(i)) == static_cast<std::int32_t>(i)) ++roots;
   }
   if (result.nonmanifold_edges > 0 || roots > 1 || result.boundary_edges > 2)
@@ -93,23 +99,18 @@ VertexEdges classify_vertex(const TriangleMesh& mesh, const VertexFaces& vf, std
   return result;
 }
 
-std::size_t count_components(const TriangleMesh& mesh) {
-  std::vector<std::int32_t> parent(mesh.positions.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](std::int32_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  std::vector<bool> used(mesh.positions.size(), false);
+// Vertices in a face, joined along the faces' edges; `kind` tells the used (non-isolated) ones.
+std::size_t count_components(const TriangleMesh& mesh, const std::vector<VertexKind>& kind) {
+  DisjointSets sets(mesh.positions.size());
   for (const Triangle& t : mesh.triangles) {
     if (has_repeated_corner(t)) continue;
-    for (std::int32_t v : t) used[v] = true;
-    parent[root(t[0])] = root(t[1]);
-    parent[root(t[1])] = root(t[2]);
+    sets.join(t[0], t[1]);
+    sets.join(t[1], t[2]);
   }
   std::size_t components = 0;
-  for (std::size_t v = 0; v < parent.size(); ++v)
-    if (used[v] && root(static_cast<std::int32_t>(v)) == static_cast<std::int32_t>(v)) ++components;
+  for (std::size_t v = 0; v < kind.size(); ++v)
+    components += kind[v] != VertexKind::isolated &&
+                  sets.root(static_cast<std::int32_t>(v)) == static_cast<std::int32_t>(v);
   return components;
 }
 
@@ -122,7 +123,7 @@ MeshTopology analyze_topology(const TriangleMesh& mesh) {
   topo.kind.resize(n);
 
   struct Counts {
-    std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0;
+    std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0, misoriented_edge_ends = 0;
     std::size_t boundary = 0, nonmanifold = 0, isolated = 0;
   };
   const std::size_t workers = worker_count(n);
@@ -136,22 +137,25 @@ MeshTopology analyze_topology(const TriangleMesh& mesh) {
       topo.kind[v] = e.kind;
       c.boundary_edge_ends += e.boundary_edges;
       c.nonmanifold_edge_ends += e.nonmanifold_edges;
+      c.misoriented_edge_ends += e.misoriented_edges;
       c.boundary += e.kind == VertexKind::boundary;
       c.nonmanifold += e.kind == VertexKind::nonmanifold;
       c.isolated += e.kind == VertexKind::isolated;
     }
   });
-  std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0;
+  std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0, misoriented_edge_ends = 0;
   for (const Counts& c : counts) {
     boundary_edge_ends += c.boundary_edge_ends;
     nonmanifold_edge_ends += c.nonmanifold_edge_ends;
+    misoriented_edge_ends += c.misoriented_edge_ends;
     topo.boundary_vertices += c.boundary;
     topo.nonmanifold_vertices += c.nonmanifold;
     topo.isolated_vertices += c.isolated;
   }
   topo.boundary_edges = boundary_edge_ends / 2;  // each edge was seen from both of its ends
   topo.nonmanifold_edges = nonmanifold_edge_ends / 2;
-  topo.components = count_components(mesh);
+  topo.misoriented_edges = misoriented_edge_ends / 2;
+  topo.components = count_components(mesh, topo.kind);
   return topo;
 }
 
@@ -179,7 +183,9 @@ std::int32_t manifold_neighbour(const TriangleMesh& mesh, const VertexFaces& vf,
 
 }  // namespace
 
-std::size_t orient_consistently(TriangleMesh& mesh, const VertexFaces& vf) {
+std::size_t orient_consistently(TriangleMesh& mesh, const MeshTopology& topology) {
+  if (topology.misoriented_edges == 0) return 0;  // every neighbour agrees: nothing would flip
+  const VertexFaces& vf = topology.vertex_faces;
   const std::size_t face_count = mesh.triangles.size();
   constexpr std::int8_t unvisited = -1;
   std::vector<std::int8_t> flip(face_count, unvisited);

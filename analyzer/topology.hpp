@@ -37,6 +37,8 @@ struct MeshTopology {
   std::size_t isolated_vertices = 0;
   std::size_t boundary_edges = 0;
   std::size_t nonmanifold_edges = 0;
+  // Two-face edges whose faces both wind them the same way (as read, before orient_consistently).
+  std::size_t misoriented_edges = 0;
   std::size_t components = 0;  // connected components (faces sharing a vertex)
 };
 
@@ -50,7 +52,9 @@ MeshTopology analyze_topology(const TriangleMesh& mesh);
 // Flips faces so that neighbours across every two-face edge agree, component by component. Each
 // component keeps the orientation held by the larger share of its faces (by count), so the
 // normals point to the side the file's winding mostly points to. Returns the number of faces
-// flipped: the faces whose winding disagreed with their neighbours'.
-std::size_t orient_consistently(TriangleMesh& mesh, const VertexFaces& vertex_faces);
+// flipped: the faces whose winding disagreed with their neighbours'. A mesh with no misoriented
+// edge (`topology` is analyze_topology's of `mesh`) is consistent already and is left untouched
+// without a search.
+std::size_t orient_consistently(TriangleMesh& mesh, const MeshTopology& topology);
 
 }  // namespace toonwater

@@ -36,7 +36,8 @@ inline double approximate_angle(double y, double x) {
 // normal.
 inline Vec3 corner_normal_term(const Vec3& cross, double double_area, double dot, double longest2) {
   if (!(double_area > degenerate_area_ratio * longest2)) return Vec3::Zero();
-  return approximate_angle(double_area, dot) / double_area * cross;
+  // Times the reciprocal, which the curvature gather needs as well and computes once.
+  return approximate_angle(double_area, dot) * (1.0 / double_area) * cross;
 }
 
 inline Vec3 corner_normal_term(const Vec3& xa, const Vec3& xb) {

@@ -6,7 +6,9 @@
 //   FlowRegions      find_flow_regions: the flow field, its smoothing, fading and labels
 //   FlowWithCoherence  the same blended with a previous frame (flow_coherence.hpp): the whole
 //                    flow stage of a sequence frame in povgen
-//   CurvatureAndLabels  the two together — the figure the targets are stated for
+//   CurvatureAndLabels  compute_curvature and FlowRegions together
+//   CurvatureAndFlowStage  compute_curvature and FlowWithCoherence together: the figure the
+//                    targets are stated for
 //   AnalyzeCommand   `toonwater analyze MESH --csv FILE` end to end as a child process, with
 //                    its peak resident memory per vertex (counter bytes_per_vertex)
 #include "analyzer/analysis.hpp"
@@ -71,7 +73,7 @@ void Prepare(benchmark::State& state) {
   for (auto _ : state) {
     WeldedMesh welded = weld_coincident_vertices(input);
     MeshTopology topology = analyze_topology(welded.mesh);
-    benchmark::DoNotOptimize(orient_consistently(welded.mesh, topology.vertex_faces));
+    benchmark::DoNotOptimize(orient_consistently(welded.mesh, topology));
   }
   set_vertex_rate(state, input.positions.size());
 }
@@ -129,6 +131,19 @@ void CurvatureAndLabels(benchmark::State& state) {
   set_vertex_rate(state, p.mesh.positions.size());
 }
 
+void CurvatureAndFlowStage(benchmark::State& state) {
+  const Prepared p = prepared(state.range(0));
+  FlowCoherence coherence;
+  find_flow_regions(p.mesh, p.topology.vertex_faces, compute_curvature(p.mesh, p.topology),
+                    wave_flow_options(), &coherence);
+  for (auto _ : state) {
+    const CurvatureField field = compute_curvature(p.mesh, p.topology);
+    benchmark::DoNotOptimize(find_flow_regions(p.mesh, p.topology.vertex_faces, field,
+                                               wave_flow_options(), &coherence));
+  }
+  set_vertex_rate(state, p.mesh.positions.size());
+}
+
 void AnalyzeCommand(benchmark::State& state) {
   const fs::path mesh = obj_file(state.range(0));
   const fs::path csv = fs::temp_directory_path() / "toonwater-bench-analyze.csv";
@@ -163,6 +178,7 @@ BENCHMARK(Curvature)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(FlowRegions)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(FlowWithCoherence)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(CurvatureAndLabels)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(CurvatureAndFlowStage)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(AnalyzeCommand)->Arg(1000)->UseManualTime()->Iterations(3)->Unit(benchmark::kMillisecond);
 
 }  // namespace

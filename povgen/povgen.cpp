@@ -41,7 +41,7 @@ Analysis geometry_analysis(TriangleMesh input) {
   WeldedMesh welded = weld_coincident_vertices(std::move(input));
   a.surface = std::move(welded.mesh);
   a.topology = analyze_topology(a.surface);
-  a.flipped_faces = orient_consistently(a.surface, a.topology.vertex_faces);
+  a.flipped_faces = orient_consistently(a.surface, a.topology);
   return a;
 }
 

@@ -24,7 +24,7 @@ struct Curvature {
 inline Curvature curvature_of(TriangleMesh mesh, Estimator estimator = Estimator::one_ring) {
   Curvature c;
   c.topology = analyze_topology(mesh);
-  c.flipped = orient_consistently(mesh, c.topology.vertex_faces);
+  c.flipped = orient_consistently(mesh, c.topology);
   c.field = estimator == Estimator::one_ring ? compute_curvature(mesh, c.topology)
                                              : compute_curvature_jet(mesh, c.topology);
   c.mesh = std::move(mesh);

@@ -548,5 +548,23 @@ TEST(CurvatureStiffCases, InconsistentWindingIsRepairedAndCounted) {
   }
 }
 
+// The classification counts the two-face edges whose faces wind them alike, and the orientation
+// search runs only where there are some: a consistent mesh has none, and reversing a single face
+// of a closed one makes its three edges misoriented.
+TEST(CurvatureStiffCases, MisorientedEdgesAreCountedAndOnlyTheyStartTheSearch) {
+  AnalyticSurface s = make_icosphere(3);
+  EXPECT_EQ(analyze_topology(s.mesh).misoriented_edges, 0u);
+  const std::vector<Triangle> consistent = s.mesh.triangles;
+  EXPECT_EQ(orient_consistently(s.mesh, analyze_topology(s.mesh)), 0u);
+  EXPECT_EQ(s.mesh.triangles, consistent);
+
+  std::swap(s.mesh.triangles[10][1], s.mesh.triangles[10][2]);
+  const MeshTopology topology = analyze_topology(s.mesh);
+  EXPECT_EQ(topology.misoriented_edges, 3u);
+  EXPECT_EQ(orient_consistently(s.mesh, topology), 1u);
+  EXPECT_EQ(s.mesh.triangles, consistent);
+  EXPECT_EQ(analyze_topology(s.mesh).misoriented_edges, 0u);
+}
+
 }  // namespace
 }  // namespace toonwater::test

@@ -145,7 +145,7 @@ TEST(Topology, OrientationFixingRestoresTheMajorityWinding) {
   const std::vector<std::size_t> flipped_faces = {0, 7, 42, 100, 251};
   for (std::size_t f : flipped_faces) std::swap(mesh.triangles[f][1], mesh.triangles[f][2]);
   ASSERT_FALSE(consistently_oriented(mesh));
-  EXPECT_EQ(orient_consistently(mesh, analyze_topology(mesh).vertex_faces), flipped_faces.size());
+  EXPECT_EQ(orient_consistently(mesh, analyze_topology(mesh)), flipped_faces.size());
   EXPECT_EQ(mesh.triangles, sphere.triangles);  // the five faces turned back, outward again
 
   // Most faces turned inward: the inward winding is kept and the five outward ones follow it.
@@ -153,7 +153,7 @@ TEST(Topology, OrientationFixingRestoresTheMajorityWinding) {
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
     if (std::find(flipped_faces.begin(), flipped_faces.end(), f) == flipped_faces.end())
       std::swap(mesh.triangles[f][1], mesh.triangles[f][2]);
-  EXPECT_EQ(orient_consistently(mesh, analyze_topology(mesh).vertex_faces), flipped_faces.size());
+  EXPECT_EQ(orient_consistently(mesh, analyze_topology(mesh)), flipped_faces.size());
   EXPECT_TRUE(consistently_oriented(mesh));
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
     EXPECT_EQ(mesh.triangles[f][1], sphere.triangles[f][2]) << "face " << f << " not inward";
@@ -162,9 +162,9 @@ TEST(Topology, OrientationFixingRestoresTheMajorityWinding) {
   TriangleMesh two = joined(sphere, sphere, Vec3(4, 0, 0));
   std::swap(two.triangles.back()[1], two.triangles.back()[2]);
   const TriangleMesh expected = joined(sphere, sphere, Vec3(4, 0, 0));
-  EXPECT_EQ(orient_consistently(two, analyze_topology(two).vertex_faces), 1u);
+  EXPECT_EQ(orient_consistently(two, analyze_topology(two)), 1u);
   EXPECT_EQ(two.triangles, expected.triangles);
-  EXPECT_EQ(orient_consistently(two, analyze_topology(two).vertex_faces), 0u);
+  EXPECT_EQ(orient_consistently(two, analyze_topology(two)), 0u);
 }
 
 }  // namespace
