@@ -11,9 +11,9 @@
 #include "povgen/scene_directory.hpp"
 #include "povgen/scene_writer.hpp"
 #include "povgen/sequence.hpp"
+#include "povgen/shell_culling.hpp"
 #include "povgen/simplify.hpp"
 #include "povgen/stroke_writer.hpp"
-#include "povgen/axes.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -237,7 +237,26 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   struct Box {
     Vec3 min = Vec3::Zero(), max = Vec3::Zero();
   };
+  // The shell faces written (shell_culling.hpp): empty for all of them (then the shell stays
+  // closed), else a mark per face. `keep`: the faces the shell is limited to anyway.
+  // `may_cull`: nothing beyond shell_culling.hpp's rule forbids culling this shell.
+  auto kept_shell_faces = [&](const SceneMesh& mesh, std::span<const double> offsets,
+                              bool no_reflection, bool may_cull,
+                              std::span<const KeepOutBox> keep_out, const std::vector<bool>* keep) {
+    std::vector<bool> kept;
+    if (offsets.empty()) return kept;
+    report.shell_faces += mesh.triangles.size();
+    if (request.cull_shells && may_cull && shell_met_by_camera_rays_only(config, no_reflection))
+      kept = shell_faces_seen_from_behind(mesh, offsets, layout.camera.location, keep_out, keep);
+    else if (keep)
+      kept = *keep;
+    report.shell_faces_kept +=
+        kept.empty() ? mesh.triangles.size()
+                     : static_cast<std::size_t>(std::count(kept.begin(), kept.end(), true));
+    return kept;
+  };
   std::vector<Box> object_box(objects.size());
+  std::vector<KeepOutBox> keep_out(objects.size());
   std::vector<bool> submerged(objects.size(), false);
   auto write_object = [&](std::size_t i, const fs::path& path, long frame) {
     const ObjectConfig& oc = *objects[i].placement.config;
@@ -251,10 +270,18 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
         config.outline.enabled && oc.outline
             ? shell_offsets(config.outline, s.mesh, layout.camera, config.render.width)
             : std::vector<double>{};
-    std::string text = mesh_include(s, "Obj_" + oc.name, light, offsets);
+    // An object's shell is kept whole: it is small next to the water's, and the water and other
+    // objects come near it (shell_culling.hpp).
+    const std::vector<bool> shell_faces =
+        kept_shell_faces(s.mesh, offsets, false, /*may_cull=*/false, {}, nullptr);
+    std::string text = mesh_include(s, "Obj_" + oc.name, light, offsets, nullptr,
+                                    shell_faces.empty() ? nullptr : &shell_faces);
     report.write_seconds += seconds_since(start);
     write(object_include_name(oc.name, objects[i].placement.animated, frame), text);
+    // The object with its shell: the water's shell faces keep away from it to be dropped.
+    const double grow = offsets.empty() ? 0.0 : *std::max_element(offsets.begin(), offsets.end());
     object_box[i] = {s.mesh.min, s.mesh.max};
+    keep_out[i] = {s.mesh.min.array() - grow, s.mesh.max.array() + grow};
   };
   // Per frame, each outlined object's water line (see ObjectPlacement) when the water refracts.
   const bool refracts = shading == WaterShading::toon && config.water.transmit > 0;
@@ -383,9 +410,14 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
       for (std::size_t f = 0; f < upward.size(); ++f) textures->index[f] = upward[f] ? 0 : 1;
     }
     const bool free_surface_shell = see_through_volume && config.water.body == WaterBody::clear;
+    // The water's shell is no_reflection whenever the water reflects (scene_writer.cpp).
+    // Flow lines are strokes on the water, reaching up towards its shell.
+    const std::vector<bool> shell_faces =
+        kept_shell_faces(s.mesh, offsets, /*no_reflection=*/true, s.flow_lines.empty(), keep_out,
+                         free_surface_shell ? &upward : nullptr);
     const std::string text =
         mesh_include(s, "Water", light, offsets, textures ? &*textures : nullptr,
-                     free_surface_shell ? &upward : nullptr) +
+                     shell_faces.empty() ? nullptr : &shell_faces) +
         water_lines(&s.mesh);
     report.write_seconds += seconds_since(start);
     write(water_include_name(written_frame), text);
