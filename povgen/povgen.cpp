@@ -250,9 +250,9 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
       kept = shell_faces_seen_from_behind(mesh, offsets, layout.camera.location, keep_out, keep);
     else if (keep)
       kept = *keep;
-    report.shell_faces_kept +=
-        kept.empty() ? mesh.triangles.size()
-                     : static_cast<std::size_t>(std::count(kept.begin(), kept.end(), true));
+    const auto count = static_cast<std::size_t>(std::count(kept.begin(), kept.end(), true));
+    if (!keep && count == kept.size()) kept.clear();  // every face: the shell stays closed
+    report.shell_faces_kept += kept.empty() ? mesh.triangles.size() : count;
     return kept;
   };
   std::vector<Box> object_box(objects.size());

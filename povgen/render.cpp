@@ -302,7 +302,7 @@ class RunReport {
 }  // namespace
 
 int default_render_processes() {
-  return 2 * static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return 4 * static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 std::vector<std::vector<long>> split_into_ranges(const std::vector<long>& frames, int processes) {
