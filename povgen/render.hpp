@@ -3,9 +3,10 @@
 // the directory). One process per frame would pay POV-Ray's start-up every frame, about 0.7 s
 // of mostly idle wall time; and POV-Ray parses on one thread, which is most of a big frame's
 // time. So the frames are split into as many ranges as processes, four processes a core by
-// default (on the demo's frames POV-Ray is busy about 0.56 s of each frame's 1.3 s with one
-// thread, so two processes a core are just enough; four keep cores busy on lighter frames too),
-// each with an equal share of the cores' threads (+WTn, at least 1).
+// default (POV-Ray's front end also idles about 0.25 s per frame within a range: on the demo's
+// frames, 0.56 s of CPU each, a one-thread process is busy about 0.56 s of every 0.8 s, and four
+// a core keep the cores busy on lighter frames too), each with an equal share of the cores'
+// threads (+WTn, at least 1).
 // A frame fails when POV-Ray exits non-zero (whatever its log says), is killed, or writes no
 // image or an empty one; the failure gives the reason and POV-Ray's own error lines. Each
 // process renders into a hidden temporary directory in DIR, and a frame's image is renamed into
