@@ -13,7 +13,6 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 namespace toonwater::cli {
 namespace {
@@ -30,8 +29,7 @@ struct RenderArgs {
 void run_render(const RenderArgs& args) {
   povgen::RenderRequest request;
   request.scene_dir = args.dir;
-  request.jobs = args.jobs > 0 ? args.jobs
-                               : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  request.jobs = args.jobs > 0 ? args.jobs : povgen::default_render_processes();
   if (!args.frames.empty()) request.frames = povgen::parse_frame_range(args.frames, "--frames");
   // The POV-Ray executable: TOONWATER_POVRAY when set (a path or a name on PATH), else povray.
   if (const char* povray = std::getenv("TOONWATER_POVRAY"); povray && *povray)
@@ -67,7 +65,7 @@ void add_render_command(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a povgen scene directory with POV-Ray");
   cmd->add_option("dir", args->dir, "Scene directory written by toonwater povgen")->required();
-  cmd->add_option("--jobs", args->jobs, "Frames rendered at the same time (default: cores)")
+  cmd->add_option("--jobs", args->jobs, "POV-Ray processes at the same time, each over a range of frames (default: four a core)")
       ->check(PositiveNumber);
   cmd->add_option("--frames", args->frames, "Frame range A-B (default: all)");
   auto farm = std::make_shared<FarmArgs>();

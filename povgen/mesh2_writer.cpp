@@ -129,7 +129,7 @@ bool agrees_with_normals(const SceneMesh& mesh, const Triangle& t, Vec3* face_no
 void append(std::string& out, std::string_view identifier, const SceneMesh& mesh,
             std::span<const TextureCoordinate> uv, std::span<const double> offsets,
             std::span<const Triangle> triangles, bool closed, bool normals,
-            const FaceTextures* textures) {
+            const FaceTextures* textures, int decimals) {
   const std::size_t n = mesh.positions.size();
   if (!offsets.empty() && offsets.size() != n)
     throw std::logic_error("mesh2 writer: one offset per vertex expected");
@@ -139,9 +139,6 @@ void append(std::string& out, std::string_view identifier, const SceneMesh& mesh
   out += "#declare ";
   out += identifier;
   out += " = mesh2 {\n";
-  const double largest_offset =
-      offsets.empty() ? 0.0 : *std::max_element(offsets.begin(), offsets.end());
-  const int decimals = position_decimals(mesh, largest_offset);
   block(out, "vertex_vectors", n, 32, [&](Writer& w, std::size_t i) {
     w.vector(offsets.empty() ? mesh.positions[i] : Vec3(mesh.positions[i] + offsets[i] * mesh.normals[i]),
              decimals);
@@ -187,7 +184,8 @@ void append(std::string& out, std::string_view identifier, const SceneMesh& mesh
 
 void append_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
                   std::span<const TextureCoordinate> uv, const FaceTextures* textures) {
-  append(out, identifier, mesh, uv, {}, mesh.triangles, mesh.closed, /*normals=*/true, textures);
+  append(out, identifier, mesh, uv, {}, mesh.triangles, mesh.closed, /*normals=*/true, textures,
+         position_decimals(mesh, 0.0));
 }
 
 std::vector<bool> upward_faces(const SceneMesh& mesh) {
@@ -200,20 +198,59 @@ std::vector<bool> upward_faces(const SceneMesh& mesh) {
   return up;
 }
 
+Triangle shell_winding(const SceneMesh& mesh, const Triangle& t) {
+  return agrees_with_normals(mesh, t, nullptr) ? t : Triangle{t[0], t[2], t[1]};
+}
+
 void append_shell_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
                         std::span<const double> offsets, const std::vector<bool>* keep) {
+  if (offsets.size() != mesh.positions.size())
+    throw std::logic_error("mesh2 writer: one offset per vertex expected");
+  // The precision of the whole shell, also when only some faces are written: the positions
+  // POV-Ray reads do not depend on which faces are left out.
+  const int decimals = position_decimals(
+      mesh, offsets.empty() ? 0.0 : *std::max_element(offsets.begin(), offsets.end()));
   // The shell is drawn flat, so it needs no normals; without them POV-Ray takes (a−b)×(c−b) of
   // face <a,b,c> as the outward side. Each face is wound to agree with its vertex normals,
   // which also drops a third of the shell's text and parse time.
-  std::vector<Triangle> oriented;
-  oriented.reserve(mesh.triangles.size());
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-    const Triangle& t = mesh.triangles[f];
-    if (keep && !(*keep)[f]) continue;
-    oriented.push_back(agrees_with_normals(mesh, t, nullptr) ? t : Triangle{t[0], t[2], t[1]});
+  if (!keep) {
+    std::vector<Triangle> oriented;
+    oriented.reserve(mesh.triangles.size());
+    for (const Triangle& t : mesh.triangles) oriented.push_back(shell_winding(mesh, t));
+    append(out, identifier, mesh, {}, offsets, oriented, mesh.closed, /*normals=*/false, nullptr,
+           decimals);
+    return;
   }
-  append(out, identifier, mesh, {}, offsets, oriented, mesh.closed && !keep, /*normals=*/false,
-         nullptr);
+  // Only the marked faces, and only the vertices they use (vertices are a fifth of a shell's
+  // parse time), renumbered in their order.
+  SceneMesh part;
+  part.min = mesh.min;
+  part.max = mesh.max;
+  std::vector<double> part_offsets;
+  std::vector<int> index(mesh.positions.size(), -1);
+  std::vector<Triangle> oriented;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    if (!(*keep)[f]) continue;
+    Triangle t = shell_winding(mesh, mesh.triangles[f]);
+    for (int& v : t) {
+      if (index[v] < 0) {
+        index[v] = static_cast<int>(part.positions.size());
+        part.positions.push_back(mesh.positions[v]);
+        part.normals.push_back(mesh.normals[v]);
+        part_offsets.push_back(offsets[v]);
+      }
+      v = index[v];
+    }
+    oriented.push_back(t);
+  }
+  if (oriented.empty()) {  // POV-Ray rejects a mesh2 without faces
+    out += "#declare ";
+    out += identifier;
+    out += " = union {}\n";
+    return;
+  }
+  append(out, identifier, part, {}, part_offsets, oriented, /*closed=*/false, /*normals=*/false,
+         nullptr, decimals);
 }
 
 }  // namespace toonwater::povgen

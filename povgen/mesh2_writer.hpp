@@ -40,10 +40,15 @@ void append_mesh2(std::string& out, std::string_view identifier, const SceneMesh
 // free surface of a closed liquid volume, as opposed to its walls and floor.
 std::vector<bool> upward_faces(const SceneMesh& mesh);
 
+// Face t wound so that POV-Ray's face normal (a−b)×(c−b) agrees with its vertex normals: how
+// the shell writes it.
+Triangle shell_winding(const SceneMesh& mesh, const Triangle& t);
+
 // Appends the outline shell of `mesh`: the same faces with vertex v moved by `offsets[v]` along
 // its normal (Raskar and Cohen 1999), each face wound so that POV-Ray's face normal points
 // outward, without normals or texture coordinates (the shell is drawn flat). With `keep`, only
-// the faces it marks (then the shell is open).
+// the faces it marks and the vertices they use (then the shell is open; an empty union when no
+// face is marked), at the precision of the whole shell.
 void append_shell_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
                         std::span<const double> offsets, const std::vector<bool>* keep = nullptr);
 

@@ -14,6 +14,7 @@
 #include "povgen/scene_directory.hpp"
 #include "povgen/scene_writer.hpp"
 #include "povgen/sequence.hpp"
+#include "povgen/shell_culling.hpp"
 #include "povgen/simplify.hpp"
 #include "povgen/stroke_writer.hpp"
 
@@ -295,6 +296,7 @@ struct SceneRun {
     Vec3 min = Vec3::Zero(), max = Vec3::Zero();
   };
   std::vector<Box> object_box;
+  std::vector<KeepOutBox> keep_out;  // each object with its shell (shell_culling.hpp)
   std::vector<bool> submerged;
   double view_range = 0;
   std::optional<MapView> map_view;
@@ -345,6 +347,27 @@ SequenceSurvey survey_sequence(SceneRun& run) {
   return survey;
 }
 
+// The shell faces written (shell_culling.hpp): empty for all of them (then the shell stays
+// closed), else a mark per face. `keep`: the faces the shell is limited to anyway.
+// `may_cull`: nothing beyond shell_culling.hpp's rule forbids culling this shell.
+std::vector<bool> kept_shell_faces(SceneRun& run, const SceneMesh& mesh,
+                                   std::span<const double> offsets, bool no_reflection,
+                                   bool may_cull, std::span<const KeepOutBox> keep_out,
+                                   const std::vector<bool>* keep) {
+  std::vector<bool> kept;
+  if (offsets.empty()) return kept;
+  run.report.shell_faces += mesh.triangles.size();
+  if (run.request.cull_shells && may_cull &&
+      shell_met_by_camera_rays_only(run.config, no_reflection))
+    kept = shell_faces_seen_from_behind(mesh, offsets, run.layout.camera.location, keep_out, keep);
+  else if (keep)
+    kept = *keep;
+  const auto count = static_cast<std::size_t>(std::count(kept.begin(), kept.end(), true));
+  if (!keep && count == kept.size()) kept.clear();  // every face: the shell stays closed
+  run.report.shell_faces_kept += kept.empty() ? mesh.triangles.size() : count;
+  return kept;
+}
+
 // One object's include for a frame (0 for a static object), and its box for the water line.
 void write_object(SceneRun& run, std::size_t i, const fs::path& path, long frame) {
   const ObjectConfig& oc = *run.objects[i].placement.config;
@@ -358,10 +381,18 @@ void write_object(SceneRun& run, std::size_t i, const fs::path& path, long frame
       run.config.outline.enabled && oc.outline
           ? shell_offsets(run.config.outline, s.mesh, run.layout.camera, run.config.render.width)
           : std::vector<double>{};
-  std::string text = mesh_include(s, "Obj_" + oc.name, run.light, offsets);
+  // An object's shell is kept whole: it is small next to the water's, and the water and other
+  // objects come near it (shell_culling.hpp).
+  const std::vector<bool> shell_faces =
+      kept_shell_faces(run, s.mesh, offsets, false, /*may_cull=*/false, {}, nullptr);
+  std::string text = mesh_include(s, "Obj_" + oc.name, run.light, offsets, nullptr,
+                                  shell_faces.empty() ? nullptr : &shell_faces);
   run.report.write_seconds += seconds_since(start);
   run.write(object_include_name(oc.name, run.objects[i].placement.animated, frame), text);
+  // The object with its shell: the water's shell faces keep away from it to be dropped.
+  const double grow = offsets.empty() ? 0.0 : *std::max_element(offsets.begin(), offsets.end());
   run.object_box[i] = {s.mesh.min, s.mesh.max};
+  run.keep_out[i] = {s.mesh.min.array() - grow, s.mesh.max.array() + grow};
 }
 
 void write_animated_objects(SceneRun& run, long frame, long written_frame) {
@@ -441,9 +472,14 @@ void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long writt
     for (std::size_t f = 0; f < upward.size(); ++f) textures->index[f] = upward[f] ? 0 : 1;
   }
   const bool free_surface_shell = see_through_volume && config.water.body == WaterBody::clear;
+  // The water's shell is no_reflection whenever the water reflects (scene_writer.cpp).
+  // Flow lines are strokes on the water, reaching up towards its shell.
+  const std::vector<bool> shell_faces =
+      kept_shell_faces(run, s.mesh, offsets, /*no_reflection=*/true, s.flow_lines.empty(),
+                       run.keep_out, free_surface_shell ? &upward : nullptr);
   const std::string text = mesh_include(s, "Water", run.light, offsets,
                                         textures ? &*textures : nullptr,
-                                        free_surface_shell ? &upward : nullptr) +
+                                        shell_faces.empty() ? nullptr : &shell_faces) +
                            water_lines(run, &s.mesh);
   run.report.write_seconds += seconds_since(start);
   run.write(water_include_name(written_frame), text);
@@ -507,6 +543,7 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   run.report.first_frame = run.layout.first_frame;
   run.report.last_frame = run.layout.last_frame;
   run.object_box.resize(run.objects.size());
+  run.keep_out.resize(run.objects.size());
   run.submerged.assign(run.objects.size(), false);
 
   if (!request.maps_dir.empty() && fs::is_directory(request.maps_dir))

@@ -97,6 +97,9 @@ struct PovgenRequest {
   // colour range for the sequence; they are replaced with the scene: both, or neither.
   // Empty: no maps.
   std::filesystem::path maps_dir;
+  // Leave out outline shell faces no ray can see (shell_culling.hpp). Off only to check that
+  // leaving them out changes no pixel.
+  bool cull_shells = true;
 };
 
 struct PovgenReport {
@@ -105,6 +108,7 @@ struct PovgenReport {
   std::size_t vertices = 0;  // water vertices, all frames
   std::size_t faces = 0, faces_kept = 0;  // water faces, all frames: analysed, and rendered
   std::size_t degenerate_faces = 0, replaced_normals = 0;
+  std::size_t shell_faces = 0, shell_faces_kept = 0;  // outline shells, water and objects, all frames
   std::size_t ridge_vertices = 0, valley_vertices = 0;
   std::vector<std::string> empty_frames;  // "PATH: why", frames left without water (no faces)
   double read_seconds = 0, analysis_seconds = 0, simplify_seconds = 0, write_seconds = 0;

@@ -13,6 +13,7 @@
 #include <charconv>
 #include <chrono>
 #include <fstream>
+#include <functional>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -52,13 +53,14 @@ SceneFrames read_ini_frames(const fs::path& ini) {
 
 bool stop_requested(const std::atomic<bool>* stop) { return stop && stop->load(); }
 
-// Waits for `pid`; once `stop` is set, terminates it (SIGTERM, then SIGKILL if it lingers).
-int wait_for(pid_t pid, const std::atomic<bool>* stop) {
+// Waits for `pid`, calling `tick` every 20 ms meanwhile; once `stop` is set, terminates it
+// (SIGTERM, then SIGKILL if it lingers).
+int wait_for(pid_t pid, const std::atomic<bool>* stop, const std::function<void()>& tick) {
   using namespace std::chrono_literals;
   int status = 0;
   auto deadline = std::chrono::steady_clock::time_point::max();
   for (;;) {
-    const pid_t r = ::waitpid(pid, &status, stop ? WNOHANG : 0);
+    const pid_t r = ::waitpid(pid, &status, WNOHANG);
     if (r == pid) break;
     if (r < 0 && errno != EINTR) return -1;
     if (r == 0) {
@@ -69,6 +71,7 @@ int wait_for(pid_t pid, const std::atomic<bool>* stop) {
       } else if (now > deadline) {
         ::kill(pid, SIGKILL);
       }
+      if (!stop_requested(stop) && tick) tick();
       std::this_thread::sleep_for(20ms);
     }
   }
@@ -80,7 +83,7 @@ constexpr int cannot_write_log = 125, cannot_enter_directory = 126, cannot_execu
 
 // Runs one povray process in `dir` with its output in `log`; returns its exit status.
 int run_povray(const fs::path& dir, const std::vector<std::string>& args, const fs::path& log,
-               const std::atomic<bool>* stop) {
+               const std::atomic<bool>* stop, const std::function<void()>& tick) {
   std::vector<std::string> copies = args;
   std::vector<char*> argv;
   for (auto& a : copies) argv.push_back(a.data());
@@ -97,23 +100,7 @@ int run_povray(const fs::path& dir, const std::vector<std::string>& args, const 
     ::execvp(argv[0], argv.data());
     ::_exit(cannot_execute);
   }
-  return wait_for(pid, stop);
-}
-
-// Renames the images POV-Ray wrote into `work` to `dir`; an error message, or "" on success.
-std::string publish_images(const fs::path& work, const fs::path& dir, const fs::path& log) {
-  std::error_code ec;
-  std::size_t images = 0;
-  for (const auto& entry : fs::directory_iterator(work, ec)) {
-    if (entry.path() == log || !entry.is_regular_file()) continue;
-    // A full disk can leave an empty file behind a zero exit status.
-    if (entry.file_size(ec) == 0 || ec) return "POV-Ray wrote an empty image";
-    fs::rename(entry.path(), dir / entry.path().filename(), ec);
-    if (ec) return "cannot move " + entry.path().string() + " into place: " + ec.message();
-    ++images;
-  }
-  if (ec) return "cannot list " + work.string() + ": " + ec.message();
-  return images == 0 ? "POV-Ray wrote no image" : "";
+  return wait_for(pid, stop, tick);
 }
 
 // Why a run that exited with `status` failed: its exit status (a signal above 128, as
@@ -188,150 +175,189 @@ std::string povray_error_message(const std::string& log) {
   return message.empty() ? last : message;
 }
 
-RenderReport render_frames(const RenderRequest& request, const RenderProgressFn& progress) {
-  const auto start = std::chrono::steady_clock::now();
-  const fs::path dir = checked_scene_dir(request.scene_dir);
-  const SceneFrames ini = read_ini_frames(dir / "scene.ini");
-  remove_stale_temporaries(dir);  // frames of runs that were killed
-  const std::vector<long> frames = requested_frames(dir, ini, request.frames);
+namespace {
 
-  const int jobs = std::clamp<int>(request.jobs, 1, static_cast<int>(frames.size()));
-  const std::string threads = povray_threads(jobs);
+// What every POV-Ray process of a run shares.
+struct RangeRun {
+  const RenderRequest* request = nullptr;
+  fs::path dir;
+  SceneFrames ini;
+  std::string threads;  // +WTn
+};
 
-  RenderReport report;
-  std::mutex mutex;
-  std::atomic<std::size_t> next{0};
-  std::size_t done = 0;
-  auto worker = [&] {
-    for (std::size_t i; !stop_requested(request.stop) && (i = next++) < frames.size();) {
-      const long frame = frames[i];
-      // The frame's image and log go to a temporary directory first (see render.hpp).
-      const std::string work_name =
-          ".render-" + std::to_string(frame) + ".tmp-" + std::to_string(::getpid());
-      const fs::path work = dir / work_name, log = work / "render.log";
-      const fs::path kept_log = dir / ("render_" + std::to_string(frame) + ".log");
-      std::error_code ec;
-      fs::remove_all(work, ec);
-      fs::create_directory(work, ec);
-      std::vector<std::string> args{request.povray, "scene.ini", threads,
-                                    "+O" + work_name + "/" + ini.output_name};
-      if (ini.animation) {
-        args.push_back("+SF" + std::to_string(frame));
-        args.push_back("+EF" + std::to_string(frame));
-      }
-      args.insert(args.end(), request.extra_arguments.begin(), request.extra_arguments.end());
-      std::string failure;
-      const int status = ec ? -1 : run_povray(dir, args, log, request.stop);
-      if (stop_requested(request.stop)) {
-        fs::remove_all(work, ec);  // interrupted: nothing of this frame stays
-        break;
-      }
-      if (ec) failure = "cannot create " + work.string() + ": " + ec.message();
-      else if (status == cannot_execute)
-        failure = "cannot run '" + request.povray + "' (is POV-Ray installed?)";
-      else if (status == cannot_write_log) failure = "cannot write " + log.string();
-      else if (status == cannot_enter_directory) failure = "cannot enter " + dir.string();
-      else if (status != 0) failure = povray_failure(status, read_all(log));
-      else failure = publish_images(work, dir, log);
-      bool log_kept = false;
-      if (failure.empty()) {
-        fs::remove(kept_log, ec);
-      } else if (fs::exists(log, ec)) {
-        fs::rename(log, kept_log, ec);
-        log_kept = !ec;
-      }
-      fs::remove_all(work, ec);
-      std::lock_guard lock(mutex);
-      if (failure.empty()) ++report.rendered;
-      else report.failures.push_back(
-          {frame, log_kept ? failure + " (log: " + kept_log.filename().string() + ")" : failure});
-      ++done;
-      if (progress)
-        progress(done, frames.size(),
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    }
-  };
-  {
-    std::vector<std::jthread> pool;
-    for (int j = 1; j < jobs; ++j) pool.emplace_back(worker);
-    worker();
-  }
-  if (stop_requested(request.stop))
-    throw InterruptedError(dir.string() + ": interrupted after " + std::to_string(report.rendered) +
-                      " of " + std::to_string(frames.size()) + " frame(s)");
-  std::sort(report.failures.begin(), report.failures.end(),
-            [](const FrameFailure& a, const FrameFailure& b) { return a.frame < b.frame; });
-  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return report;
-}
+// Called once per frame: when its image is in place (failure empty) or it failed.
+using FrameDoneFn = std::function<void(long frame, const std::string& failure)>;
 
-RenderReport render_frames_in_one_process(const RenderRequest& request,
-                                          const RenderProgressFn& progress) {
-  const auto start = std::chrono::steady_clock::now();
-  auto elapsed = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
-  const fs::path dir = checked_scene_dir(request.scene_dir);
-  const SceneFrames ini = read_ini_frames(dir / "scene.ini");
-  const std::vector<long> frames = requested_frames(dir, ini, request.frames);
-
-  RenderReport report;
+// Renders `frames` (consecutive) with one POV-Ray process over the range (+SF/+EF), into a
+// hidden temporary directory of DIR. A frame's image is complete once POV-Ray has written the
+// next frame's image (it renders and writes the frames in order) or has exited with status 0;
+// then it is renamed into DIR, so DIR only ever holds complete images, and `done` is called.
+// When POV-Ray fails, the frame after the last complete image failed (after a signal, or when
+// every image is there, the last image is not trusted and that frame failed); its log is kept
+// as render_N.log and a new process takes the frames after it. Stops when the request's stop
+// flag is set: the running process is terminated and its unpublished images are removed.
+void render_range(const RangeRun& run, const std::vector<long>& frames, const FrameDoneFn& done) {
+  const RenderRequest& request = *run.request;
   std::size_t next = 0;
   while (next < frames.size() && !stop_requested(request.stop)) {
     const long first = frames[next], last = frames.back();
     const std::string work_name = ".render-" + std::to_string(first) + "-" + std::to_string(last) +
                                   ".tmp-" + std::to_string(::getpid());
-    const fs::path work = dir / work_name, log = work / "render.log";
+    const fs::path work = run.dir / work_name, log = work / "render.log";
     std::error_code ec;
     fs::remove_all(work, ec);
     fs::create_directory(work, ec);
-    if (ec) throw OutputError("cannot create " + work.string() + ": " + ec.message());
-    std::vector<std::string> args{request.povray, "scene.ini", povray_threads(1),
-                                  "+O" + work_name + "/" + ini.output_name};
-    if (ini.animation) {
+    if (ec) {
+      for (std::size_t i = next; i < frames.size(); ++i)
+        done(frames[i], "cannot create " + work.string() + ": " + ec.message());
+      return;
+    }
+    // Frames [next, published) are in DIR.
+    std::size_t published = next;
+    auto publish = [&](std::size_t i) {
+      const fs::path image = frame_image_path(work, run.ini, frames[i]);
+      std::error_code e;
+      std::string failure;
+      // A full disk can leave an empty file behind a zero exit status.
+      if (fs::file_size(image, e) == 0 || e) failure = "POV-Ray wrote an empty image";
+      else fs::rename(image, frame_image_path(run.dir, run.ini, frames[i]), e);
+      if (failure.empty() && e)
+        failure = "cannot move " + image.string() + " into place: " + e.message();
+      if (failure.empty()) fs::remove(run.dir / ("render_" + std::to_string(frames[i]) + ".log"), e);
+      done(frames[i], failure);
+    };
+    auto has_image = [&](std::size_t i) {
+      std::error_code e;
+      return fs::is_regular_file(frame_image_path(work, run.ini, frames[i]), e);
+    };
+    auto publish_finished = [&] {
+      while (published + 1 < frames.size() && has_image(published + 1)) publish(published++);
+    };
+    std::vector<std::string> args{request.povray, "scene.ini", run.threads,
+                                  "+O" + work_name + "/" + run.ini.output_name};
+    if (run.ini.animation) {
       args.push_back("+SF" + std::to_string(first));
       args.push_back("+EF" + std::to_string(last));
     }
     args.insert(args.end(), request.extra_arguments.begin(), request.extra_arguments.end());
-    const int status = run_povray(dir, args, log, request.stop);
+    const int status = run_povray(run.dir, args, log, request.stop, publish_finished);
     if (stop_requested(request.stop)) {
-      fs::remove_all(work, ec);  // interrupted: nothing of this run stays
-      break;
+      fs::remove_all(work, ec);  // interrupted: nothing unpublished of this run stays
+      return;
     }
-    // The frames whose images are kept: all when POV-Ray succeeded, else those before the
-    // first frame without an image, less the last one after a signal (it may be cut short) or
-    // when every image is there (the failure belongs to the last frame).
-    std::size_t end = next;
-    while (end < frames.size() && fs::is_regular_file(frame_image_path(work, ini, frames[end])))
-      ++end;
-    if (status != 0 && (status >= 128 || end == frames.size()) && end > next) --end;
-    for (std::size_t i = next; i < end; ++i) {
-      const fs::path image = frame_image_path(work, ini, frames[i]);
-      fs::rename(image, dir / image.filename(), ec);
-      if (ec) throw OutputError("cannot move " + image.string() + " into place: " + ec.message());
-      fs::remove(dir / ("render_" + std::to_string(frames[i]) + ".log"), ec);
-      ++report.rendered;
-    }
+    publish_finished();
+    std::size_t end = published;  // the first frame without an image
+    while (end < frames.size() && has_image(end)) ++end;
+    if (status != 0 && (status >= 128 || end == frames.size()) && end > published) --end;
+    while (published < end) publish(published++);
     if (end < frames.size()) {  // frames[end] failed
       std::string failure;
-      if (status == 127) failure = "cannot run '" + request.povray + "' (is POV-Ray installed?)";
-      else if (status != 0) failure = povray_error_message(read_all(log));
+      if (status == cannot_execute)
+        failure = "cannot run '" + request.povray + "' (is POV-Ray installed?)";
+      else if (status == cannot_write_log) failure = "cannot write " + log.string();
+      else if (status == cannot_enter_directory) failure = "cannot enter " + run.dir.string();
+      else if (status != 0) failure = povray_failure(status, read_all(log));
       else failure = "POV-Ray wrote no image";
-      const long frame = frames[end];
-      const fs::path kept_log = dir / ("render_" + std::to_string(frame) + ".log");
+      const fs::path kept_log = run.dir / ("render_" + std::to_string(frames[end]) + ".log");
       fs::rename(log, kept_log, ec);
-      report.failures.push_back({frame, failure + " (log: " + kept_log.filename().string() + ")"});
+      done(frames[end], ec ? failure : failure + " (log: " + kept_log.filename().string() + ")");
       ++end;
     }
     fs::remove_all(work, ec);
     next = end;
-    if (progress) progress(next, frames.size(), elapsed());
+  }
+}
+
+// Frames done and failed, shared by the processes of a run.
+class RunReport {
+ public:
+  RunReport(std::size_t total, const RenderProgressFn& progress)
+      : total_(total), progress_(progress), start_(std::chrono::steady_clock::now()) {}
+  void done(long frame, const std::string& failure) {
+    std::lock_guard lock(mutex_);
+    if (failure.empty()) ++report_.rendered;
+    else report_.failures.push_back({frame, failure});
+    ++done_;
+    if (progress_) progress_(done_, total_, elapsed());
+  }
+  double elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  RenderReport finish() {
+    std::sort(report_.failures.begin(), report_.failures.end(),
+              [](const FrameFailure& a, const FrameFailure& b) { return a.frame < b.frame; });
+    report_.seconds = elapsed();
+    return report_;
+  }
+  std::size_t rendered() const { return report_.rendered; }
+
+ private:
+  std::size_t total_, done_ = 0;
+  const RenderProgressFn& progress_;
+  std::chrono::steady_clock::time_point start_;
+  std::mutex mutex_;
+  RenderReport report_;
+};
+
+}  // namespace
+
+int default_render_processes() {
+  return 4 * static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+std::vector<std::vector<long>> split_into_ranges(const std::vector<long>& frames, int processes) {
+  std::vector<std::vector<long>> ranges;
+  const std::size_t count = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(processes, 1)),
+                                                    1, std::max<std::size_t>(frames.size(), 1));
+  for (std::size_t r = 0, begin = 0; r < count && begin < frames.size(); ++r) {
+    // The first frames.size() % count ranges are one frame longer.
+    const std::size_t length = frames.size() / count + (r < frames.size() % count ? 1 : 0);
+    ranges.emplace_back(frames.begin() + static_cast<std::ptrdiff_t>(begin),
+                        frames.begin() + static_cast<std::ptrdiff_t>(begin + length));
+    begin += length;
+  }
+  return ranges;
+}
+
+RenderReport render_frames(const RenderRequest& request, const RenderProgressFn& progress) {
+  RangeRun run;
+  run.request = &request;
+  run.dir = checked_scene_dir(request.scene_dir);
+  run.ini = read_ini_frames(run.dir / "scene.ini");
+  remove_stale_temporaries(run.dir);  // frames of runs that were killed
+  const std::vector<long> frames = requested_frames(run.dir, run.ini, request.frames);
+  const std::vector<std::vector<long>> ranges = split_into_ranges(frames, request.jobs);
+  run.threads = povray_threads(static_cast<int>(ranges.size()));
+
+  RunReport report(frames.size(), progress);
+  const FrameDoneFn done = [&](long frame, const std::string& failure) { report.done(frame, failure); };
+  {
+    std::vector<std::jthread> pool;
+    for (std::size_t r = 1; r < ranges.size(); ++r)
+      pool.emplace_back([&, r] { render_range(run, ranges[r], done); });
+    render_range(run, ranges[0], done);
   }
   if (stop_requested(request.stop))
-    throw OutputError(dir.string() + ": interrupted after " + std::to_string(report.rendered) +
+    throw InterruptedError(run.dir.string() + ": interrupted after " +
+                           std::to_string(report.rendered()) + " of " +
+                           std::to_string(frames.size()) + " frame(s)");
+  return report.finish();
+}
+
+RenderReport render_frames_in_one_process(const RenderRequest& request,
+                                          const RenderProgressFn& progress) {
+  RangeRun run;
+  run.request = &request;
+  run.dir = checked_scene_dir(request.scene_dir);
+  run.ini = read_ini_frames(run.dir / "scene.ini");
+  run.threads = povray_threads(1);
+  const std::vector<long> frames = requested_frames(run.dir, run.ini, request.frames);
+  RunReport report(frames.size(), progress);
+  render_range(run, frames, [&](long frame, const std::string& failure) { report.done(frame, failure); });
+  if (stop_requested(request.stop))
+    throw OutputError(run.dir.string() + ": interrupted after " + std::to_string(report.rendered()) +
                       " of " + std::to_string(frames.size()) + " frame(s)");
-  report.seconds = elapsed();
-  return report;
+  return report.finish();
 }
 
 }  // namespace toonwater::povgen

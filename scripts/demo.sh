@@ -5,7 +5,7 @@
 #   analyze    curvature and flow regions of the middle frame (CSV, PLY)
 #   povgen     POV-Ray scenes with the Cartoon Water Shader (examples/wake/scene.toml), and
 #              curvature maps of every frame on one shared colour range
-#   render     the frames with POV-Ray, on every core
+#   render     the frames with POV-Ray, ranges of frames in several processes a core
 #   preview    an animated GIF of the frames (OpenImageIO's oiiotool)
 # Usage: scripts/demo.sh [OUT_DIR]            (default: ./out, git-ignored)
 # Environment: TOONWATER_FRAMES (24), TOONWATER_WIDTH (480), TOONWATER_HEIGHT (270),
@@ -17,7 +17,6 @@ frames=${TOONWATER_FRAMES:-24}
 width=${TOONWATER_WIDTH:-480}
 height=${TOONWATER_HEIGHT:-270}
 build_dir=${TOONWATER_BUILD_DIR:-$root/build}
-jobs=$(nproc)
 
 start=$SECONDS
 step() { printf '\n== [%s/6] %s  (%d s so far)\n' "$1" "$2" $((SECONDS - start)) >&2; }
@@ -45,8 +44,8 @@ cp "$root/examples/wake/scene.toml" "$demo/scene.toml"  # its mesh paths are rel
   --set "render.width=$width" --set "render.height=$height" --out "$demo/scene" \
   --maps "$demo/maps"
 
-step 5 "render with POV-Ray ($jobs frames at a time)"
-"$tw" render "$demo/scene" --jobs "$jobs"
+step 5 "render with POV-Ray (ranges of frames, four processes a core)"
+"$tw" render "$demo/scene"
 
 step 6 "animated preview"
 oiiotool "$demo"/scene/frame_*.png --siappendall --attrib:type=rational FramesPerSecond 12/1 \

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 
 namespace toonwater::test {
@@ -81,6 +83,48 @@ TEST_F(FarmScene, RenderTaskReportsAFailedFrameAndRendersTheOthers) {
   EXPECT_TRUE(fs::exists(scene / "render_3.log"));
   for (int f : {1, 2, 4, 5, 6})
     EXPECT_EQ(read_image(scene / frame_name(f)).pixels, read_image(reference() / frame_name(f)).pixels)
+        << f;
+}
+
+// Writes `bin`/povray, which appends its arguments to `log` and runs POV-Ray.
+void write_logging_povray(const fs::path& bin, const fs::path& log) {
+  fs::create_directories(bin);
+  write_text(bin / "povray", "#!/bin/sh\necho \"$@\" >> '" + log.string() +
+                                 "'\nexec /usr/bin/povray \"$@\"\n");
+  fs::permissions(bin / "povray", fs::perms::owner_all);
+}
+
+// The local render: one POV-Ray process per range of frames, the images those of plain
+// `povray scene.ini`; a failed frame in a range is reported and a new process takes the rest.
+TEST_F(FarmScene, LocalRenderRunsOneProcessPerRangeWithPovraysOwnImages) {
+  const fs::path plain = copy_scene("plain");
+  ASSERT_EQ(run_povray(plain).exit_code, 0);
+  write_logging_povray(work_ / "bin", work_ / "runs.log");
+  prepend_to_path(work_ / "bin");
+
+  const fs::path scene = copy_scene("ranges");
+  CommandResult r = run_toonwater({"render", scene.string(), "--jobs", "3"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("6 frame(s) rendered, 0 failed"), std::string::npos) << r.output;
+  std::string runs = read_text(work_ / "runs.log");
+  EXPECT_EQ(std::count(runs.begin(), runs.end(), '\n'), 3) << runs;
+  for (const char* range : {"+SF1 +EF2", "+SF3 +EF4", "+SF5 +EF6"})
+    EXPECT_NE(runs.find(range), std::string::npos) << range << " in " << runs;
+  expect_frames_like(scene, plain);
+
+  const fs::path broken = copy_scene("broken_range");
+  fs::remove(broken / "water_0002.inc");
+  fs::remove(work_ / "runs.log");
+  r = run_toonwater({"render", broken.string(), "--jobs", "2"});
+  EXPECT_EQ(r.exit_code, 5) << r.output;
+  EXPECT_NE(r.output.find("frame 2 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("water_0002.inc"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("5 frame(s) rendered, 1 failed"), std::string::npos) << r.output;
+  runs = read_text(work_ / "runs.log");
+  EXPECT_NE(runs.find("+SF3 +EF3"), std::string::npos) << "a new process for frame 3: " << runs;
+  EXPECT_FALSE(fs::exists(broken / frame_name(2)));
+  for (int f : {1, 3, 4, 5, 6})
+    EXPECT_EQ(read_image(broken / frame_name(f)).pixels, read_image(plain / frame_name(f)).pixels)
         << f;
 }
 
