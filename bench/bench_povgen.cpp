@@ -162,7 +162,8 @@ void BM_SimplifyWater(benchmark::State& state) {
   sources.overrides = {"render.width=640", "render.height=360", "water.simplify=0.5"};
   const povgen::SceneConfig config = povgen::load_config(sources);
   const povgen::LightGeometry light = povgen::light_geometry(config.light, Axis::z);
-  const povgen::PreparedSurface full = povgen::prepare_surface(water, Axis::z, &config.flow, nullptr);
+  const povgen::PreparedSurface full =
+      povgen::prepare_surface(water, Axis::z, &config.flow, nullptr);
   povgen::SceneLayout layout;
   layout.config = &config;
   layout.up = Axis::z;

@@ -78,7 +78,8 @@ double point_triangle_squared(const Vec3& p, const Vec3& a, const Vec3& b, const
 
 // A triangle's height over its longest edge, divided by that edge: 1/aspect ratio, 0 when flat.
 double inverse_aspect(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double longest2 = std::max({(a - b).squaredNorm(), (b - c).squaredNorm(), (c - a).squaredNorm()});
+  const double longest2 =
+      std::max({(a - b).squaredNorm(), (b - c).squaredNorm(), (c - a).squaredNorm()});
   return longest2 > 0 ? (b - a).cross(c - a).norm() / longest2 : 0.0;
 }
 
@@ -106,7 +107,8 @@ class Decimation {
       : m_(mesh), p_(positions), o_(options), quadric_(positions.size()),
         range_(positions.size()), settled_(positions.size(), 0), mark_(positions.size(), 0),
         bound_(mesh.n_faces(), 0.0) {
-    for (std::size_t v = 0; v < uv.size(); ++v) range_[v] = {uv[v][0], uv[v][0], uv[v][1], uv[v][1]};
+    for (std::size_t v = 0; v < uv.size(); ++v)
+      range_[v] = {uv[v][0], uv[v][0], uv[v][1], uv[v][1]};
     // Garland & Heckbert's quadrics: each face's plane, weighted by its area.
     for (auto f : m_.faces()) {
       const HalfedgeHandle h = m_.halfedge_handle(f);
