@@ -220,6 +220,10 @@ class Decimation {
     spokes_.clear();
     bool on_boundary = false;
     const HalfedgeHandle start = m_.halfedge_handle(v0h);
+    if (!start.is_valid()) {  // in no face
+      settled_[v0] = 1;
+      return std::nullopt;
+    }
     HalfedgeHandle h = start;
     do {
       Spoke s{h, m_.to_vertex_handle(h).idx(), -1, -1, Vec3::Zero()};
