@@ -89,9 +89,8 @@ struct WaterConfig {
   double ior = 1.33;
   WaterBody body = WaterBody::opaque;
   // The render mesh is simplified while no surface point moves more than this many pixels on
-  // screen (povgen/simplify.hpp); 0 writes the full mesh. Off by default for now: the
-  // simplification still costs more time than the POV-Ray parse it saves (README).
-  double simplify = 0.0;
+  // screen (povgen/simplify.hpp); 0 writes the full mesh.
+  double simplify = 0.5;
 };
 
 // pixels: of an image render.width wide, each shell vertex offset by the size of a pixel at its

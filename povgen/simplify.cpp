@@ -2,18 +2,17 @@
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
-#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
-#include <OpenMesh/Tools/Decimater/ModAspectRatioT.hh>
-#include <OpenMesh/Tools/Decimater/ModBaseT.hh>
-#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
-#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+// After the mesh: QuadricT.hh uses OpenMesh's vector traits without including them.
+#include <OpenMesh/Core/Geometry/QuadricT.hh>
 
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 namespace toonwater::povgen {
 namespace {
@@ -24,24 +23,36 @@ namespace {
 constexpr double max_l_dot_n_change = 0.05;
 constexpr double max_flow_field_change = 0.25;
 constexpr double max_face_turn_degrees = 45.0;
-constexpr float max_aspect_ratio = 10.0f;
+constexpr double max_aspect_ratio = 10.0;
 // A boundary vertex is on a straight boundary when it lies this close to the line of its
 // neighbours, relative to the tolerance.
 constexpr double straight_boundary_fraction = 1e-3;
 
-struct DoubleTraits : OpenMesh::DefaultTraits {
+// OpenMesh holds the connectivity; positions never move, and everything else the collapses
+// read lives in flat arrays indexed like the mesh's handles.
+struct StatusTraits : OpenMesh::DefaultTraits {
   using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
   VertexAttributes(OpenMesh::Attributes::Status);
   EdgeAttributes(OpenMesh::Attributes::Status);
-  FaceAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
+  FaceAttributes(OpenMesh::Attributes::Status);
 };
-using RenderMesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
+using RenderMesh = OpenMesh::TriMesh_ArrayKernelT<StatusTraits>;
+using HalfedgeHandle = RenderMesh::HalfedgeHandle;
+using VertexHandle = RenderMesh::VertexHandle;
+using Quadric = OpenMesh::Geometry::QuadricT<double>;
 
 // Range of the original texture coordinates a vertex stands for: u_lo, u_hi, v_lo, v_hi.
 using TextureRange = std::array<double, 4>;
 
-Vec3 eigen(const OpenMesh::Vec3d& p) { return Vec3(p[0], p[1], p[2]); }
+TextureRange merged(const TextureRange& a, const TextureRange& b) {
+  return {std::min(a[0], b[0]), std::max(a[1], b[1]), std::min(a[2], b[2]), std::max(a[3], b[3])};
+}
+
+bool straddles(double lo, double hi, const std::vector<double>& levels) {
+  for (double level : levels)
+    if (lo < hi && lo <= level && level <= hi) return true;
+  return false;
+}
 
 // Squared distance from p to the triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
 double point_triangle_squared(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -65,99 +76,255 @@ double point_triangle_squared(const Vec3& p, const Vec3& a, const Vec3& b, const
   return (p - (a + ab * (vb * denom) + ac * (vc * denom))).squaredNorm();
 }
 
-bool straddles(double lo, double hi, const std::vector<double>& levels) {
-  for (double level : levels)
-    if (lo < hi && lo <= level && level <= hi) return true;
-  return false;
+// A triangle's height over its longest edge, divided by that edge: 1/aspect ratio, 0 when flat.
+double inverse_aspect(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double longest2 =
+      std::max({(a - b).squaredNorm(), (b - c).squaredNorm(), (c - a).squaredNorm()});
+  return longest2 > 0 ? (b - a).cross(c - a).norm() / longest2 : 0.0;
 }
 
-// The geometric, texture and boundary constraints described in simplify.hpp.
-template <class MeshT>
-class ModToonBoundT : public OpenMesh::Decimater::ModBaseT<MeshT> {
+// One collapse of a vertex into a neighbour, ordered by quadric error, then by edge length
+// (on flat water every error is 0: the shortest edge first keeps the triangles round).
+struct Collapse {
+  double error = 0, length2 = 0;
+  HalfedgeHandle halfedge;  // from the removed vertex to the kept one
+  double bound = 0;         // the geometric bound of the faces it changes
+};
+
+bool earlier(const Collapse& a, const Collapse& b) {
+  return a.error != b.error ? a.error < b.error : a.length2 < b.length2;
+}
+
+// The decimation, in passes over the vertices in index order (memory order, so the arrays
+// are read nearly sequentially). A vertex collapses into the neighbour of its least error
+// that every constraint allows; the vertices around the collapse then wait for the next pass,
+// which spreads each pass's collapses evenly over the surface like a heap would, and are the
+// only ones evaluated again there. Passes run until one collapses nothing.
+class Decimation {
  public:
-  DECIMATING_MODULE(ModToonBoundT, MeshT, ToonBound);
-
-  explicit ModToonBoundT(MeshT& mesh) : Base(mesh, true) {}
-
-  void configure(const SimplifyOptions& options, OpenMesh::VPropHandleT<TextureRange> ranges) {
-    options_ = &options;
-    ranges_ = ranges;
+  Decimation(RenderMesh& mesh, const std::vector<Vec3>& positions,
+             const std::vector<TextureCoordinate>& uv, const SimplifyOptions& options)
+      : m_(mesh), p_(positions), o_(options), quadric_(positions.size()),
+        range_(positions.size()), settled_(positions.size(), 0), mark_(positions.size(), 0),
+        bound_(mesh.n_faces(), 0.0) {
+    for (std::size_t v = 0; v < uv.size(); ++v)
+      range_[v] = {uv[v][0], uv[v][0], uv[v][1], uv[v][1]};
+    // Garland & Heckbert's quadrics: each face's plane, weighted by its area.
+    for (auto f : m_.faces()) {
+      const HalfedgeHandle h = m_.halfedge_handle(f);
+      const int a = m_.from_vertex_handle(h).idx(), b = m_.to_vertex_handle(h).idx(),
+                c = m_.to_vertex_handle(m_.next_halfedge_handle(h)).idx();
+      const Vec3 n = (p_[b] - p_[a]).cross(p_[c] - p_[a]);
+      const double area2 = n.norm();
+      if (!(area2 > 0)) continue;
+      const Vec3 u = n / area2;
+      Quadric q(u[0], u[1], u[2], -u.dot(p_[a]));
+      q *= 0.5 * area2;
+      quadric_[a] += q, quadric_[b] += q, quadric_[c] += q;
+    }
   }
 
-  void initialize() override {
-    if (!bounds_.is_valid()) Base::mesh().add_property(bounds_);
-    for (auto f : Base::mesh().faces()) Base::mesh().property(bounds_, f) = 0.0;
-  }
-
-  float collapse_priority(const CollapseInfo& ci) override {
-    return boundary_allows(ci) && textures_allow(ci) && geometric_bound(ci) <= options_->tolerance
-               ? float(Base::LEGAL_COLLAPSE)
-               : float(Base::ILLEGAL_COLLAPSE);
-  }
-
-  void preprocess_collapse(const CollapseInfo& ci) override { pending_bound_ = geometric_bound(ci); }
-
-  void postprocess_collapse(const CollapseInfo& ci) override {
-    MeshT& m = Base::mesh();
-    TextureRange& r1 = m.property(ranges_, ci.v1);
-    r1 = merged(r1, m.property(ranges_, ci.v0));
-    // Faces of v1 that did not change get the bound too: larger than theirs, so still a bound.
-    for (auto f : m.vf_range(ci.v1))
-      m.property(bounds_, f) = std::max(m.property(bounds_, f), pending_bound_);
+  void run() {
+    std::vector<int> work(p_.size()), next;
+    for (std::size_t v = 0; v < work.size(); ++v) work[v] = static_cast<int>(v);
+    std::vector<std::uint32_t> touched(p_.size(), 0);  // the last pass that changed it
+    for (std::uint32_t pass = 1; !work.empty(); ++pass) {
+      next.clear();
+      auto touch = [&](VertexHandle w) {
+        if (touched[w.idx()] != pass) next.push_back(w.idx());
+        touched[w.idx()] = pass;
+      };
+      for (int v : work) {
+        if (touched[v] == pass || settled_[v]) continue;
+        const std::optional<Collapse> c = best_collapse(VertexHandle(v));
+        if (!c) continue;
+        const VertexHandle v1 = collapse(VertexHandle(v), *c);
+        touch(v1);
+        for (auto w : m_.vv_range(v1)) touch(w);
+      }
+      std::sort(next.begin(), next.end());
+      work.swap(next);
+    }
   }
 
  private:
-  static TextureRange merged(const TextureRange& a, const TextureRange& b) {
-    return {std::min(a[0], b[0]), std::max(a[1], b[1]), std::min(a[2], b[2]), std::max(a[3], b[3])};
+  // One outgoing halfedge of the vertex being evaluated: its neighbour, and the face on its
+  // left (-1 on the boundary) with that face's third corner and unit normal.
+  struct Spoke {
+    HalfedgeHandle halfedge;
+    int to, face, third;
+    Vec3 normal;
+  };
+
+  // The link condition of OpenMesh's TriConnectivity::is_collapse_ok and the topological tests
+  // of its DecimaterT, for v0 whose neighbours carry mark_ == stamp_.
+  bool topology_allows(HalfedgeHandle v0v1, bool v0_on_boundary) const {
+    const HalfedgeHandle v1v0 = m_.opposite_halfedge_handle(v0v1);
+    const VertexHandle v1 = m_.to_vertex_handle(v0v1);
+    int vl = -1, vr = -1;
+    for (const HalfedgeHandle h : {v0v1, v1v0}) {
+      if (m_.is_boundary(h)) continue;
+      const HalfedgeHandle h1 = m_.next_halfedge_handle(h), h2 = m_.next_halfedge_handle(h1);
+      // A triangle hanging at one edge would leave a dangling edge.
+      if (m_.is_boundary(m_.opposite_halfedge_handle(h1)) &&
+          m_.is_boundary(m_.opposite_halfedge_handle(h2)))
+        return false;
+      (h == v0v1 ? vl : vr) = m_.to_vertex_handle(h1).idx();
+    }
+    if (vl == vr) return false;
+    // The one-rings of v0 and v1 share vl and vr only.
+    const HalfedgeHandle start = m_.halfedge_handle(v1);
+    HalfedgeHandle h = start;
+    do {
+      const int u = m_.to_vertex_handle(h).idx();
+      if (mark_[u] == stamp_ && u != vl && u != vr) return false;
+      h = m_.cw_rotated_halfedge_handle(h);
+    } while (h != start);
+    // A boundary vertex only moves along its boundary; a tetrahedron stays one.
+    if (v0_on_boundary && !m_.is_boundary(v0v1) && !m_.is_boundary(v1v0)) return false;
+    return !(vl >= 0 && vr >= 0 && valence_three(vl) && valence_three(vr) && adjacent(vl, vr));
   }
 
-  bool boundary_allows(const CollapseInfo& ci) {
-    MeshT& m = Base::mesh();
-    if (!m.is_boundary(ci.v0)) return true;
-    if (!m.is_boundary(m.edge_handle(ci.v0v1))) return false;
-    typename MeshT::VertexHandle other;
-    int boundary_edges = 0;
-    for (auto h : m.voh_range(ci.v0)) {
-      if (!m.is_boundary(m.edge_handle(h))) continue;
+  bool valence_three(int v) const {
+    int n = 0;
+    for (auto h = m_.cvoh_iter(VertexHandle(v)); h.is_valid() && n <= 3; ++h) ++n;
+    return n == 3;
+  }
+
+  bool adjacent(int a, int b) const {
+    for (auto w : m_.vv_range(VertexHandle(a)))
+      if (w.idx() == b) return true;
+    return false;
+  }
+
+  // On the boundary v0 may only slide into v1 along a straight boundary.
+  bool straight_boundary(int v0, int v1) const {
+    int other = -1, boundary_edges = 0;
+    for (const Spoke& s : spokes_) {
+      if (s.face >= 0 && !m_.is_boundary(m_.opposite_halfedge_handle(s.halfedge))) continue;
       ++boundary_edges;
-      if (m.to_vertex_handle(h) != ci.v1) other = m.to_vertex_handle(h);
+      if (s.to != v1) other = s.to;
     }
-    if (boundary_edges != 2 || !other.is_valid()) return false;
-    const Vec3 a = eigen(m.point(other)), b = eigen(ci.p1), p = eigen(ci.p0);
+    if (boundary_edges != 2 || other < 0) return false;
+    const Vec3 &a = p_[other], &b = p_[v1], &p = p_[v0];
     const Vec3 ab = b - a;
     const double t = ab.dot(p - a) / ab.squaredNorm();
     if (!(t > 0.0 && t < 1.0)) return false;
-    return (p - (a + t * ab)).norm() <= straight_boundary_fraction * options_->tolerance;
+    return (p - (a + t * ab)).norm() <= straight_boundary_fraction * o_.tolerance;
   }
 
-  bool textures_allow(const CollapseInfo& ci) {
-    MeshT& m = Base::mesh();
-    TextureRange r = merged(m.property(ranges_, ci.v0), m.property(ranges_, ci.v1));
-    for (auto w : m.vv_range(ci.v0)) r = merged(r, m.property(ranges_, w));
-    return r[1] - r[0] <= options_->u_tolerance && r[3] - r[2] <= options_->v_tolerance &&
-           !straddles(r[0], r[1], options_->u_levels) && !straddles(r[2], r[3], options_->v_levels);
-  }
-
-  // The bound on the distance of the original surface to the faces this collapse changes.
-  double geometric_bound(const CollapseInfo& ci) {
-    MeshT& m = Base::mesh();
-    const Vec3 p0 = eigen(ci.p0), p1 = eigen(ci.p1);
-    double inherited = 0, nearest = std::numeric_limits<double>::infinity();
-    for (auto f : m.vf_range(ci.v0)) {
-      inherited = std::max(inherited, m.property(bounds_, f));
-      if (f == ci.fl || f == ci.fr) continue;
-      std::array<Vec3, 3> corner;
-      int k = 0;
-      for (auto v : m.fv_range(f)) corner[k++] = v == ci.v0 ? p1 : eigen(m.point(v));
-      nearest = std::min(nearest, point_triangle_squared(p0, corner[0], corner[1], corner[2]));
+  // The best legal collapse of v0, if any. A vertex whose textures or inherited bound forbid
+  // every collapse stays so (both only grow as its neighbours collapse) and is settled.
+  std::optional<Collapse> best_collapse(VertexHandle v0h) {
+    const int v0 = v0h.idx();
+    spokes_.clear();
+    bool on_boundary = false;
+    const HalfedgeHandle start = m_.halfedge_handle(v0h);
+    if (!start.is_valid()) {  // in no face
+      settled_[v0] = 1;
+      return std::nullopt;
     }
-    return inherited + std::sqrt(nearest);
+    HalfedgeHandle h = start;
+    do {
+      Spoke s{h, m_.to_vertex_handle(h).idx(), -1, -1, Vec3::Zero()};
+      if (m_.is_boundary(h)) {
+        on_boundary = true;
+      } else {
+        s.face = m_.face_handle(h).idx();
+        s.third = m_.to_vertex_handle(m_.next_halfedge_handle(h)).idx();
+        s.normal = (p_[s.to] - p_[v0]).cross(p_[s.third] - p_[v0]).normalized();
+      }
+      spokes_.push_back(s);
+      h = m_.cw_rotated_halfedge_handle(h);
+    } while (h != start);
+    // v0 needs two faces at least.
+    if (spokes_.size() < 3) return std::nullopt;
+
+    TextureRange r = range_[v0];
+    double inherited = 0, old_inverse_aspect = 1;
+    ++stamp_;
+    for (const Spoke& s : spokes_) {
+      r = merged(r, range_[s.to]);
+      mark_[s.to] = stamp_;
+      if (s.face < 0) continue;
+      inherited = std::max(inherited, bound_[s.face]);
+      old_inverse_aspect =
+          std::min(old_inverse_aspect, inverse_aspect(p_[v0], p_[s.to], p_[s.third]));
+    }
+    if (r[1] - r[0] > o_.u_tolerance || r[3] - r[2] > o_.v_tolerance ||
+        straddles(r[0], r[1], o_.u_levels) || straddles(r[2], r[3], o_.v_levels) ||
+        inherited > o_.tolerance) {
+      settled_[v0] = 1;
+      return std::nullopt;
+    }
+
+    candidates_.clear();
+    for (const Spoke& s : spokes_) {
+      if (on_boundary && !straight_boundary(v0, s.to)) continue;
+      const Vec3& p1 = p_[s.to];
+      Collapse c;
+      c.halfedge = s.halfedge;
+      c.error = (quadric_[v0] + quadric_[s.to])(OpenMesh::Vec3d(p1[0], p1[1], p1[2]));
+      c.length2 = (p1 - p_[v0]).squaredNorm();
+      candidates_.push_back(c);
+    }
+    std::sort(candidates_.begin(), candidates_.end(), earlier);
+
+    const double min_cos = std::cos(max_face_turn_degrees * std::numbers::pi / 180.0);
+    const double allowed2 = (o_.tolerance - inherited) * (o_.tolerance - inherited);
+    for (Collapse& c : candidates_) {
+      const int v1 = m_.to_vertex_handle(c.halfedge).idx();
+      const Vec3& p1 = p_[v1];
+      // The faces v0 leaves, with v1 in its place: no flip, no new sliver, near the old ones.
+      double nearest2 = std::numeric_limits<double>::infinity(), new_inverse_aspect = 1;
+      bool legal = true;
+      for (const Spoke& s : spokes_) {
+        if (s.face < 0 || s.to == v1 || s.third == v1) continue;
+        const Vec3 &a = p_[s.to], &b = p_[s.third];
+        const Vec3 n = (a - p1).cross(b - p1);
+        const double area2 = n.norm();
+        if (!(area2 > 0) || n.dot(s.normal) < min_cos * area2) {
+          legal = false;
+          break;
+        }
+        new_inverse_aspect = std::min(new_inverse_aspect, inverse_aspect(p1, a, b));
+        nearest2 = std::min(nearest2, point_triangle_squared(p_[v0], p1, a, b));
+      }
+      if (!legal || nearest2 > allowed2) continue;
+      if (!(new_inverse_aspect > old_inverse_aspect || new_inverse_aspect > 1.0 / max_aspect_ratio))
+        continue;
+      if (!topology_allows(c.halfedge, on_boundary)) continue;
+      c.bound = inherited + std::sqrt(nearest2);
+      return c;
+    }
+    return std::nullopt;
   }
 
-  const SimplifyOptions* options_ = nullptr;
-  OpenMesh::VPropHandleT<TextureRange> ranges_;
-  OpenMesh::FPropHandleT<double> bounds_;
-  double pending_bound_ = 0;
+  // Collapses v0 and returns the vertex it went into.
+  VertexHandle collapse(VertexHandle v0h, const Collapse& c) {
+    const int v0 = v0h.idx();
+    const VertexHandle v1h = m_.to_vertex_handle(c.halfedge);
+    const int v1 = v1h.idx();
+    m_.collapse(c.halfedge);
+    settled_[v0] = 1;
+    quadric_[v1] += quadric_[v0];
+    range_[v1] = merged(range_[v1], range_[v0]);
+    // Faces of v1 that did not change get the bound too: larger than theirs, so still a bound.
+    for (auto f : m_.vf_range(v1h)) bound_[f.idx()] = std::max(bound_[f.idx()], c.bound);
+    return v1h;
+  }
+
+  RenderMesh& m_;
+  const std::vector<Vec3>& p_;
+  const SimplifyOptions& o_;
+  std::vector<Quadric> quadric_;
+  std::vector<TextureRange> range_;
+  std::vector<std::uint8_t> settled_;  // removed, or refused for good
+  std::vector<std::uint32_t> mark_;    // == stamp_: a neighbour of the vertex being evaluated
+  std::uint32_t stamp_ = 0;
+  std::vector<double> bound_;          // per face: the estimate of its distance (simplify.hpp)
+  std::vector<Spoke> spokes_;
+  std::vector<Collapse> candidates_;
 };
 
 // Builds the OpenMesh mesh of `mesh`; false when OpenMesh refuses a face (non-manifold).
@@ -223,35 +390,7 @@ SimplifyStats simplify_surface(PreparedSurface& surface, const std::vector<Textu
 
   RenderMesh m;
   if (!build_render_mesh(mesh, m)) return stats;
-  m.request_vertex_status();
-  m.request_edge_status();
-  m.request_face_status();
-  m.request_face_normals();
-  m.update_face_normals();
-  OpenMesh::VPropHandleT<TextureRange> ranges;
-  m.add_property(ranges);
-  for (auto v : m.vertices()) {
-    const TextureCoordinate& c = uv[v.idx()];
-    m.property(ranges, v) = {c[0], c[0], c[1], c[1]};
-  }
-
-  using Decimater = OpenMesh::Decimater::DecimaterT<RenderMesh>;
-  Decimater decimater(m);
-  OpenMesh::Decimater::ModQuadricT<RenderMesh>::Handle quadric;
-  OpenMesh::Decimater::ModNormalFlippingT<RenderMesh>::Handle flipping;
-  OpenMesh::Decimater::ModAspectRatioT<RenderMesh>::Handle aspect;
-  typename ModToonBoundT<RenderMesh>::Handle bound;
-  // Constraints run in this order and stop at the first refusal: the most selective first.
-  decimater.add(bound);
-  decimater.add(flipping);
-  decimater.add(aspect);
-  decimater.add(quadric);
-  decimater.module(quadric).unset_max_err();  // the priority; the bound is ModToonBoundT's
-  decimater.module(flipping).set_max_normal_deviation(max_face_turn_degrees);
-  decimater.module(aspect).set_aspect_ratio(max_aspect_ratio);
-  decimater.module(bound).configure(options, ranges);
-  if (!decimater.initialize()) return stats;
-  decimater.decimate();
+  Decimation(m, mesh.positions, uv, options).run();
 
   // The kept vertices (those of a kept face), in their original order.
   std::vector<int> new_index(mesh.positions.size(), -1);
@@ -259,9 +398,9 @@ SimplifyStats simplify_surface(PreparedSurface& surface, const std::vector<Textu
   triangles.reserve(m.n_faces());
   for (auto f : m.faces()) {
     if (m.status(f).deleted()) continue;
-    Triangle t{};
-    int k = 0;
-    for (auto v : m.fv_range(f)) t[k++] = v.idx();
+    const HalfedgeHandle h = m.halfedge_handle(f);
+    const Triangle t{m.from_vertex_handle(h).idx(), m.to_vertex_handle(h).idx(),
+                     m.to_vertex_handle(m.next_halfedge_handle(h)).idx()};
     triangles.push_back(t);
     for (int v : t) new_index[v] = 0;
   }

@@ -1,27 +1,34 @@
 // Simplification of the water's render mesh for POV-Ray, whose parse time grows with the faces
 // (about 1.4 µs a face, most of a big frame's parse; povray-notes.md). Calm water needs few
-// triangles, so each frame's mesh is decimated with OpenMesh's DecimaterT by halfedge collapses
-// (Garland & Heckbert, "Surface simplification using quadric error metrics", SIGGRAPH 1997, for
-// the order; vertices never move, so every kept vertex keeps its position, normal and fields):
+// triangles, so each frame's mesh is decimated by halfedge collapses on an OpenMesh TriMesh
+// (vertices never move, so every kept vertex keeps its position, normal and fields):
 //
-//   priority     ModQuadricT: the area-weighted quadric error of the collapse;
-//   constraints  ModNormalFlippingT (no face turns by more than max_face_turn_degrees),
-//                ModAspectRatioT (no sliver worse than max_aspect_ratio), and ModToonBoundT
-//                (below), which bounds what a viewer could see change:
-//     geometry   the original surface stays within `tolerance` of the simplified one: each
+//   order        passes over the vertices in index order; each collapses a vertex into the
+//                neighbour of least quadric error (Garland & Heckbert, "Surface simplification
+//                using quadric error metrics", SIGGRAPH 1997; shortest edge on ties) that every
+//                constraint allows, and leaves the vertices around that collapse to the next
+//                pass, which spreads a pass's collapses over the surface; only they are looked
+//                at again. Passes run until one collapses nothing.
+//   topology     the link condition and the tests of OpenMesh's is_collapse_ok and DecimaterT;
+//   shape        no face turns by more than max_face_turn_degrees, no new sliver worse than
+//                max_aspect_ratio (as ModNormalFlippingT and ModAspectRatioT);
+//   geometry     the original surface stays within `tolerance` of the simplified one: each
 //                face carries an estimate e_f of that distance which only grows, and a collapse
 //                of v0 into v1 gives the faces it changes e = max e_f (star of v0) + d(p0, new
 //                star), refused when e > tolerance (the tests measure the Hausdorff distance);
-//     textures   the per-vertex texture coordinates u (L·n) and v (the flow field s) stay
+//   textures     the per-vertex texture coordinates u (L·n) and v (the flow field s) stay
 //                within a bound: each vertex carries the range of the original values it
 //                stands for, and a collapse is refused when the range over v0, v1 and v0's
 //                neighbours exceeds the bound or straddles a level the template cuts at (band
 //                thresholds, s = ±1), so bands and flow regions keep their exact boundaries;
-//     boundary   a boundary vertex only collapses along a straight boundary, so the water's
+//   boundary     a boundary vertex only collapses along a straight boundary, so the water's
 //                outline keeps its shape.
 //
-// `tolerance` comes from a bound in pixels at the frame's camera (screen_tolerance). Frames with
-// no faces, or that OpenMesh cannot hold (non-manifold), pass through unchanged.
+// OpenMesh holds the connectivity and does the collapses; the tests run on flat arrays. (The
+// library's DecimaterT evaluates every halfedge around each collapse again, some 40 checks a
+// collapse, and took 19 times as long.) `tolerance` comes from a bound in pixels at the
+// frame's camera (screen_tolerance). Frames with no faces, or that OpenMesh cannot hold
+// (non-manifold), pass through unchanged.
 #pragma once
 
 #include "povgen/povgen.hpp"

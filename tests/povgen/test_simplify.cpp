@@ -97,6 +97,17 @@ TEST(Simplify, FlatPlaneSimplifiesToAHandfulOfFacesWithItsOutline) {
   EXPECT_NEAR(area, 4.0, 1e-9);
 }
 
+TEST(Simplify, AVertexInNoFaceIsLeftOut) {
+  TriangleMesh plane = make_height_grid(11, 1.0, [](double, double) { return 0.0; });
+  plane.positions.push_back(Vec3(5, 0, 5));
+  PreparedSurface s = prepared(plane);
+  ASSERT_EQ(s.mesh.positions.size(), 122u);
+  const povgen::SimplifyStats stats = simplify(s, 1e-3);
+  EXPECT_TRUE(stats.simplified);
+  EXPECT_LE(stats.faces_after, 8u);
+  for (const Vec3& p : s.mesh.positions) EXPECT_LE(p.norm(), std::sqrt(2.0) + 1e-12);
+}
+
 // The geometric tolerance is the pixel bound at the test camera; the simplified surface stays
 // within it of every original point (and the other way round), and the crests are kept.
 TEST(Simplify, RippleKeepsItsCrestsWithinThePixelBound) {
