@@ -2,19 +2,12 @@
 
 #include "analyzer/curvature_jet.hpp"
 #include "analyzer/curvature_smoothing.hpp"
+#include "analyzer/stopwatch.hpp"
 #include "analyzer/weld.hpp"
 
 #include <chrono>
 
 namespace toonwater {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-}  // namespace
 
 Analysis analyze_mesh(TriangleMesh input, const AnalyzeOptions& options) {
   Analysis a;

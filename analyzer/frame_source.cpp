@@ -2,19 +2,11 @@
 #include "analyzer/frame_source.hpp"
 
 #include "analyzer/mesh_reader.hpp"
+#include "analyzer/stopwatch.hpp"
 
 #include <chrono>
 
 namespace toonwater {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-}  // namespace
 
 SourceFrame FrameSource::read(const std::filesystem::path& path) {
   SourceFrame frame;

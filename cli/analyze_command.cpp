@@ -10,6 +10,7 @@
 #include "analyzer/maps/map_writer.hpp"
 #include "analyzer/maps/sequence_maps.hpp"
 #include "analyzer/mesh_reader.hpp"
+#include "analyzer/stopwatch.hpp"
 #include "images/image_codec.hpp"
 
 #include <chrono>
@@ -42,10 +43,6 @@ struct AnalyzeArgs {
   Estimator estimator = Estimator::one_ring;
   int smooth = 0;
 };
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 void print_summary(const std::string& mesh_path, const Analysis& a, double read_seconds,
                    double write_seconds) {
@@ -110,7 +107,7 @@ void run_analyze(const AnalyzeArgs& args) {
   if (!args.maps.empty() && std::filesystem::is_directory(args.maps))
     remove_stale_temporaries(args.maps);
   const std::optional<AffineTransform> transform = transform_from(args.transform);
-  auto start = std::chrono::steady_clock::now();
+  auto start = Clock::now();
   InputMesh input = read_mesh(args.mesh);
   if (transform) apply_transform(*transform, input.mesh);
   const double read_seconds = seconds_since(start);
@@ -130,7 +127,7 @@ void run_analyze(const AnalyzeArgs& args) {
       args.ply.empty() ? std::vector<Triangle>{} : input.mesh.triangles;
   const Analysis analysis = analyze_mesh(std::move(input.mesh), options);
 
-  start = std::chrono::steady_clock::now();
+  start = Clock::now();
   // Every output, or none: the renames wait until all of them are complete.
   OutputBatch outputs;
   if (!args.csv.empty()) write_curvature_csv(args.csv, analysis);

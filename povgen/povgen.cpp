@@ -6,6 +6,7 @@
 #include "analyzer/maps/map_writer.hpp"
 #include "analyzer/maps/sequence_maps.hpp"
 #include "analyzer/mesh_reader.hpp"
+#include "analyzer/stopwatch.hpp"
 #include "analyzer/topology.hpp"
 #include "analyzer/vertex_normals.hpp"
 #include "analyzer/weld.hpp"
@@ -26,11 +27,6 @@ namespace toonwater::povgen {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 bool is_closed(const MeshTopology& t) { return t.boundary_edges == 0 && t.nonmanifold_edges == 0; }
 
