@@ -1,6 +1,6 @@
 // Discrete curvature after Meyer, Desbrun, Schröder and Barr (2002); formulas in curvature.hpp.
 //
-// Robustness choices (see ../shared/design/curvature-notes.md for how other libraries fail):
+// Robustness choices (each guards against a way common curvature code fails on real meshes):
 // - Positions are scaled by a power of two so that the largest coordinate is of order one. The
 //   scaling is exact, so K ∝ 1/s² and H ∝ 1/s hold to the last bit for power-of-two scales, and
 //   coordinates near 1e±300 neither overflow nor underflow in the squared lengths.
@@ -53,7 +53,7 @@
 #include "analyzer/curvature.hpp"
 
 #include "analyzer/intrinsic_delaunay.hpp"
-#include "analyzer/parallel.hpp"
+#include "common/parallel.hpp"
 #include "analyzer/vertex_normals.hpp"
 
 #include <algorithm>

@@ -5,8 +5,8 @@
 // PLY floats are clamped to the float range, so no output ever holds NaN or Inf.
 #include "analyzer/curvature_export.hpp"
 
-#include "analyzer/atomic_file.hpp"
-#include "analyzer/parallel.hpp"
+#include "common/atomic_file.hpp"
+#include "common/parallel.hpp"
 
 #include <algorithm>
 #include <bit>

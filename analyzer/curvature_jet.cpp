@@ -18,7 +18,7 @@
 //   (`undefined`). Slivers need no special case: they only contribute their corners' positions.
 #include "analyzer/curvature_jet.hpp"
 
-#include "analyzer/parallel.hpp"
+#include "common/parallel.hpp"
 
 #include <Eigen/Cholesky>
 

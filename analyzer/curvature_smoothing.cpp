@@ -3,7 +3,7 @@
 // shared writes and the result does not depend on the vertex order.
 #include "analyzer/curvature_smoothing.hpp"
 
-#include "analyzer/parallel.hpp"
+#include "common/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // Temporal coherence of flow regions; the method is stated in flow_coherence.hpp.
 #include "analyzer/flow_coherence.hpp"
 
-#include "analyzer/parallel.hpp"
+#include "common/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,7 +5,7 @@
 #include "analyzer/disjoint_sets.hpp"
 #include "analyzer/flow_coherence.hpp"
 #include "analyzer/free_surface.hpp"
-#include "analyzer/parallel.hpp"
+#include "common/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>

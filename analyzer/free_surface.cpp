@@ -2,7 +2,7 @@
 #include "analyzer/free_surface.hpp"
 
 #include "analyzer/disjoint_sets.hpp"
-#include "analyzer/parallel.hpp"
+#include "common/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "analyzer/obj_writer.hpp"
 
-#include "analyzer/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 
 #include <charconv>
 #include <stdexcept>

@@ -16,7 +16,7 @@ namespace toonwater {
 // a NaN or infinite coordinate: such a mesh is never written.
 std::string obj_text(const TriangleMesh& mesh, std::string_view comment = {});
 
-// obj_text written atomically (analyzer/atomic_file.hpp). Throws OutputError.
+// obj_text written atomically (common/atomic_file.hpp). Throws OutputError.
 void write_obj(const std::filesystem::path& path, const TriangleMesh& mesh,
                std::string_view comment = {});
 

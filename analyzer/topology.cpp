@@ -7,7 +7,7 @@
 #include "analyzer/topology.hpp"
 
 #include "analyzer/disjoint_sets.hpp"
-#include "analyzer/parallel.hpp"
+#include "common/parallel.hpp"
 
 #include <algorithm>
 #include <numeric>

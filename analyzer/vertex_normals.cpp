@@ -1,6 +1,6 @@
 #include "analyzer/vertex_normals.hpp"
 
-#include "analyzer/parallel.hpp"
+#include "common/parallel.hpp"
 
 namespace toonwater {
 

@@ -12,7 +12,7 @@
 //   AnalyzeCommand   `toonwater analyze MESH --csv FILE` end to end as a child process, with
 //                    its peak resident memory per vertex (counter bytes_per_vertex)
 #include "analyzer/analysis.hpp"
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 #include "analyzer/flow_coherence.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "analyzer/obj_writer.hpp"

@@ -4,7 +4,7 @@
 //   Jet          compute_curvature_jet (includes the one-ring pass for normals and areas)
 //   Smoothing2   two smoothing steps of an already computed field
 // report/README.md quotes the figures.
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 #include "analyzer/curvature_jet.hpp"
 #include "analyzer/curvature_smoothing.hpp"
 

@@ -6,7 +6,7 @@
 //               the EXR and the three PNG previews (to the temp directory), into an empty
 //               directory (replace:0) or over the previous frame's files (replace:1)
 #include "analyzer/analysis.hpp"
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 #include "analyzer/maps/map_planner.hpp"
 #include "analyzer/maps/map_writer.hpp"
 

@@ -1,9 +1,9 @@
-// povgen speed (issue 3): a 55k-vertex frame analysed and written (target <= 0.1 s), a
+// povgen speed: a 55k-vertex frame analysed and written (target <= 0.1 s), a
 // 1M-vertex mesh2 written (target <= 0.5 s), and POV-Ray's own parse and trace times on
 // generated scenes at 640x480 with refraction (BM_Povray*, slow: not for CI; run them with
 // --benchmark_filter=Povray).
-#include "analyzer/analytic_surfaces.hpp"
-#include "analyzer/atomic_file.hpp"
+#include "corpus/analytic_surfaces.hpp"
+#include "common/atomic_file.hpp"
 #include "analyzer/obj_writer.hpp"
 #include "povgen/config.hpp"
 #include "povgen/mesh2_writer.hpp"

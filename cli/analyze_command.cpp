@@ -5,7 +5,7 @@
 
 #include "analyzer/affine_transform.hpp"
 #include "analyzer/analysis.hpp"
-#include "analyzer/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "analyzer/curvature_export.hpp"
 #include "analyzer/maps/map_writer.hpp"
 #include "analyzer/maps/sequence_maps.hpp"

@@ -2,7 +2,7 @@
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 
-#include "analyzer/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "images/image_codec.hpp"
 #include "povgen/config.hpp"

@@ -5,7 +5,7 @@
 #include "cli/transform_options.hpp"
 #include "cli/validators.hpp"
 
-#include "analyzer/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "images/image_codec.hpp"
 #include "povgen/povgen.hpp"
 

@@ -2,9 +2,9 @@
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 
-#include "analyzer/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "analyzer/obj_writer.hpp"
-#include "examples/sim/scenarios.hpp"
+#include "sim/scenarios.hpp"
 
 #include <chrono>
 #include <cstdio>

@@ -1,4 +1,4 @@
-# Sanitizer and fuzzing builds (issue 8). Both instrument every target of the build, so they
+# Sanitizer and fuzzing builds. Both instrument every target of the build, so they
 # belong in a build directory of their own:
 #   cmake -B build-asan -DTOONWATER_SANITIZE=ON                       (GCC or Clang)
 #   cmake -B build-fuzz -DTOONWATER_FUZZ=ON -DCMAKE_CXX_COMPILER=clang++-14

@@ -1,6 +1,6 @@
 #include "povgen/farm.hpp"
 
-#include "analyzer/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "analyzer/mesh_reader.hpp"
 
 #include <fcntl.h>

@@ -1,6 +1,6 @@
 #include "povgen/farm_slurm.hpp"
 
-#include "analyzer/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "analyzer/mesh_reader.hpp"
 
 #include <chrono>

@@ -1,6 +1,6 @@
 #include "povgen/mesh2_writer.hpp"
 
-#include "analyzer/parallel.hpp"
+#include "common/parallel.hpp"
 
 #include <algorithm>
 #include <charconv>

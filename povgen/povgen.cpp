@@ -1,7 +1,7 @@
 #include "povgen/povgen.hpp"
 
 #include "analyzer/analysis.hpp"
-#include "analyzer/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "analyzer/frame_source.hpp"
 #include "analyzer/maps/map_writer.hpp"
 #include "analyzer/maps/sequence_maps.hpp"

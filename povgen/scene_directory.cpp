@@ -1,6 +1,6 @@
 #include "povgen/scene_directory.hpp"
 
-#include "analyzer/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 
 #include <fcntl.h>
 #include <stdio.h>

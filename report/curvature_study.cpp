@@ -1,7 +1,7 @@
 // Curvature error against run time; see curvature_study.hpp.
 #include "report/curvature_study.hpp"
 
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 
 #include <algorithm>
 #include <cmath>

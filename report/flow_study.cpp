@@ -4,7 +4,7 @@
 #include "analyzer/disjoint_sets.hpp"
 #include "analyzer/flow_regions.hpp"
 #include "analyzer/mesh_reader.hpp"
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 #include "povgen/povgen.hpp"
 #include "povgen/render.hpp"
 #include "povgen/scene_writer.hpp"

@@ -4,8 +4,8 @@
 // (sample_analysis), not written in advance.
 #include "report/report.hpp"
 
-#include "analyzer/analytic_surfaces.hpp"
-#include "analyzer/atomic_file.hpp"
+#include "corpus/analytic_surfaces.hpp"
+#include "common/atomic_file.hpp"
 #include "analyzer/obj_writer.hpp"
 #include "report/report_csv.hpp"
 #include "report/report_markdown.hpp"

@@ -7,7 +7,7 @@
 // reason. The EXR is encoded on a second thread while the previews are drawn and encoded.
 #include "analyzer/maps/map_writer.hpp"
 
-#include "analyzer/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "analyzer/maps/preview.hpp"
 
 #include "images/image_codec.hpp"

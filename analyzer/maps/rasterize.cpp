@@ -8,7 +8,7 @@
 //     pixel takes the label of its nearest corner (largest weight) instead of a blend.
 #include "analyzer/maps/top_down_map.hpp"
 
-#include "analyzer/parallel.hpp"
+#include "common/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "analyzer/analysis.hpp"  // Estimator
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 #include "analyzer/curvature.hpp"
 #include "analyzer/curvature_jet.hpp"
 #include "analyzer/topology.hpp"

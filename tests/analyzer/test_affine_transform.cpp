@@ -3,7 +3,7 @@
 // scale is still accepted. Also the analyze options that build them.
 #include "analyzer/affine_transform.hpp"
 
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 #include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 

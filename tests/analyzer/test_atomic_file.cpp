@@ -1,6 +1,6 @@
 // Atomic writes: the target gets exactly the new content; on failure the target is untouched,
 // the error names it, and no temporary file is left behind.
-#include "analyzer/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 
 #include "tests/support/test_support.hpp"
 

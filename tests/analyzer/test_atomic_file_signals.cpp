@@ -1,7 +1,7 @@
-// remove_temporaries_on_signals (analyzer/atomic_file.hpp): a process ended by SIGINT, SIGTERM
+// remove_temporaries_on_signals (common/atomic_file.hpp): a process ended by SIGINT, SIGTERM
 // or SIGHUP while AtomicFileWriters are writing leaves their targets as they were and no
 // temporary file. Each case runs in a child process that signals itself mid-write.
-#include "analyzer/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // writes them, read back exactly; every kind of damage (not gzip, a cut or corrupt stream, data
 // shorter than its counts, bad indices, NaN) is one line naming the file and where; hostile
 // counts and gzip bombs allocate nothing large; and analyze and povgen take numbered sequences.
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "analyzer/obj_writer.hpp"
 #include "tests/support/largest_allocation.hpp"

@@ -2,7 +2,7 @@
 // CSV, a binary PLY our own reader reads back, and never a NaN or Inf.
 #include "analyzer/curvature_export.hpp"
 
-#include "analyzer/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "tests/support/test_support.hpp"
 

@@ -3,7 +3,7 @@
 // orientation fixing that restores the outward winding of a closed surface.
 #include "analyzer/topology.hpp"
 
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // faces contribute nothing; the winding decides the side.
 #include "analyzer/vertex_normals.hpp"
 
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 #include "analyzer/topology.hpp"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // Water-like test meshes: open height fields and closed tanks with a height field on top.
 #pragma once
 
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 
 #include <cmath>
 #include <functional>

@@ -1,11 +1,11 @@
 // The examples' wave simulation: the physics it claims and the frames it writes.
 #include "analyzer/mesh_reader.hpp"
-#include "examples/sim/body_displacement.hpp"
-#include "examples/sim/mesh_builders.hpp"
-#include "examples/sim/scenarios.hpp"
-#include "examples/sim/water_figure.hpp"
-#include "examples/sim/wave_scene.hpp"
-#include "examples/sim/wave_solver.hpp"
+#include "sim/body_displacement.hpp"
+#include "sim/mesh_builders.hpp"
+#include "sim/scenarios.hpp"
+#include "sim/water_figure.hpp"
+#include "sim/wave_scene.hpp"
+#include "sim/wave_solver.hpp"
 #include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 

@@ -1,6 +1,6 @@
 // Maps written to disk and read back with OpenImageIO: channels by name, analytic values,
 // alpha, no NaN/Inf, preview colours at known points, metadata and shared sequence ranges.
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 #include "analyzer/colormap.hpp"
 #include "analyzer/maps/map_writer.hpp"
 #include "analyzer/maps/preview.hpp"

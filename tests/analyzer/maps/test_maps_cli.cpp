@@ -1,5 +1,5 @@
 // `toonwater analyze MESH --maps DIR`: the files, the summary line, and bad options.
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 #include "analyzer/obj_writer.hpp"
 #include "tests/analyzer/maps/map_test_util.hpp"
 #include "tests/support/run_toonwater.hpp"

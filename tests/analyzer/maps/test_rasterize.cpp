@@ -1,6 +1,6 @@
 // Top-down rasteriser: analytic values at known pixels, barycentric interpolation, the topmost
 // layer, culling of downward faces, axes.
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 #include "analyzer/maps/map_planner.hpp"
 #include "analyzer/maps/top_down_map.hpp"
 #include "tests/analyzer/maps/map_test_util.hpp"

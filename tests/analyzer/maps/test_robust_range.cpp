@@ -1,5 +1,5 @@
 // Robust colour ranges: the weighted quantile of |value|, merged over frames.
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 #include "analyzer/maps/map_planner.hpp"
 #include "analyzer/maps/robust_range.hpp"
 #include "tests/analyzer/maps/map_test_util.hpp"

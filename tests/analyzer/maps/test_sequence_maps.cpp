@@ -1,5 +1,5 @@
 // Two-pass sequence maps from files: one view and one colour range shared by every frame.
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 #include "analyzer/obj_writer.hpp"
 #include "analyzer/maps/sequence_maps.hpp"
 #include "analyzer/mesh_reader.hpp"

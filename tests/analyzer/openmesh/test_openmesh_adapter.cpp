@@ -2,7 +2,7 @@
 // analytic corpus: the same values, bit for bit, on every vertex.
 #include "analyzer/openmesh/openmesh_adapter.hpp"
 
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 
 #include <gtest/gtest.h>
 

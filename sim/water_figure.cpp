@@ -1,6 +1,6 @@
-#include "examples/sim/water_figure.hpp"
+#include "sim/water_figure.hpp"
 
-#include "examples/sim/mesh_builders.hpp"
+#include "sim/mesh_builders.hpp"
 
 #include <cmath>
 #include <numbers>

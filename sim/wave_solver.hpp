@@ -17,7 +17,7 @@
 // c·Δt/Δx ≤ 1/√2 and ν·Δt/Δx² ≤ 1/4 whatever γ is.
 #pragma once
 
-#include "examples/sim/height_field.hpp"
+#include "sim/height_field.hpp"
 
 #include <vector>
 

@@ -1,4 +1,4 @@
-#include "examples/sim/mesh_builders.hpp"
+#include "sim/mesh_builders.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -1,4 +1,4 @@
-#include "examples/sim/wave_solver.hpp"
+#include "sim/wave_solver.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 // is against failed and interrupted runs, not against power loss, and syncing large outputs would
 // cost more than the rest of the run. Writers in progress list their temporary file in a fixed
 // table that a signal handler can read (remove_temporaries_on_signals).
-#include "analyzer/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 
 #include <fcntl.h>
 #include <signal.h>

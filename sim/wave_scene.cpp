@@ -1,6 +1,6 @@
-#include "examples/sim/wave_scene.hpp"
+#include "sim/wave_scene.hpp"
 
-#include "examples/sim/body_displacement.hpp"
+#include "sim/body_displacement.hpp"
 
 #include <cmath>
 

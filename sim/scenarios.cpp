@@ -1,8 +1,8 @@
-#include "examples/sim/scenarios.hpp"
+#include "sim/scenarios.hpp"
 
-#include "examples/sim/mesh_builders.hpp"
-#include "examples/sim/wave_scene.hpp"
-#include "examples/sim/water_figure.hpp"
+#include "sim/mesh_builders.hpp"
+#include "sim/wave_scene.hpp"
+#include "sim/water_figure.hpp"
 
 #include <algorithm>
 #include <cmath>

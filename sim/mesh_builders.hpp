@@ -4,7 +4,7 @@
 #pragma once
 
 #include "analyzer/mesh.hpp"
-#include "examples/sim/height_field.hpp"
+#include "sim/height_field.hpp"
 
 namespace toonwater::sim {
 

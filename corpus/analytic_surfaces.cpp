@@ -8,7 +8,7 @@
 //   graph z = f(x, y), upward normal, W = sqrt(1 + fx² + fy²):
 //              K = (fxx fyy − fxy²) / W⁴,
 //              H = −((1 + fy²) fxx − 2 fx fy fxy + (1 + fx²) fyy) / (2 W³)
-#include "analyzer/analytic_surfaces.hpp"
+#include "corpus/analytic_surfaces.hpp"
 
 #include <cmath>
 #include <map>

@@ -1,4 +1,4 @@
-#include "examples/sim/height_field.hpp"
+#include "sim/height_field.hpp"
 
 #include <algorithm>
 #include <cmath>

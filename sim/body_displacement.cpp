@@ -1,4 +1,4 @@
-#include "examples/sim/body_displacement.hpp"
+#include "sim/body_displacement.hpp"
 
 #include <algorithm>
 #include <cmath>

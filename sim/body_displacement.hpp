@@ -7,7 +7,7 @@
 // surface). Moving the sphere from c to c' changes the water by d(c') − d(c).
 #pragma once
 
-#include "examples/sim/height_field.hpp"
+#include "sim/height_field.hpp"
 
 #include <Eigen/Core>
 

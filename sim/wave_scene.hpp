@@ -7,8 +7,8 @@
 #pragma once
 
 #include "analyzer/mesh.hpp"
-#include "examples/sim/height_field.hpp"
-#include "examples/sim/wave_solver.hpp"
+#include "sim/height_field.hpp"
+#include "sim/wave_solver.hpp"
 
 #include <functional>
 #include <optional>
