@@ -53,21 +53,28 @@ std::int64_t PointGrid::cell_along(double coordinate, int axis) const {
 
 void PointGrid::scan(const Vec3& p, std::int64_t ca, std::int64_t cb, int inner, int outer,
                      std::int32_t& best, double& best_distance2) const {
+  // The cells of a row are consecutive in the sorted arrays, so a run of them is one range.
+  auto scan_run = [&](std::int64_t a, std::int64_t b_first, std::int64_t b_last) {
+    b_first = std::max<std::int64_t>(b_first, 0);
+    b_last = std::min<std::int64_t>(b_last, cells_b_ - 1);
+    if (b_first > b_last) return;
+    const std::int32_t end = cell_begin_[a * cells_b_ + b_last + 1];
+    for (std::int32_t i = cell_begin_[a * cells_b_ + b_first]; i < end; ++i) {
+      const double d2 = (sorted_points_[i] - p).squaredNorm();
+      if (d2 <= best_distance2) {
+        best_distance2 = d2;
+        best = sorted_index_[i];
+      }
+    }
+  };
   for (std::int64_t da = -outer; da <= outer; ++da) {
     const std::int64_t a = ca + da;
     if (a < 0 || a >= cells_a_) continue;
-    for (std::int64_t db = -outer; db <= outer; ++db) {
-      if (std::max(std::abs(da), std::abs(db)) < inner) continue;
-      const std::int64_t b = cb + db;
-      if (b < 0 || b >= cells_b_) continue;
-      const std::int64_t cell = a * cells_b_ + b;
-      for (std::int32_t i = cell_begin_[cell]; i < cell_begin_[cell + 1]; ++i) {
-        const double d2 = (sorted_points_[i] - p).squaredNorm();
-        if (d2 <= best_distance2) {
-          best_distance2 = d2;
-          best = sorted_index_[i];
-        }
-      }
+    if (std::abs(da) >= inner) {
+      scan_run(a, cb - outer, cb + outer);
+    } else {  // the row crosses the hole of the ring: its two ends
+      scan_run(a, cb - outer, cb - inner);
+      scan_run(a, cb + inner, cb + outer);
     }
   }
 }
