@@ -39,11 +39,13 @@ void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_fac
       for (std::size_t v = begin; v < end; ++v) {
         if (member[v]) {
           double weight = 0.0, weighted = 0.0;
+          // Summed face by face: the three corners of a face are independent additions, so
+          // the chain of dependent ones (which bounds the speed) is one per face, not per corner.
           for (std::int32_t f : vertex_faces.of(static_cast<std::int32_t>(v))) {
-            for (std::int32_t c : mesh.triangles[f]) {
-              weight += terms[c].weight;
-              weighted += terms[c].weighted;
-            }
+            const Terms &a = terms[mesh.triangles[f][0]], &b = terms[mesh.triangles[f][1]],
+                        &c = terms[mesh.triangles[f][2]];
+            weight += a.weight + b.weight + c.weight;
+            weighted += a.weighted + b.weighted + c.weighted;
           }
           if (weight > 0.0) values[v] = weighted / weight;
         }

@@ -1,5 +1,5 @@
-// Disjoint sets over 0..n−1 (union-find), joined by Rem's algorithm with splicing: near-constant
-// time per operation in practice, so labelling connected parts of a mesh is linear in its size.
+// Disjoint sets over 0..n−1 (union-find) with union by rank and path halving: near-constant
+// time per operation (Tarjan 1975), so labelling connected parts of a mesh is linear in its size.
 //
 // join_in_parallel joins the pairs of a pass over faces on all cores: the elements are split
 // into one contiguous range per chunk of faces, and a chunk joins the pairs that lie in its own
@@ -23,10 +23,14 @@ namespace toonwater {
 
 class DisjointSets {
  public:
-  explicit DisjointSets(std::size_t n) : parent_(new std::int32_t[n]) {
+  explicit DisjointSets(std::size_t n)
+      : parent_(new std::int32_t[n]), rank_(new std::uint8_t[n]) {
     // Left uninitialised by new and filled by the threads that will use each part first.
     parallel_chunks(n, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i) parent_[i] = static_cast<std::int32_t>(i);
+      for (std::size_t i = begin; i < end; ++i) {
+        parent_[i] = static_cast<std::int32_t>(i);
+        rank_[i] = 0;
+      }
     });
   }
 
@@ -41,23 +45,18 @@ class DisjointSets {
     return i;
   }
 
-  // Rem's algorithm with splicing: the two paths are climbed together, the one with the lower
-  // parent first, and each node climbed is hung on the other path's higher parent. A parent's
-  // index is never below its child's, so a root is its set's largest element. Fastest of the
-  // classic variants in practice (Patwary, Blair, Manne, "Experiments on union-find algorithms
-  // for the disjoint-set data structure", SEA 2010), and it needs no rank or size array.
   void join(std::int32_t a, std::int32_t b) {
-    while (parent_[a] != parent_[b]) {
-      if (parent_[a] > parent_[b]) std::swap(a, b);
-      const std::int32_t up = parent_[a];
-      parent_[a] = parent_[b];
-      if (a == up) return;  // a was a root: now linked under b's parent
-      a = up;
-    }
+    a = root(a);
+    b = root(b);
+    if (a == b) return;
+    if (rank_[a] < rank_[b]) std::swap(a, b);
+    parent_[b] = a;
+    rank_[a] += rank_[a] == rank_[b];
   }
 
  private:
   std::unique_ptr<std::int32_t[]> parent_;
+  std::unique_ptr<std::uint8_t[]> rank_;  // bounds the tree's height: at most log2(n)
 };
 
 // range_begin for join_in_parallel over the vertices of `triangles`, split as parallel_chunks

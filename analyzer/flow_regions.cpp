@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 
 namespace toonwater {
@@ -29,14 +30,24 @@ double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {
   const std::size_t edge_count = 3 * mesh.triangles.size();
   if (edge_count == 0) return 0.0;
   const std::size_t stride = std::max<std::size_t>(1, edge_count / std::max<std::size_t>(1, max_samples));
-  std::vector<double> lengths;
-  lengths.reserve(edge_count / stride + 1);
-  for (std::size_t e = 0; e < edge_count; e += stride) {
-    const Triangle& t = mesh.triangles[e / 3];
-    const int c = static_cast<int>(e % 3);
-    const double length = (mesh.positions[t[(c + 1) % 3]] - mesh.positions[t[c]]).norm();
-    if (length > 0.0 && std::isfinite(length)) lengths.push_back(length);
-  }
+  const std::size_t samples = (edge_count + stride - 1) / stride;
+  // The sampled edges' lengths chunk by chunk (each a cache miss or two), then joined in order.
+  const std::size_t workers = worker_count(samples, 4096);
+  std::vector<std::vector<double>> chunk_lengths(workers);
+  parallel_chunks(samples, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::vector<double>& lengths = chunk_lengths[chunk];
+    lengths.reserve(end - begin);
+    for (std::size_t sample = begin; sample < end; ++sample) {
+      const std::size_t e = sample * stride;
+      const Triangle& t = mesh.triangles[e / 3];
+      const int c = static_cast<int>(e % 3);
+      const double length = (mesh.positions[t[(c + 1) % 3]] - mesh.positions[t[c]]).norm();
+      if (length > 0.0 && std::isfinite(length)) lengths.push_back(length);
+    }
+  });
+  std::vector<double> lengths = std::move(chunk_lengths[0]);
+  for (std::size_t w = 1; w < workers; ++w)
+    lengths.insert(lengths.end(), chunk_lengths[w].begin(), chunk_lengths[w].end());
   if (lengths.empty()) return 0.0;
   const auto middle = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
   std::nth_element(lengths.begin(), middle, lengths.end());
@@ -118,23 +129,32 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
     if (s1 != FlowLabel::none && s1 == s2) join(member_index[t[1]], member_index[t[2]]);
     if (s2 != FlowLabel::none && s2 == s0 && s0 != s1) join(member_index[t[2]], member_index[t[0]]);
   });
+  // Each region's figures sit in the slot of its root; the other slots are never touched (nor
+  // their pages faulted in: `new` leaves them uninitialised).
+  struct Region {
+    double area, peak, factor;
+  };
+  std::unique_ptr<Region[]> region(new Region[m]);
   std::vector<std::int32_t> region_of(m);
   parallel_chunks(m, worker_count(m), [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) region_of[i] = sets.root_of(static_cast<std::int32_t>(i));
+    for (std::size_t i = begin; i < end; ++i) {
+      region_of[i] = sets.root_of(static_cast<std::int32_t>(i));
+      if (region_of[i] == static_cast<std::int32_t>(i)) region[i] = Region{0.0, 0.0, 1.0};
+    }
   });
   // Areas summed in vertex order, so that they do not depend on the core count.
-  std::vector<double> region_area(m, 0.0), region_peak(m, 0.0), factor(m, 1.0);
+  std::vector<std::int32_t> roots;
   for (std::size_t i = 0; i < m; ++i) {
-    const std::int32_t r = region_of[i];
-    region_area[r] += vertex_area[members[i]];
-    region_peak[r] = std::max(region_peak[r], std::abs(field[members[i]]));
+    Region& r = region[region_of[i]];
+    r.area += vertex_area[members[i]];
+    r.peak = std::max(r.peak, std::abs(field[members[i]]));
+    if (region_of[i] == static_cast<std::int32_t>(i)) roots.push_back(static_cast<std::int32_t>(i));
   }
-  for (std::size_t r = 0; r < m; ++r) {
-    if (region_peak[r] == 0.0) continue;  // not a root
-    if (flow.min_region_area > 0.0)
-      factor[r] = fade_factor(region_area[r], region_peak[r], flow.min_region_area);
-    flow.specks_faded += factor[r] < 1.0;
-    flow.regions += factor[r] * region_peak[r] >= 1.0;
+  for (std::int32_t root : roots) {
+    Region& r = region[root];
+    if (flow.min_region_area > 0.0) r.factor = fade_factor(r.area, r.peak, flow.min_region_area);
+    flow.specks_faded += r.factor < 1.0;
+    flow.regions += r.factor * r.peak >= 1.0;
   }
 
   // The faded field and the labels, chunk by chunk, each with its own counts and box.
@@ -149,7 +169,7 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
     Tally& tally = tallies[chunk];
     for (std::size_t i = begin; i < end; ++i) {
       const std::int32_t v = members[i];
-      field[v] *= factor[region_of[i]];
+      field[v] *= region[region_of[i]].factor;
       const std::int8_t label = region_sign(field[v]);
       flow.label[v] = label;
       if (label == FlowLabel::none) continue;

@@ -21,7 +21,7 @@ void mark(std::vector<std::uint8_t>& flags, std::int32_t v) {
 // Rule 1 of the header: the vertex's faces and its neighbours' faces all face up. (In Mantaflow
 // output the fillets' faces tilt 6°–65° off the vertical.) A pass over the faces marks the
 // corners of up faces and of the others, so no pass gathers over each vertex's faces.
-// Faces with a repeated corner are no faces of a vertex (topology.hpp) and are skipped.
+// Faces with a repeated corner, no faces of a vertex (topology.hpp), have no normal either.
 std::vector<std::uint8_t> upward_vertices(const TriangleMesh& mesh, int up, double min_up_component) {
   const std::size_t n = mesh.positions.size(), face_count = mesh.triangles.size();
   // A face without a normal (zero area) is neither up nor not up.
@@ -30,7 +30,6 @@ std::vector<std::uint8_t> upward_vertices(const TriangleMesh& mesh, int up, doub
                   [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t f = begin; f < end; ++f) {
       const Triangle& t = mesh.triangles[f];
-      if (has_repeated_corner(t)) continue;
       const Vec3& a = mesh.positions[t[0]];
       const Vec3 cross = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);
       const double length = cross.norm();
