@@ -1,6 +1,8 @@
 // Dense column grid; the method is stated in point_grid.hpp.
 #include "analyzer/point_grid.hpp"
 
+#include "common/parallel.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -9,10 +11,19 @@ namespace toonwater {
 PointGrid::PointGrid(const std::vector<Vec3>& points, double radius)
     : radius_(radius > 0.0 && std::isfinite(radius) ? radius : 1.0) {
   if (points.empty()) return;
-  Vec3 min = points.front(), max = min;
-  for (const Vec3& p : points) {
-    min = min.cwiseMin(p);
-    max = max.cwiseMax(p);
+  // The bounding box and, below, the points' cells on all cores; the counting sort on one.
+  const std::size_t workers = worker_count(points.size());
+  std::vector<Vec3> chunk_min(workers, points.front()), chunk_max(workers, points.front());
+  parallel_chunks(points.size(), workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      chunk_min[chunk] = chunk_min[chunk].cwiseMin(points[i]);
+      chunk_max[chunk] = chunk_max[chunk].cwiseMax(points[i]);
+    }
+  });
+  Vec3 min = chunk_min[0], max = chunk_max[0];
+  for (std::size_t w = 1; w < workers; ++w) {
+    min = min.cwiseMin(chunk_min[w]);
+    max = max.cwiseMax(chunk_max[w]);
   }
   const Vec3 extent = max - min;
   int thinnest = 0;
@@ -29,11 +40,13 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, double radius)
   cells_b_ = static_cast<std::int64_t>(extent[axis_b_] / cell_size_) + 1;
 
   std::vector<std::int64_t> cell_of(points.size());
+  parallel_chunks(points.size(), workers, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      cell_of[i] = cell_along(points[i][axis_a_], axis_a_) * cells_b_ +
+                   cell_along(points[i][axis_b_], axis_b_);
+  });
   cell_begin_.assign(static_cast<std::size_t>(cells_a_ * cells_b_ + 1), 0);
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    cell_of[i] = cell_along(points[i][axis_a_], axis_a_) * cells_b_ + cell_along(points[i][axis_b_], axis_b_);
-    ++cell_begin_[cell_of[i] + 1];
-  }
+  for (std::size_t i = 0; i < points.size(); ++i) ++cell_begin_[cell_of[i] + 1];
   for (std::size_t c = 1; c < cell_begin_.size(); ++c) cell_begin_[c] += cell_begin_[c - 1];
   std::vector<std::int32_t> fill(cell_begin_.begin(), cell_begin_.end() - 1);
   sorted_points_.resize(points.size());
