@@ -1,9 +1,21 @@
-// Disjoint sets over 0..n−1 (union-find) with union by size and path halving: near-constant
+// Disjoint sets over 0..n−1 (union-find) with union by rank and path halving: near-constant
 // time per operation (Tarjan 1975), so labelling connected parts of a mesh is linear in its size.
+//
+// join_in_parallel joins the pairs of a pass over faces on all cores: the elements are split
+// into one contiguous range per chunk of faces, and a chunk joins the pairs that lie in its own
+// range itself (a set's root and every step of a path to it stay in the range, so the chunks
+// write disjoint parts of the arrays); the pairs that cross ranges are joined afterwards on one
+// thread. On a mesh whose vertices and faces are both in a spatial order (as simulation
+// output and grids are) few pairs cross; in any order the result is the same sets.
 #pragma once
 
+#include "analyzer/mesh.hpp"
+#include "common/parallel.hpp"
+
+#include <algorithm>
 #include <cstdint>
-#include <numeric>
+#include <memory>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -11,8 +23,15 @@ namespace toonwater {
 
 class DisjointSets {
  public:
-  explicit DisjointSets(std::size_t n) : parent_(n), size_(n, 1) {
-    std::iota(parent_.begin(), parent_.end(), 0);
+  explicit DisjointSets(std::size_t n)
+      : parent_(new std::int32_t[n]), rank_(new std::uint8_t[n]) {
+    // Left uninitialised by new and filled by the threads that will use each part first.
+    parallel_chunks(n, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        parent_[i] = static_cast<std::int32_t>(i);
+        rank_[i] = 0;
+      }
+    });
   }
 
   std::int32_t root(std::int32_t i) {
@@ -20,18 +39,59 @@ class DisjointSets {
     return i;
   }
 
+  // The root without shortening the path: safe from several threads at once once no set changes.
+  std::int32_t root_of(std::int32_t i) const {
+    while (parent_[i] != i) i = parent_[i];
+    return i;
+  }
+
   void join(std::int32_t a, std::int32_t b) {
     a = root(a);
     b = root(b);
     if (a == b) return;
-    if (size_[a] < size_[b]) std::swap(a, b);
+    if (rank_[a] < rank_[b]) std::swap(a, b);
     parent_[b] = a;
-    size_[a] += size_[b];
+    rank_[a] += rank_[a] == rank_[b];
   }
 
  private:
-  std::vector<std::int32_t> parent_;
-  std::vector<std::int32_t> size_;
+  std::unique_ptr<std::int32_t[]> parent_;
+  std::unique_ptr<std::uint8_t[]> rank_;  // bounds the tree's height: at most log2(n)
 };
+
+// range_begin for join_in_parallel over the vertices of `triangles`, split as parallel_chunks
+// splits them into `chunks`: chunk w's range starts at the smallest corner of its first face.
+inline std::vector<std::int32_t> vertex_ranges(std::span<const Triangle> triangles,
+                                               std::size_t vertex_count, std::size_t chunks) {
+  std::vector<std::int32_t> range_begin(chunks + 1, 0);
+  for (std::size_t w = 1; w < chunks; ++w) {
+    const Triangle& first = triangles[triangles.size() * w / chunks];
+    range_begin[w] = std::max(range_begin[w - 1], std::min({first[0], first[1], first[2]}));
+  }
+  range_begin[chunks] = static_cast<std::int32_t>(vertex_count);
+  for (std::size_t w = 1; w < chunks; ++w)
+    range_begin[w] = std::min(range_begin[w], range_begin[chunks]);
+  return range_begin;
+}
+
+template <class FacePairs>
+void join_in_parallel(DisjointSets& sets, std::size_t face_count,
+                      std::span<const std::int32_t> range_begin, FacePairs&& face_pairs) {
+  const std::size_t chunks = range_begin.size() - 1;
+  std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> crossing(chunks);
+  parallel_chunks(face_count, chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    const std::int32_t low = range_begin[chunk], high = range_begin[chunk + 1];
+    auto& later = crossing[chunk];
+    auto join = [&](std::int32_t a, std::int32_t b) {
+      if (a >= low && a < high && b >= low && b < high)
+        sets.join(a, b);
+      else
+        later.emplace_back(a, b);
+    };
+    for (std::size_t f = begin; f < end; ++f) face_pairs(f, join);
+  });
+  for (const auto& pairs : crossing)
+    for (const auto& [a, b] : pairs) sets.join(a, b);
+}
 
 }  // namespace toonwater

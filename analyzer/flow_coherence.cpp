@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
+#include <optional>
+#include <utility>
 
 namespace toonwater {
 
@@ -39,34 +42,47 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
                           std::vector<double>& field) {
   const std::size_t n = surface.positions.size();
   const bool any_surface = flow.free_surface.size() == n;
-  predecessor_.assign(n, -1);
-  if (has_previous_) {
-    const PointGrid grid(previous_.positions, options_.max_distance * flow.median_edge_length);
-    parallel_chunks(n, worker_count(n, 4096), [&](std::size_t, std::size_t begin, std::size_t end) {
-      for (std::size_t v = begin; v < end; ++v)
-        if (any_surface && flow.free_surface[v]) predecessor_[v] = grid.closest(surface.positions[v]);
-    });
-  }
-  pending_ = FlowFrame{};
+  const std::optional<PointGrid> grid =
+      has_previous_ ? std::optional<PointGrid>(std::in_place, previous_.positions,
+                                               options_.max_distance * flow.median_edge_length)
+                    : std::nullopt;
+  // The free-surface vertices are numbered compactly in vertex order: counted chunk by chunk,
+  // then each chunk fills its part of the pending frame from its own offset.
+  const std::size_t workers = worker_count(n, 4096);
+  std::vector<std::size_t> chunk_begin(workers + 1, 0);
+  parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::size_t count = 0;
+    for (std::size_t v = begin; v < end && any_surface; ++v) count += flow.free_surface[v];
+    chunk_begin[chunk + 1] = count;
+  });
+  std::partial_sum(chunk_begin.begin(), chunk_begin.end(), chunk_begin.begin());
+  // The buffers of the frame before last are reused: no new pages each frame.
   pending_.edge_length = flow.median_edge_length;
-  pending_.positions.reserve(flow.free_surface_vertices);
-  pending_.field.reserve(flow.free_surface_vertices);
-  pending_.label.reserve(flow.free_surface_vertices);
-  for (std::size_t v = 0; v < n; ++v) {
-    if (!any_surface || !flow.free_surface[v]) continue;
-    const std::int32_t p = predecessor_[v];
-    if (p >= 0) {
-      const double s = field[v], before = previous_.field[p];
-      // A field that grows (same sign, larger) is followed faster than one that fades, so a
-      // crest that moves a cell or more a frame is not averaged away with the calm water it
-      // has left.
-      const double b = before * s > 0 && std::abs(s) > std::abs(before) ? options_.rise_blend
-                                                                         : options_.blend;
-      field[v] = (1 - b) * s + b * before;
+  pending_.positions.resize(chunk_begin.back());
+  pending_.field.resize(chunk_begin.back());
+  pending_.label.clear();
+  predecessor_.resize(n);
+  parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::size_t next = chunk_begin[chunk];
+    for (std::size_t v = begin; v < end; ++v) {
+      predecessor_[v] = -1;
+      if (!any_surface || !flow.free_surface[v]) continue;
+      const std::int32_t p = grid ? grid->closest(surface.positions[v]) : -1;
+      predecessor_[v] = p;
+      if (p >= 0) {
+        const double s = field[v], before = previous_.field[p];
+        // A field that grows (same sign, larger) is followed faster than one that fades, so a
+        // crest that moves a cell or more a frame is not averaged away with the calm water it
+        // has left.
+        const double b = before * s > 0 && std::abs(s) > std::abs(before) ? options_.rise_blend
+                                                                           : options_.blend;
+        field[v] = (1 - b) * s + b * before;
+      }
+      pending_.positions[next] = surface.positions[v];
+      pending_.field[next] = field[v];
+      ++next;
     }
-    pending_.positions.push_back(surface.positions[v]);
-    pending_.field.push_back(field[v]);
-  }
+  });
 }
 
 void FlowCoherence::remember(const CurvatureField& curvature, const FlowRegions& flow) {
@@ -80,7 +96,7 @@ void FlowCoherence::remember(const CurvatureField& curvature, const FlowRegions&
     pending_.label.push_back(flow.label[v]);
   }
   last_flicker_ = has_previous_ && total > 0.0 ? changed / total : 0.0;
-  previous_ = std::move(pending_);
+  std::swap(previous_, pending_);
   has_previous_ = true;
 }
 

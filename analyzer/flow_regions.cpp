@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <numeric>
 
 namespace toonwater {
 
@@ -28,14 +30,24 @@ double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {
   const std::size_t edge_count = 3 * mesh.triangles.size();
   if (edge_count == 0) return 0.0;
   const std::size_t stride = std::max<std::size_t>(1, edge_count / std::max<std::size_t>(1, max_samples));
-  std::vector<double> lengths;
-  lengths.reserve(edge_count / stride + 1);
-  for (std::size_t e = 0; e < edge_count; e += stride) {
-    const Triangle& t = mesh.triangles[e / 3];
-    const int c = static_cast<int>(e % 3);
-    const double length = (mesh.positions[t[(c + 1) % 3]] - mesh.positions[t[c]]).norm();
-    if (length > 0.0 && std::isfinite(length)) lengths.push_back(length);
-  }
+  const std::size_t samples = (edge_count + stride - 1) / stride;
+  // The sampled edges' lengths chunk by chunk (each a cache miss or two), then joined in order.
+  const std::size_t workers = worker_count(samples, 4096);
+  std::vector<std::vector<double>> chunk_lengths(workers);
+  parallel_chunks(samples, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::vector<double>& lengths = chunk_lengths[chunk];
+    lengths.reserve(end - begin);
+    for (std::size_t sample = begin; sample < end; ++sample) {
+      const std::size_t e = sample * stride;
+      const Triangle& t = mesh.triangles[e / 3];
+      const int c = static_cast<int>(e % 3);
+      const double length = (mesh.positions[t[(c + 1) % 3]] - mesh.positions[t[c]]).norm();
+      if (length > 0.0 && std::isfinite(length)) lengths.push_back(length);
+    }
+  });
+  std::vector<double> lengths = std::move(chunk_lengths[0]);
+  for (std::size_t w = 1; w < workers; ++w)
+    lengths.insert(lengths.end(), chunk_lengths[w].begin(), chunk_lengths[w].end());
   if (lengths.empty()) return 0.0;
   const auto middle = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
   std::nth_element(lengths.begin(), middle, lengths.end());
@@ -75,58 +87,105 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   flow.label.assign(n, FlowLabel::none);
   flow.ridge_vertices = flow.valley_vertices = flow.regions = flow.specks_faded = 0;
   flow.region_of_interest = Box3{};
+  const std::size_t workers = worker_count(n);
 
-  // The vertices in regions, numbered compactly: regions are a small part of the surface.
-  std::vector<std::int32_t> member_index(n, -1);
-  std::vector<std::int32_t> members;
+  // The vertices in regions, numbered compactly in vertex order: regions are a small part of
+  // the surface. Counted chunk by chunk, then numbered from each chunk's offset.
+  std::vector<std::int32_t> member_index(n);
   std::vector<std::int8_t> sign(n);
-  for (std::size_t v = 0; v < n; ++v) {
-    sign[v] = region_sign(field[v]);
-    if (sign[v] != FlowLabel::none) {
-      member_index[v] = static_cast<std::int32_t>(members.size());
-      members.push_back(static_cast<std::int32_t>(v));
+  std::vector<std::int32_t> chunk_begin(workers + 1, 0);
+  parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::int32_t count = 0;
+    for (std::size_t v = begin; v < end; ++v) {
+      sign[v] = region_sign(field[v]);
+      count += sign[v] != FlowLabel::none;
     }
-  }
+    chunk_begin[chunk + 1] = count;
+  });
+  std::partial_sum(chunk_begin.begin(), chunk_begin.end(), chunk_begin.begin());
+  const std::size_t m = static_cast<std::size_t>(chunk_begin.back());
+  std::vector<std::int32_t> members(m);
+  parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::int32_t next = chunk_begin[chunk];
+    for (std::size_t v = begin; v < end; ++v) {
+      member_index[v] = sign[v] != FlowLabel::none ? next : -1;
+      if (sign[v] != FlowLabel::none) members[next++] = static_cast<std::int32_t>(v);
+    }
+  });
   // Regions: vertices of one sign joined along the edges between them. The signs are a byte a
   // vertex, so the pass over the faces, most of which touch no region, stays in cache.
-  DisjointSets sets(members.size());
-  for (const Triangle& t : mesh.triangles) {
+  DisjointSets sets(m);
+  const std::size_t face_chunks = m > 0 ? worker_count(mesh.triangles.size()) : 1;
+  std::vector<std::int32_t> range_begin = vertex_ranges(mesh.triangles, n, face_chunks);
+  for (std::int32_t& begin : range_begin)  // vertex ranges to member ranges
+    begin = static_cast<std::int32_t>(std::lower_bound(members.begin(), members.end(), begin) -
+                                      members.begin());
+  join_in_parallel(sets, mesh.triangles.size(), range_begin, [&](std::size_t f, auto& join) {
+    const Triangle& t = mesh.triangles[f];
     const std::int8_t s0 = sign[t[0]], s1 = sign[t[1]], s2 = sign[t[2]];
-    if ((s0 | s1 | s2) == 0) continue;
+    if ((s0 | s1 | s2) == 0) return;
     // A face of one sign is joined by two of its edges; its third would add nothing.
-    if (s0 != FlowLabel::none && s0 == s1) sets.join(member_index[t[0]], member_index[t[1]]);
-    if (s1 != FlowLabel::none && s1 == s2) sets.join(member_index[t[1]], member_index[t[2]]);
-    if (s2 != FlowLabel::none && s2 == s0 && s0 != s1)
-      sets.join(member_index[t[2]], member_index[t[0]]);
-  }
-  const std::size_t m = members.size();
-  std::vector<double> region_area(m, 0.0), region_peak(m, 0.0), factor(m, 1.0);
+    if (s0 != FlowLabel::none && s0 == s1) join(member_index[t[0]], member_index[t[1]]);
+    if (s1 != FlowLabel::none && s1 == s2) join(member_index[t[1]], member_index[t[2]]);
+    if (s2 != FlowLabel::none && s2 == s0 && s0 != s1) join(member_index[t[2]], member_index[t[0]]);
+  });
+  // Each region's figures sit in the slot of its root; the other slots are never touched (nor
+  // their pages faulted in: `new` leaves them uninitialised).
+  struct Region {
+    double area, peak, factor;
+  };
+  std::unique_ptr<Region[]> region(new Region[m]);
+  std::vector<std::int32_t> region_of(m);
+  parallel_chunks(m, worker_count(m), [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      region_of[i] = sets.root_of(static_cast<std::int32_t>(i));
+      if (region_of[i] == static_cast<std::int32_t>(i)) region[i] = Region{0.0, 0.0, 1.0};
+    }
+  });
+  // Areas summed in vertex order, so that they do not depend on the core count.
+  std::vector<std::int32_t> roots;
   for (std::size_t i = 0; i < m; ++i) {
-    const std::int32_t r = sets.root(static_cast<std::int32_t>(i));
-    region_area[r] += vertex_area[members[i]];
-    region_peak[r] = std::max(region_peak[r], std::abs(field[members[i]]));
+    Region& r = region[region_of[i]];
+    r.area += vertex_area[members[i]];
+    r.peak = std::max(r.peak, std::abs(field[members[i]]));
+    if (region_of[i] == static_cast<std::int32_t>(i)) roots.push_back(static_cast<std::int32_t>(i));
   }
-  for (std::size_t r = 0; r < m; ++r) {
-    if (region_peak[r] == 0.0) continue;  // not a root
-    if (flow.min_region_area > 0.0)
-      factor[r] = fade_factor(region_area[r], region_peak[r], flow.min_region_area);
-    flow.specks_faded += factor[r] < 1.0;
-    flow.regions += factor[r] * region_peak[r] >= 1.0;
+  for (std::int32_t root : roots) {
+    Region& r = region[root];
+    if (flow.min_region_area > 0.0) r.factor = fade_factor(r.area, r.peak, flow.min_region_area);
+    flow.specks_faded += r.factor < 1.0;
+    flow.regions += r.factor * r.peak >= 1.0;
   }
 
+  // The faded field and the labels, chunk by chunk, each with its own counts and box.
+  struct Tally {
+    std::size_t ridges = 0, valleys = 0;
+    Box3 box{Vec3::Constant(std::numeric_limits<double>::infinity()),
+             Vec3::Constant(-std::numeric_limits<double>::infinity())};
+  };
+  const std::size_t member_workers = worker_count(m);
+  std::vector<Tally> tallies(member_workers);
+  parallel_chunks(m, member_workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    Tally& tally = tallies[chunk];
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::int32_t v = members[i];
+      field[v] *= region[region_of[i]].factor;
+      const std::int8_t label = region_sign(field[v]);
+      flow.label[v] = label;
+      if (label == FlowLabel::none) continue;
+      tally.ridges += label == FlowLabel::ridge;
+      tally.valleys += label == FlowLabel::valley;
+      tally.box.min = tally.box.min.cwiseMin(mesh.positions[v]);
+      tally.box.max = tally.box.max.cwiseMax(mesh.positions[v]);
+    }
+  });
   Box3& box = flow.region_of_interest;
-  box.min = Vec3::Constant(std::numeric_limits<double>::infinity());
-  box.max = -box.min;
-  for (std::size_t i = 0; i < m; ++i) {
-    const std::int32_t v = members[i];
-    field[v] *= factor[sets.root(static_cast<std::int32_t>(i))];
-    const std::int8_t label = region_sign(field[v]);
-    flow.label[v] = label;
-    if (label == FlowLabel::none) continue;
-    flow.ridge_vertices += label == FlowLabel::ridge;
-    flow.valley_vertices += label == FlowLabel::valley;
-    box.min = box.min.cwiseMin(mesh.positions[v]);
-    box.max = box.max.cwiseMax(mesh.positions[v]);
+  box = Tally{}.box;
+  for (const Tally& tally : tallies) {
+    flow.ridge_vertices += tally.ridges;
+    flow.valley_vertices += tally.valleys;
+    box.min = box.min.cwiseMin(tally.box.min);
+    box.max = box.max.cwiseMax(tally.box.max);
   }
   if (flow.ridge_vertices + flow.valley_vertices == 0) box = Box3{};
   flow.field = std::move(field);
@@ -147,7 +206,7 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   surface_options.max_depth = options.max_depth;
   surface_options.min_patch_vertices = options.min_patch_vertices;
   FreeSurface surface =
-      select_free_surface(mesh, vertex_faces, flow.median_edge_length, surface_options);
+      select_free_surface(mesh, flow.median_edge_length, surface_options);
   flow.free_surface = std::move(surface.selected);
   flow.free_surface_vertices = surface.vertices;
   flow.free_surface_patches_dropped = surface.patches_dropped;
@@ -156,16 +215,8 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   // The vertices that carry the field: free surface, curvature defined, and not on the free
   // surface's border, where marching cubes rounds the water into a wall (a fillet one or two
   // cells wide, as curved as a crest but no flow line).
-  std::vector<std::uint8_t> member(n);
+  std::vector<std::uint8_t> member = one_ring_inside(mesh, flow.free_surface);
   const std::size_t workers = worker_count(n);
-  parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      bool inside = flow.free_surface[v] && curvature.status[v] != CurvatureStatus::undefined;
-      for (std::int32_t f : vertex_faces.of(static_cast<std::int32_t>(v)))
-        for (std::int32_t w : mesh.triangles[f]) inside = inside && flow.free_surface[w];
-      member[v] = inside;
-    }
-  });
   double surface_area = 0.0;  // summed in vertex order, so it does not depend on the core count
   for (std::size_t v = 0; v < n; ++v)
     if (flow.free_surface[v] && curvature.status[v] != CurvatureStatus::undefined)
@@ -183,6 +234,8 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   if (flow.threshold > 0.0 && std::isfinite(flow.threshold)) {
     parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
+        // Where the curvature is undefined there is no field, and no weight in the smoothing.
+        member[v] = member[v] && curvature.status[v] != CurvatureStatus::undefined;
         if (!member[v]) continue;
         const double mean = curvature.mean[v];
         const double s = options.criterion == FlowCriterion::mean

@@ -13,7 +13,6 @@
 #pragma once
 
 #include "analyzer/mesh.hpp"
-#include "analyzer/topology.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -38,8 +37,13 @@ struct FreeSurface {
   double rest_height = 0.0;
 };
 
+// `selected` one ring in: the selected vertices all of whose faces' corners are selected. A
+// vertex in no face (faces with a repeated corner are none, topology.hpp) stays selected.
+std::vector<std::uint8_t> one_ring_inside(const TriangleMesh& mesh,
+                                          const std::vector<std::uint8_t>& selected);
+
 // `edge_length`: the median edge length, the unit of max_depth.
-FreeSurface select_free_surface(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
-                                double edge_length, const FreeSurfaceOptions& options);
+FreeSurface select_free_surface(const TriangleMesh& mesh, double edge_length,
+                                const FreeSurfaceOptions& options);
 
 }  // namespace toonwater

@@ -11,8 +11,7 @@ namespace {
 
 FreeSurface free_surface_of(const TriangleMesh& mesh, FreeSurfaceOptions options = {}) {
   options.up = Axis::z;
-  const MeshTopology topology = analyze_topology(mesh);
-  return select_free_surface(mesh, topology.vertex_faces, median_edge_length(mesh), options);
+  return select_free_surface(mesh, median_edge_length(mesh), options);
 }
 
 // A square step of the given height within radius 0.3 of the centre: on a 0.05 grid its
