@@ -13,6 +13,7 @@
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -59,9 +60,18 @@ class ThreadPool {
       ++generation_;
     }
     wake_.notify_all();
-    task(context, 0);
-    std::unique_lock lock(mutex_);
-    done_.wait(lock, [&] { return remaining_ == 0; });
+    // The other chunks use the caller's context: wait for them even when this chunk throws.
+    std::exception_ptr failure;
+    try {
+      task(context, 0);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    {
+      std::unique_lock lock(mutex_);
+      done_.wait(lock, [&] { return remaining_ == 0; });
+    }
+    if (failure) std::rethrow_exception(failure);
     return true;
   }
 
