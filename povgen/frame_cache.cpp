@@ -23,12 +23,12 @@ FrameCache::~FrameCache() {
   std::filesystem::remove(path_, ignored);
 }
 
-void FrameCache::put(std::string record) {
+void FrameCache::put(std::string_view record) {
   Entry e;
   e.size = record.size();
   if (in_memory_ + record.size() <= budget_) {
     in_memory_ += record.size();
-    e.bytes = std::move(record);
+    e.bytes = record;
     entries_.push_back(std::move(e));
     return;
   }
@@ -37,8 +37,7 @@ void FrameCache::put(std::string record) {
     if (!file_) throw OutputError("cannot create " + path_.string() + ": " + error_text());
   }
   if (fseeko(file_, 0, SEEK_END) != 0 ||
-      std::fwrite(record.data(), 1, record.size(), file_) != record.size() ||
-      std::fflush(file_) != 0)
+      std::fwrite(record.data(), 1, record.size(), file_) != record.size())
     throw OutputError("cannot write " + path_.string() + ": " + error_text());
   e.on_disk = true;
   e.offset = file_size_;
@@ -47,17 +46,18 @@ void FrameCache::put(std::string record) {
   entries_.push_back(std::move(e));
 }
 
-std::string FrameCache::take(std::size_t i) {
+void FrameCache::take(std::size_t i, std::string& record) {
   Entry& e = entries_.at(i);
   if (!e.on_disk) {
     in_memory_ -= e.bytes.size();
-    return std::move(e.bytes);
+    record = std::move(e.bytes);
+    e.bytes = std::string();
+    return;
   }
-  std::string record(e.size, '\0');
-  if (fseeko(file_, static_cast<off_t>(e.offset), SEEK_SET) != 0 ||
+  record.resize(e.size);
+  if (std::fflush(file_) != 0 || fseeko(file_, static_cast<off_t>(e.offset), SEEK_SET) != 0 ||
       std::fread(record.data(), 1, record.size(), file_) != record.size())
     throw OutputError("cannot read " + path_.string() + ": " + error_text());
-  return record;
 }
 
 }  // namespace toonwater::povgen

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -29,10 +30,11 @@ class FrameCache {
   FrameCache(const FrameCache&) = delete;
   FrameCache& operator=(const FrameCache&) = delete;
 
-  // Appends the next record. Throws OutputError when the spill file cannot be written.
-  void put(std::string record);
-  // Record i, once: its memory (or nothing on disk) is given back. Throws OutputError.
-  std::string take(std::size_t i);
+  // Appends a copy of the next record. Throws OutputError when the spill file cannot be written.
+  void put(std::string_view record);
+  // Record i, once, into `record` (whose memory is reused: a loop passes the same string);
+  // a record in memory gives its memory back. Throws OutputError.
+  void take(std::size_t i, std::string& record);
   std::size_t size() const { return entries_.size(); }
   std::size_t spilled() const { return spilled_; }  // records written to the file
 
@@ -66,7 +68,9 @@ class RecordWriter {
     value<std::uint64_t>(s.size());
     bytes_.append(s);
   }
-  std::string take() { return std::move(bytes_); }
+  // The record so far; clear() starts the next one in the same memory.
+  std::string_view bytes() const { return bytes_; }
+  void clear() { bytes_.clear(); }
 
  private:
   std::string bytes_;

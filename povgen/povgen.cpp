@@ -421,10 +421,11 @@ SequenceSurvey survey_sequence(SceneRun& run, FrameCache& cache, const std::atom
   SequenceSurvey survey;
   if (run.plan.maps) survey.maps.emplace(run.request.up);
   FrameSource source(run.plan.frames);
+  RecordWriter record;  // one buffer for every frame's record
   for (const auto& [frame, path] : run.water.frames) {
     throw_if_stopped(run, stop);
     SourceFrame f = run.read_water(source, path);
-    RecordWriter record;
+    record.clear();
     record.string(f.empty);
     if (f.has_water()) {
       if (run.plan.camera_box) survey.grow_box(f.lower, f.upper, run.request.up);
@@ -436,7 +437,7 @@ SequenceSurvey survey_sequence(SceneRun& run, FrameCache& cache, const std::atom
       }
       pack_surface(record, run.prepare(f));
     }
-    cache.put(record.take());
+    cache.put(record.bytes());
   }
   run.report.water_reads += source.reads();
   if (!run.plan.camera_box) return survey;
@@ -598,6 +599,7 @@ void write_frames(SceneRun& run, FrameCache* cache, const ProgressFn& progress,
   std::optional<FrameSource> source;
   if (!cache) source.emplace(run.plan.frames);
   std::size_t done = 0;
+  std::string bytes;  // one buffer for every frame's record
   for (const auto& [frame, path] : run.water.frames) {
     throw_if_stopped(run, stop);
     const long written_frame = run.layout.animation ? frame : 0;
@@ -605,7 +607,7 @@ void write_frames(SceneRun& run, FrameCache* cache, const ProgressFn& progress,
     std::optional<MapInputs> maps;
     PreparedSurface s;
     if (cache) {
-      const std::string bytes = cache->take(run.report.frames);
+      cache->take(run.report.frames, bytes);
       RecordReader record(bytes);
       empty = record.string();
       if (empty.empty() && run.map_view) maps = unpack_map_inputs(record);
