@@ -100,7 +100,7 @@ struct PovgenRequest {
   // A sequence whose frames share something (the default camera's box, a curvature view's or
   // the maps' colour ranges) keeps each analysed frame until the last one is read: in memory
   // up to this many bytes, beyond them in a temporary file in the staging directory. A frame
-  // takes about 110 bytes a vertex, 160 with maps: a few small frames stay in memory, and a
+  // takes about 80 bytes a vertex, 160 with maps: a few small frames stay in memory, and a
   // long sequence of large frames never adds more than this to the peak.
   std::size_t frame_cache_bytes = std::size_t{16} << 20;
   // Leave out outline shell faces no ray can see (shell_culling.hpp). Off only to check that
