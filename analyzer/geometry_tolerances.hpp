@@ -7,7 +7,9 @@
 //               longest squared edge: collinear or nearly so (shapeless faces included), with no
 //               usable plane, so it gives no vertex normal (vertex_normals.hpp) and the scene
 //               leaves it out (scene_mesh.hpp; POV-Ray, in single precision, drops such faces
-//               anyway). The ratio is scale-free; a NaN area is degenerate.
+//               anyway). The ratio is scale-free where |e1 × e2|² is a normal double
+//               (coordinates within about 1e±75; the curvature first scales its positions
+//               by a power of two, curvature.cpp); a NaN area is degenerate.
 // A degenerate face that is not shapeless (a cap standing on edge) keeps its angles: the
 // curvature takes its Laplacian from the intrinsic Delaunay triangulation there.
 #pragma once
