@@ -65,7 +65,7 @@ povgen::PovgenReport generate(const fs::path& dir, const std::string& out,
   return povgen::generate_scene(config, request, {}, nullptr);
 }
 
-TEST(PovgenFrameReads, MapsAndACurvatureViewReadEachFrameOnceAPass) {
+TEST(PovgenFrameReads, MapsAndACurvatureViewReadEachFrameOnce) {
   ScratchDir dir;
   write_frames(dir.path());
   const povgen::PovgenReport r = generate(dir.path(), "mean", {"water.shading=mean"}, true);
