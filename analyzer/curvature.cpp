@@ -52,6 +52,7 @@
 //   (status `undefined`) and is counted.
 #include "analyzer/curvature.hpp"
 
+#include "analyzer/geometry_tolerances.hpp"
 #include "analyzer/intrinsic_delaunay.hpp"
 #include "common/parallel.hpp"
 #include "analyzer/vertex_normals.hpp"
@@ -166,7 +167,7 @@ OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double 
     const Vec3 xa = a - x, xb = b - x, ab = b - a;
     const double xa2 = xa.squaredNorm(), xb2 = xb.squaredNorm(), ab2 = ab.squaredNorm();
     const bool counts_here = corner == 0;
-    if (xa2 == 0.0 || xb2 == 0.0 || ab2 == 0.0) {  // a face with a zero-length edge: no shape
+    if (is_shapeless_triangle(xa2, xb2, ab2)) {  // a face with a zero-length edge: no shape
       ring.at_shapeless = true;
       ring.shapeless += counts_here;
       continue;

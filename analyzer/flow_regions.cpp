@@ -199,14 +199,7 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   flow.criterion = options.criterion;
   flow.median_edge_length = median_edge_length(mesh);
 
-  FreeSurfaceOptions surface_options;
-  surface_options.up = options.up;
-  surface_options.min_up_component = options.min_up_component;
-  surface_options.rest_height = options.rest_height;
-  surface_options.max_depth = options.max_depth;
-  surface_options.min_patch_vertices = options.min_patch_vertices;
-  FreeSurface surface =
-      select_free_surface(mesh, flow.median_edge_length, surface_options);
+  FreeSurface surface = select_free_surface(mesh, flow.median_edge_length, options);
   flow.free_surface = std::move(surface.selected);
   flow.free_surface_vertices = surface.vertices;
   flow.free_surface_patches_dropped = surface.patches_dropped;

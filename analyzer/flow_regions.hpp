@@ -39,6 +39,7 @@
 #pragma once
 
 #include "analyzer/curvature.hpp"
+#include "analyzer/free_surface.hpp"
 #include "analyzer/mesh.hpp"
 #include "analyzer/topology.hpp"
 
@@ -61,8 +62,9 @@ struct FlowDefaults {
 };
 FlowDefaults flow_defaults(FlowCriterion criterion);
 
-struct FlowOptions {
-  Axis up = Axis::y;
+// The free-surface selection's settings (free_surface.hpp, the up axis among them), then the
+// flow field's.
+struct FlowOptions : FreeSurfaceOptions {
   FlowCriterion criterion = FlowCriterion::mean;
   std::optional<double> threshold;           // absolute T; overrides threshold_relative
   std::optional<double> threshold_relative;  // c; default: default_threshold_relative(criterion)
@@ -70,11 +72,6 @@ struct FlowOptions {
   // paper none and none, so that it stays the paper's rule.
   std::optional<int> smoothing_steps;        // Jacobi steps over the free surface
   std::optional<double> min_region_area;     // absolute A_min (scene units²)
-  // Free-surface selection: see free_surface.hpp.
-  std::optional<double> rest_height;       // default: median height of the largest patch
-  double min_up_component = 0.5;           // a free-surface face has n·up above this (slope < 60°)
-  double max_depth = 2.0;                  // in ℓ: patches deeper below the rest level are dropped
-  std::size_t min_patch_vertices = 16;     // smaller detached patches (droplets) carry no flow
 };
 
 struct Box3 {

@@ -23,10 +23,12 @@ SourceFrame FrameSource::read(const std::filesystem::path& path) {
   }
   if (options_.transform) apply_transform(*options_.transform, input.mesh);
   frame.read_seconds = seconds_since(start);
-  frame.lower = frame.upper = input.mesh.positions.front();  // EmptyMeshError: at least one
-  for (const Vec3& p : input.mesh.positions) {
-    frame.lower = frame.lower.cwiseMin(p);
-    frame.upper = frame.upper.cwiseMax(p);
+  if (options_.box) {
+    frame.lower = frame.upper = input.mesh.positions.front();  // EmptyMeshError: at least one
+    for (const Vec3& p : input.mesh.positions) {
+      frame.lower = frame.lower.cwiseMin(p);
+      frame.upper = frame.upper.cwiseMax(p);
+    }
   }
   if (!options_.analysis) {
     frame.mesh = std::move(input.mesh);

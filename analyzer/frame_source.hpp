@@ -5,7 +5,8 @@
 //
 // The scene (povgen) and the curvature maps (analyzer/maps) take their frames from here: a pass
 // over a sequence reads each frame once and analyses it once, with one set of options, and what
-// the scene draws and what the maps show come from that one analysis.
+// the scene draws and what the maps show come from that one analysis. The frame's box is
+// measured only when asked for (the default camera frames the sequence's box).
 #pragma once
 
 #include "analyzer/affine_transform.hpp"
@@ -24,12 +25,13 @@ struct FrameSourceOptions {
   std::optional<AffineTransform> transform;  // file to world coordinates; none: as read
   std::optional<AnalyzeOptions> analysis;    // none: read only (the options' coherence is unused)
   bool coherent = false;  // carry the flow state from frame to frame (flow_coherence.hpp)
+  bool box = false;       // measure each frame's box (SourceFrame::lower, upper)
 };
 
 struct SourceFrame {
   std::filesystem::path path;
   std::string empty;  // why the frame holds no liquid (an empty mesh); "" when it has some
-  Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();  // box of its vertices (world), with water
+  Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();  // box of its vertices (world), when asked
   TriangleMesh mesh;  // world coordinates, when the source does not analyse
   std::optional<Analysis> analysis;  // when it does and the frame is not empty
   double read_seconds = 0, analysis_seconds = 0;

@@ -4,6 +4,7 @@
 // meshes shaded with or without curvature get identical normals.
 #pragma once
 
+#include "analyzer/geometry_tolerances.hpp"
 #include "analyzer/mesh.hpp"
 #include "analyzer/topology.hpp"
 
@@ -14,10 +15,6 @@
 #include <vector>
 
 namespace toonwater {
-
-// A face whose doubled area is below this fraction of its longest squared edge has no usable
-// normal (collinear or nearly so).
-constexpr double degenerate_area_ratio = 1e-12;
 
 // atan2(y, x) for y >= 0 by a polynomial, absolute error below 1e-5 rad: plenty for a weight,
 // and several times cheaper than std::atan2.
@@ -32,10 +29,10 @@ inline double approximate_angle(double y, double x) {
 }
 
 // One face's term θ n_f at the corner x of face (x, a, b), given xa × xb, its length, xa · xb
-// and the face's longest squared edge (xa = a − x, xb = b − x): zero for a face with no usable
-// normal.
+// and the face's longest squared edge (xa = a − x, xb = b − x): zero for a degenerate face
+// (geometry_tolerances.hpp), which has no usable normal.
 inline Vec3 corner_normal_term(const Vec3& cross, double double_area, double dot, double longest2) {
-  if (!(double_area > degenerate_area_ratio * longest2)) return Vec3::Zero();
+  if (is_degenerate_triangle(double_area, longest2)) return Vec3::Zero();
   // Times the reciprocal, which the curvature gather needs as well and computes once.
   return approximate_angle(double_area, dot) * (1.0 / double_area) * cross;
 }

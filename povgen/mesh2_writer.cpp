@@ -188,12 +188,19 @@ void append_mesh2(std::string& out, std::string_view identifier, const SceneMesh
          position_decimals(mesh, 0.0));
 }
 
+// Far below the free surface's n·up > 0.5 (free_surface.hpp): the shell of a clear volume must
+// reach round the rounded edge between the water and the tank's walls up to where it turns
+// away from the camera, or the volume's back and side silhouettes lose their outline. (Shell
+// faces from the free-surface selection, with or without its one-ring border, dropped them on
+// the Mantaflow wake.)
+constexpr double shell_min_up_component = 0.1;
+
 std::vector<bool> upward_faces(const SceneMesh& mesh) {
   std::vector<bool> up(mesh.triangles.size());
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     Vec3 normal;
     agrees_with_normals(mesh, mesh.triangles[f], &normal);
-    up[f] = normal.y() > 0.1 * normal.norm();
+    up[f] = normal.y() > shell_min_up_component * normal.norm();
   }
   return up;
 }

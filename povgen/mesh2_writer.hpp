@@ -37,7 +37,8 @@ void append_mesh2(std::string& out, std::string_view identifier, const SceneMesh
                   std::span<const TextureCoordinate> uv, const FaceTextures* textures = nullptr);
 
 // Per face: its normal (wound to agree with the vertex normals) points up, n·y > 0.1 — the
-// free surface of a closed liquid volume, as opposed to its walls and floor.
+// free surface of a closed liquid volume with the rounded edge round to its walls, as opposed to
+// its walls and floor (mesh2_writer.cpp says why not the free-surface selection).
 std::vector<bool> upward_faces(const SceneMesh& mesh);
 
 // Face t wound so that POV-Ray's face normal (a−b)×(c−b) agrees with its vertex normals: how

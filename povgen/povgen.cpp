@@ -5,12 +5,14 @@
 #include "analyzer/frame_source.hpp"
 #include "analyzer/maps/map_writer.hpp"
 #include "analyzer/maps/sequence_maps.hpp"
+#include "analyzer/maps/top_down_map.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "analyzer/stopwatch.hpp"
 #include "analyzer/topology.hpp"
 #include "analyzer/vertex_normals.hpp"
 #include "analyzer/weld.hpp"
 #include "povgen/axes.hpp"
+#include "povgen/frame_cache.hpp"
 #include "povgen/mesh2_writer.hpp"
 #include "povgen/scene_directory.hpp"
 #include "povgen/scene_writer.hpp"
@@ -228,16 +230,19 @@ std::vector<ObjectSource> find_objects(const SceneConfig& config, const Sequence
   return objects;
 }
 
-// What the frames are read for. A pass over the water frames before the frame loop (the survey)
-// is needed only for what the whole sequence shares: the box the default camera frames, the
-// curvature view's colour range, the curvature maps' view and ranges.
+// What the frames are read for. Each water frame is read and analysed once. What the whole
+// sequence shares (the box the default camera frames, the curvature view's colour range, the
+// curvature maps' view and ranges) is known only after the last frame: then one pass reads and
+// analyses the frames, gathers it (the survey) and keeps what writing each frame needs
+// (FrameCache), and the frame loop writes them from there. Otherwise the frame loop reads,
+// analyses and writes each frame in turn.
 struct WaterPlan {
   const FlowConfig* flow = nullptr;  // the scene's flow settings; null: geometry only
   WaterShading shading = WaterShading::toon;
   bool maps = false;
   bool camera_box = false;  // the camera is not configured
-  FrameSourceOptions survey, frames;
-  bool needs_survey() const { return camera_box || shading != WaterShading::toon || maps; }
+  FrameSourceOptions frames;
+  bool shares() const { return camera_box || shading != WaterShading::toon || maps; }
 };
 
 WaterPlan plan_water(const SceneConfig& config, const PovgenRequest& request, std::size_t frames) {
@@ -246,15 +251,13 @@ WaterPlan plan_water(const SceneConfig& config, const PovgenRequest& request, st
   plan.shading = config.water.shading;
   plan.maps = !request.maps_dir.empty();
   plan.camera_box = !(config.camera.location && config.camera.look_at);
-  FrameSourceOptions options;
-  options.transform = request.water_transform;
-  options.analysis = water_analysis(config, request.up, plan.maps);
-  // The survey reads the water's box; it analyses only for the colour ranges.
-  plan.survey = options;
-  if (plan.shading == WaterShading::toon && !plan.maps) plan.survey.analysis.reset();
+  plan.frames.transform = request.water_transform;
+  plan.frames.analysis = water_analysis(config, request.up, plan.maps);
+  plan.frames.box = plan.camera_box;
   // Flow regions are carried from frame to frame so that they do not flicker
-  // (flow_coherence.hpp); the maps' labels show them as the scene renders them.
-  plan.frames = options;
+  // (flow_coherence.hpp); the maps' labels show them as the scene renders them. Coherence
+  // changes only the flow field and labels: the survey's free surface and curvature are the
+  // frame's own.
   plan.frames.coherent =
       config.flow.coherence &&
       (plan.maps || (plan.flow && plan.shading == WaterShading::toon && frames > 1));
@@ -310,22 +313,131 @@ struct SceneRun {
     report.read_seconds += seconds_since(start);
     return std::move(m.mesh);
   }
+  // One water frame from its file, read and analysed (frame_source.hpp).
+  SourceFrame read_water(FrameSource& source, const fs::path& path) {
+    SourceFrame f = source.read(path);
+    report.read_seconds += f.read_seconds;
+    report.analysis_seconds += f.analysis_seconds;
+    return f;
+  }
+  // A frame with water, prepared for the scene.
+  PreparedSurface prepare(SourceFrame& f) const {
+    return f.analysis ? prepare_surface(std::move(*f.analysis), request.up, plan.flow, plan.shading)
+                      : prepare_surface(geometry_analysis(std::move(f.mesh)), request.up, nullptr);
+  }
 };
 
-// The survey: one read of every water frame (and the objects' meshes for the camera's box).
-SequenceSurvey survey_sequence(SceneRun& run) {
+// What the maps of a frame are drawn from (rasterize_top_down): its surface, curvature, labels
+// and free surface.
+struct MapInputs {
+  TriangleMesh surface;
+  CurvatureField curvature;  // gaussian, mean, k1, k2
+  std::vector<std::int8_t> label;
+  std::vector<std::uint8_t> free_surface;
+};
+
+// A frame's record in the FrameCache: why it has no water ("" when it has), then, with water,
+// its map inputs (when the scene has maps) and its prepared surface.
+void pack_map_inputs(RecordWriter& out, const Analysis& a) {
+  out.vector(a.surface.positions);
+  out.vector(a.surface.triangles);
+  out.vector(a.curvature.gaussian);
+  out.vector(a.curvature.mean);
+  out.vector(a.curvature.k1);
+  out.vector(a.curvature.k2);
+  out.vector(a.flow.label);
+  out.vector(a.flow.free_surface);
+}
+
+MapInputs unpack_map_inputs(RecordReader& in) {
+  MapInputs m;
+  m.surface.positions = in.vector<Vec3>();
+  m.surface.triangles = in.vector<Triangle>();
+  m.curvature.gaussian = in.vector<double>();
+  m.curvature.mean = in.vector<double>();
+  m.curvature.k1 = in.vector<double>();
+  m.curvature.k2 = in.vector<double>();
+  m.label = in.vector<std::int8_t>();
+  m.free_surface = in.vector<std::uint8_t>();
+  return m;
+}
+
+void pack_surface(RecordWriter& out, const PreparedSurface& s) {
+  out.vector(s.mesh.positions);
+  out.vector(s.mesh.normals);
+  out.vector(s.mesh.triangles);
+  out.value(s.mesh.closed);
+  out.value(s.mesh.degenerate_faces);
+  out.value(s.mesh.replaced_normals);
+  out.value(s.mesh.min);
+  out.value(s.mesh.max);
+  out.vector(s.flow_field);
+  out.value<std::uint64_t>(s.flow_lines.size());
+  for (const FlowLine& line : s.flow_lines) {
+    out.value(line.sign);
+    out.value(line.closed);
+    out.vector(line.points);
+    out.vector(line.taper);
+  }
+  out.vector(s.view_values);
+  out.value(s.ridge_vertices);
+  out.value(s.valley_vertices);
+  out.value(s.analysis_seconds);
+}
+
+PreparedSurface unpack_surface(RecordReader& in) {
+  PreparedSurface s;
+  s.mesh.positions = in.vector<Vec3>();
+  s.mesh.normals = in.vector<Vec3>();
+  s.mesh.triangles = in.vector<Triangle>();
+  s.mesh.closed = in.value<bool>();
+  s.mesh.degenerate_faces = in.value<std::size_t>();
+  s.mesh.replaced_normals = in.value<std::size_t>();
+  s.mesh.min = in.value<Vec3>();
+  s.mesh.max = in.value<Vec3>();
+  s.flow_field = in.vector<double>();
+  s.flow_lines.resize(in.value<std::uint64_t>());
+  for (FlowLine& line : s.flow_lines) {
+    line.sign = in.value<std::int8_t>();
+    line.closed = in.value<bool>();
+    line.points = in.vector<Vec3>();
+    line.taper = in.vector<double>();
+  }
+  s.view_values = in.vector<double>();
+  s.ridge_vertices = in.value<std::size_t>();
+  s.valley_vertices = in.value<std::size_t>();
+  s.analysis_seconds = in.value<double>();
+  return s;
+}
+
+void throw_if_stopped(const SceneRun& run, const std::atomic<bool>* stop) {
+  if (stop && stop->load()) throw InterruptedError(run.request.out_dir.string() + ": interrupted");
+}
+
+// The survey, for a sequence that shares something: each water frame read and analysed once,
+// what the sequence shares gathered from it, and what writing it needs kept in `cache`; then
+// the objects' meshes for the camera's box.
+SequenceSurvey survey_sequence(SceneRun& run, FrameCache& cache, const std::atomic<bool>* stop) {
   SequenceSurvey survey;
-  if (!run.plan.needs_survey()) return survey;
   if (run.plan.maps) survey.maps.emplace(run.request.up);
-  FrameSource source(run.plan.survey);
+  FrameSource source(run.plan.frames);
+  RecordWriter record;  // one buffer for every frame's record
   for (const auto& [frame, path] : run.water.frames) {
-    const SourceFrame f = source.read(path);
-    run.report.read_seconds += f.read_seconds;
-    if (!f.has_water()) continue;
-    if (run.plan.camera_box) survey.grow_box(f.lower, f.upper, run.request.up);
-    if (!f.analysis) continue;
-    if (run.plan.shading != WaterShading::toon) add_view_samples(*f.analysis, survey.view);
-    if (survey.maps) survey.maps->add(*f.analysis);
+    throw_if_stopped(run, stop);
+    SourceFrame f = run.read_water(source, path);
+    record.clear();
+    record.string(f.empty);
+    if (f.has_water()) {
+      if (run.plan.camera_box) survey.grow_box(f.lower, f.upper, run.request.up);
+      if (f.analysis && run.plan.shading != WaterShading::toon)
+        add_view_samples(*f.analysis, survey.view);
+      if (survey.maps) {
+        survey.maps->add(*f.analysis);
+        pack_map_inputs(record, *f.analysis);
+      }
+      pack_surface(record, run.prepare(f));
+    }
+    cache.put(record.bytes());
   }
   run.report.water_reads += source.reads();
   if (!run.plan.camera_box) return survey;
@@ -342,7 +454,6 @@ SequenceSurvey survey_sequence(SceneRun& run) {
   }
   return survey;
 }
-
 // The shell faces written (shell_culling.hpp): empty for all of them (then the shell stays
 // closed), else a mark per face. `keep`: the faces the shell is limited to anyway.
 // `may_cull`: nothing beyond shell_culling.hpp's rule forbids culling this shell.
@@ -481,33 +592,43 @@ void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long writt
   run.write(water_include_name(written_frame), text);
 }
 
-// The frame loop: each water frame read and analysed once, its include written, and its maps
-// from the same analysis.
-void write_frames(SceneRun& run, const ProgressFn& progress, const std::atomic<bool>* stop) {
-  FrameSource source(run.plan.frames);
+// The frame loop: each water frame's include written, and its maps, from its one read and
+// analysis: taken from the survey's `cache`, or, without one, read and analysed here.
+void write_frames(SceneRun& run, FrameCache* cache, const ProgressFn& progress,
+                  const std::atomic<bool>* stop) {
+  std::optional<FrameSource> source;
+  if (!cache) source.emplace(run.plan.frames);
   std::size_t done = 0;
+  std::string bytes;  // one buffer for every frame's record
   for (const auto& [frame, path] : run.water.frames) {
-    if (stop && stop->load())
-      throw InterruptedError(run.request.out_dir.string() + ": interrupted");
+    throw_if_stopped(run, stop);
     const long written_frame = run.layout.animation ? frame : 0;
-    SourceFrame f = source.read(path);
-    run.report.read_seconds += f.read_seconds;
-    run.report.analysis_seconds += f.analysis_seconds;
-    if (!f.has_water()) {
-      write_empty_frame(run, frame, written_frame, f.empty);
+    std::string empty;
+    std::optional<MapInputs> maps;
+    PreparedSurface s;
+    if (cache) {
+      cache->take(run.report.frames, bytes);
+      RecordReader record(bytes);
+      empty = record.string();
+      if (empty.empty() && run.map_view) maps = unpack_map_inputs(record);
+      if (empty.empty()) s = unpack_surface(record);
     } else {
-      if (run.map_view) {
+      SourceFrame f = run.read_water(*source, path);
+      empty = f.empty;
+      if (f.has_water()) s = run.prepare(f);
+    }
+    if (!empty.empty()) {
+      write_empty_frame(run, frame, written_frame, empty);
+    } else {
+      if (maps) {
         const auto start = Clock::now();
-        write_maps(run.request.maps_dir, frame_stem(path), *f.analysis, *run.map_view,
+        write_maps(run.request.maps_dir, frame_stem(path),
+                   rasterize_top_down(maps->surface, maps->curvature, maps->label,
+                                      maps->free_surface, *run.map_view),
                    run.map_ranges);
         run.report.maps_seconds += seconds_since(start);
         ++run.report.map_frames;
       }
-      PreparedSurface s =
-          f.analysis ? prepare_surface(std::move(*f.analysis), run.request.up, run.plan.flow,
-                                       run.plan.shading)
-                     : prepare_surface(geometry_analysis(std::move(f.mesh)), run.request.up,
-                                       nullptr);
       // POV-Ray rejects a mesh2 without faces: a frame of zero-area faces only has no water.
       if (s.mesh.triangles.empty())
         write_empty_frame(run, frame, written_frame,
@@ -519,7 +640,7 @@ void write_frames(SceneRun& run, const ProgressFn& progress, const std::atomic<b
     ++run.report.frames;
     if (progress) progress(++done, run.water.frames.size());
   }
-  run.report.water_reads += source.reads();
+  if (source) run.report.water_reads += source->reads();
 }
 
 }  // namespace
@@ -551,7 +672,13 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   std::optional<OutputBatch> batch;
   if (run.plan.maps) batch.emplace();
 
-  SequenceSurvey survey = survey_sequence(run);
+  // The survey's frames wait in the staging directory's cache file, removed before the commit.
+  std::optional<FrameCache> cache;
+  SequenceSurvey survey;
+  if (run.plan.shares()) {
+    cache.emplace(run.out_dir / ".frame_cache.bin", request.frame_cache_bytes);
+    survey = survey_sequence(run, *cache, stop);
+  }
   run.layout.camera = frame_camera(config, request.up, survey.box_min, survey.box_max);
   if (run.plan.shading != WaterShading::toon) run.view_range = view_range(survey.view, run.plan.shading);
   if (survey.maps) {
@@ -565,7 +692,12 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   for (std::size_t i = 0; i < run.objects.size(); ++i)
     if (!run.objects[i].placement.animated)
       write_object(run, i, run.objects[i].sequence.frames.begin()->second, 0);
-  write_frames(run, progress, stop);
+  write_frames(run, cache ? &*cache : nullptr, progress, stop);
+  if (cache) {
+    run.report.cached_frames = cache->size();
+    run.report.spilled_frames = cache->spilled();
+  }
+  cache.reset();
 
   for (std::size_t i = 0; i < run.objects.size(); ++i) {
     run.objects[i].placement.submerged = run.submerged[i];

@@ -97,6 +97,12 @@ struct PovgenRequest {
   // colour range for the sequence; they are replaced with the scene: both, or neither.
   // Empty: no maps.
   std::filesystem::path maps_dir;
+  // A sequence whose frames share something (the default camera's box, a curvature view's or
+  // the maps' colour ranges) keeps each analysed frame until the last one is read: in memory
+  // up to this many bytes, beyond them in a temporary file in the staging directory. A frame
+  // takes about 80 bytes a vertex, 160 with maps: a few small frames stay in memory, and a
+  // long sequence of large frames never adds more than this to the peak.
+  std::size_t frame_cache_bytes = std::size_t{16} << 20;
   // Leave out outline shell faces no ray can see (shell_culling.hpp). Off only to check that
   // leaving them out changes no pixel.
   bool cull_shells = true;
@@ -112,9 +118,9 @@ struct PovgenReport {
   std::size_t ridge_vertices = 0, valley_vertices = 0;
   std::vector<std::string> empty_frames;  // "PATH: why", frames left without water (no faces)
   double read_seconds = 0, analysis_seconds = 0, simplify_seconds = 0, write_seconds = 0;
-  // Water mesh files read, all passes: once per frame, twice where the sequence shares
-  // something (the default camera's box, a curvature view's range, the maps' view and ranges).
+  // Water mesh files read: once per frame.
   std::size_t water_reads = 0;
+  std::size_t cached_frames = 0, spilled_frames = 0;  // kept for the frame loop; of them on disk
   std::size_t map_frames = 0;  // frames with maps (those with water)
   MapRanges map_ranges;        // the maps' shared colour ranges
   double maps_seconds = 0;
@@ -124,7 +130,8 @@ struct PovgenReport {
 using ProgressFn = std::function<void(std::size_t, std::size_t)>;
 
 // Frame selection, objects, a survey of the sequence where it shares something, then the frame
-// loop: each water frame read, analysed (frame_source.hpp) and written once, with its maps.
+// loop: each water frame read and analysed once (frame_source.hpp), and written once, with its
+// maps (from the survey's cache, frame_cache.hpp, where there is a survey).
 // Throws InputError, ConfigError or OutputError; when `stop` becomes true it stops between
 // frames and throws InterruptedError. On any failure DIR (and the maps) are left as they were.
 PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& request,

@@ -1,5 +1,6 @@
 #include "povgen/scene_mesh.hpp"
 
+#include "analyzer/geometry_tolerances.hpp"
 #include "povgen/axes.hpp"
 
 #include <algorithm>
@@ -7,17 +8,6 @@
 #include <stdexcept>
 
 namespace toonwater::povgen {
-namespace {
-
-bool is_degenerate(const TriangleMesh& m, const Triangle& t) {
-  if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return true;
-  const Vec3 e1 = m.positions[t[1]] - m.positions[t[0]];
-  const Vec3 e2 = m.positions[t[2]] - m.positions[t[0]];
-  // Zero area relative to the edges' size: POV-Ray (single precision) drops such faces anyway.
-  return !(e1.cross(e2).norm() > 1e-12 * (e1.squaredNorm() + e2.squaredNorm()));
-}
-
-}  // namespace
 
 SceneMesh make_scene_mesh(const TriangleMesh& surface, std::span<const Vec3> normals, bool closed,
                           Axis up) {
@@ -27,7 +17,9 @@ SceneMesh make_scene_mesh(const TriangleMesh& surface, std::span<const Vec3> nor
   if (normals.size() != n) throw std::logic_error("make_scene_mesh: one normal per vertex expected");
   out.triangles.reserve(surface.triangles.size());
   for (const Triangle& t : surface.triangles) {
-    if (is_degenerate(surface, t)) ++out.degenerate_faces;
+    if (is_degenerate_triangle(surface.positions[t[0]], surface.positions[t[1]],
+                               surface.positions[t[2]]))
+      ++out.degenerate_faces;
     else out.triangles.push_back(t);
   }
 

@@ -24,7 +24,7 @@ namespace toonwater::povgen {
 struct SceneMesh {
   std::vector<Vec3> positions;      // POV-Ray frame
   std::vector<Vec3> normals;        // unit length, POV-Ray frame
-  std::vector<Triangle> triangles;  // non-degenerate faces only
+  std::vector<Triangle> triangles;  // non-degenerate faces only (geometry_tolerances.hpp)
   bool closed = false;              // no boundary or non-manifold edge: has an inside
   std::size_t degenerate_faces = 0;     // left out
   std::size_t replaced_normals = 0;     // zero normals replaced by a face normal (or up)

@@ -69,7 +69,9 @@ TEST(ParallelChunks, ExceptionOfTheCallersChunkWaitsForTheOthers) {
                                  other_finished = true;
                                }),
                std::runtime_error);
-  if (std::thread::hardware_concurrency() > 1) EXPECT_TRUE(other_finished.load());
+  if (std::thread::hardware_concurrency() > 1) {
+    EXPECT_TRUE(other_finished.load());
+  }
   EXPECT_EQ(visits(100, 2), std::vector<int>(100, 1));
 }
 

@@ -1,9 +1,9 @@
-// One frame source for the scene and its maps (analyzer/frame_source.hpp): povgen reads each
-// water frame once in its frame loop, and once more only in a survey of the sequence where the
-// sequence shares something (the default camera's box, a curvature view's colour range, the
-// maps' view and ranges). It used to read a frame up to five times (camera box, view range,
-// frame loop and the maps' own two passes, with a second coherence run of its own). The maps
-// written from the scene's analyses equal those of the maps' own two passes.
+// One frame source for the scene and its maps (analyzer/frame_source.hpp): povgen reads and
+// analyses each water frame once. Where the sequence shares something (the default camera's
+// box, a curvature view's colour range, the maps' view and ranges) the survey reads them and
+// keeps each frame (povgen/frame_cache.hpp) for the frame loop, in memory or spilled to a file,
+// with the same output either way. The maps written from the scene's analyses equal those of
+// the maps' own two passes.
 #include "analyzer/maps/sequence_maps.hpp"
 #include "povgen/config.hpp"
 #include "povgen/povgen.hpp"
@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 namespace toonwater::test {
 namespace {
@@ -50,7 +51,8 @@ void write_frames(const fs::path& dir) {
 }
 
 povgen::PovgenReport generate(const fs::path& dir, const std::string& out,
-                              const std::vector<std::string>& overrides, bool maps) {
+                              const std::vector<std::string>& overrides, bool maps,
+                              std::size_t cache_bytes = povgen::PovgenRequest{}.frame_cache_bytes) {
   povgen::ConfigSources sources;
   sources.overrides = overrides;
   const povgen::SceneConfig config = povgen::load_config(sources);
@@ -59,17 +61,20 @@ povgen::PovgenReport generate(const fs::path& dir, const std::string& out,
   request.base_dir = dir;
   request.out_dir = dir / out;
   if (maps) request.maps_dir = dir / (out + "_maps");
+  request.frame_cache_bytes = cache_bytes;
   return povgen::generate_scene(config, request, {}, nullptr);
 }
 
-TEST(PovgenFrameReads, MapsAndACurvatureViewReadEachFrameOnceAPass) {
+TEST(PovgenFrameReads, MapsAndACurvatureViewReadEachFrameOnce) {
   ScratchDir dir;
   write_frames(dir.path());
   const povgen::PovgenReport r = generate(dir.path(), "mean", {"water.shading=mean"}, true);
   EXPECT_EQ(r.frames, frame_count);
   EXPECT_EQ(r.map_frames, frame_count);
-  // The survey and the frame loop: two reads a frame, not five.
-  EXPECT_EQ(r.water_reads, 2 * frame_count);
+  // One read a frame, not two (a survey and the frame loop) or five.
+  EXPECT_EQ(r.water_reads, frame_count);
+  EXPECT_EQ(r.cached_frames, frame_count);
+  EXPECT_EQ(r.spilled_frames, 0u);
   for (const char* stem : {"water_0001", "water_0002", "water_0003"}) {
     EXPECT_TRUE(fs::exists(dir / "mean_maps" / (std::string(stem) + ".exr"))) << stem;
     EXPECT_TRUE(fs::exists(dir / "mean_maps" / (std::string(stem) + "_label.png"))) << stem;
@@ -83,8 +88,41 @@ TEST(PovgenFrameReads, AToonSceneThatSharesNothingReadsEachFrameOnce) {
       generate(dir.path(), "toon", {"camera.location=[0, 3, -3]", "camera.look_at=[0, 0, 0]"}, false);
   EXPECT_EQ(r.frames, frame_count);
   EXPECT_EQ(r.water_reads, frame_count);
-  // The default camera frames the sequence's box: one survey read a frame.
-  EXPECT_EQ(generate(dir.path(), "framed", {}, false).water_reads, 2 * frame_count);
+  EXPECT_EQ(r.cached_frames, 0u);
+  // The default camera frames the sequence's box: the survey reads each frame, the loop none.
+  EXPECT_EQ(generate(dir.path(), "framed", {}, false).water_reads, frame_count);
+}
+
+// Every file of a directory with its bytes (maps by their content, image_content).
+std::map<std::string, std::string> directory_content(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const fs::path& p = entry.path();
+    files[p.filename().string()] =
+        p.extension() == ".exr" || p.extension() == ".png" ? image_content(p) : read_text(p);
+  }
+  return files;
+}
+
+// Frames spilled to the cache's file give the same scene and maps as frames kept in memory,
+// and the file is gone from the scene.
+TEST(PovgenFrameReads, FramesSpilledToAFileGiveTheSameSceneAndMaps) {
+  ScratchDir dir;
+  write_frames(dir.path());
+  const std::vector<std::string> view = {"water.shading=mean"};
+  const povgen::PovgenReport memory = generate(dir.path(), "memory", view, true);
+  const povgen::PovgenReport file = generate(dir.path(), "file", view, true, 0);
+  EXPECT_EQ(memory.spilled_frames, 0u);
+  EXPECT_EQ(file.spilled_frames, frame_count);
+  EXPECT_EQ(file.water_reads, frame_count);
+  const auto memory_scene = directory_content(dir / "memory");
+  const auto file_scene = directory_content(dir / "file");
+  EXPECT_EQ(memory_scene.size(), file_scene.size());
+  EXPECT_TRUE(memory_scene == file_scene);
+  EXPECT_FALSE(fs::exists(dir / "file" / ".frame_cache.bin"));
+  EXPECT_TRUE(directory_content(dir / "memory_maps") == directory_content(dir / "file_maps"));
+  // Each frame's include holds its own frame, not another's.
+  EXPECT_NE(file_scene.at("water_0001.inc"), file_scene.at("water_0002.inc"));
 }
 
 // The maps from povgen's own frames and coherence run are the maps of the sequence alone.
