@@ -4,6 +4,9 @@
 // "vertex_indices" (or "vertex_index") list of the "face" element; other properties and elements
 // are skipped — in binary files by their sizes, so they must be well-formed too. ASCII records
 // are read one per line, as every writer writes them, so that errors can name the line.
+// Binary vertex records without lists, and face records whose only list is the index list (what
+// writers write), are read in one loop per element with the types resolved once; other layouts
+// go property by property.
 #include "analyzer/readers/readers.hpp"
 
 #include <algorithm>
