@@ -1,8 +1,12 @@
 // Welding by exact position: one pass over the vertices with an open-addressing hash table
 // (linear probing over a flat array of welded-vertex indices, at most half full), so the cost is
 // linear in the vertex count. Positions are compared with ==, so +0 and -0 weld, and hashed after
-// adding +0.0, which turns -0 into +0 so that both hash alike.
+// adding +0.0, which turns -0 into +0 so that both hash alike. The hashing and the renumbering
+// of the triangles run on every core; the insertion stays serial, so welded vertices keep the
+// order of their first occurrence.
 #include "analyzer/weld.hpp"
+
+#include "common/parallel.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -41,10 +45,20 @@ WeldedMesh weld_coincident_vertices(TriangleMesh mesh) {
   std::vector<Vec3>& positions = mesh.positions;
   WeldedMesh welded;
   welded.input_to_mesh.resize(n);
+  // The hashes first (on every core), so that the serial insertion below can prefetch the slot
+  // it will probe a few vertices ahead: the probes are random over a table far larger than the
+  // cache, and waiting for each in turn was most of the cost.
+  std::vector<std::uint32_t> home(n);
+  parallel_chunks(n, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v)
+      home[v] = static_cast<std::uint32_t>(position_hash(positions[v]) & mask);
+  });
+  constexpr std::size_t prefetch_distance = 16;
   std::size_t count = 0;
   for (std::size_t v = 0; v < n; ++v) {
+    if (v + prefetch_distance < n) __builtin_prefetch(&slots[home[v + prefetch_distance]]);
     const Vec3 p = positions[v];
-    std::size_t slot = position_hash(p) & mask;
+    std::size_t slot = home[v];
     while (slots[slot] >= 0 && positions[slots[slot]] != p) slot = (slot + 1) & mask;
     if (slots[slot] < 0) {
       slots[slot] = static_cast<std::int32_t>(count);
@@ -55,8 +69,12 @@ WeldedMesh weld_coincident_vertices(TriangleMesh mesh) {
   positions.resize(count);
   welded.merged_vertex_count = n - count;
 
-  for (Triangle& t : mesh.triangles)
-    for (std::int32_t& corner : t) corner = welded.input_to_mesh[corner];
+  std::vector<Triangle>& triangles = mesh.triangles;
+  parallel_chunks(triangles.size(), worker_count(triangles.size()),
+                  [&](std::size_t, std::size_t begin, std::size_t end) {
+                    for (std::size_t f = begin; f < end; ++f)
+                      for (std::int32_t& corner : triangles[f]) corner = welded.input_to_mesh[corner];
+                  });
   welded.mesh = std::move(mesh);
   return welded;
 }

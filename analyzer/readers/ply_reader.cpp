@@ -4,6 +4,9 @@
 // "vertex_indices" (or "vertex_index") list of the "face" element; other properties and elements
 // are skipped — in binary files by their sizes, so they must be well-formed too. ASCII records
 // are read one per line, as every writer writes them, so that errors can name the line.
+// Binary vertex records without lists, and face records whose only list is the index list (what
+// writers write), are read in one loop per element with the types resolved once; other layouts
+// go property by property.
 #include "analyzer/readers/readers.hpp"
 
 #include <algorithm>
@@ -348,6 +351,17 @@ class BinaryReader {
       position_ += element.count * record_size;
       return;
     }
+    if (&element == layout_.vertex && all_scalar) {
+      read_fixed_vertices(result.mesh);
+      return;
+    }
+    if (&element == layout_.face && face_list_is_only_list()) {
+      dispatch_integer(layout_.face->properties[layout_.indices].count_type, [&]<class Count>() {
+        dispatch_integer(layout_.face->properties[layout_.indices].type,
+                         [&]<class Index>() { read_faces<Count, Index>(result); });
+      });
+      return;
+    }
     for (record_ = 0; record_ < element.count; ++record_) {
       if (&element == layout_.vertex) read_vertex(result.mesh);
       else if (&element == layout_.face) read_face(result);
@@ -434,6 +448,133 @@ class BinaryReader {
   void skip(std::size_t bytes) {
     if (static_cast<std::size_t>(end_ - position_) < bytes) truncated();
     position_ += bytes;
+  }
+
+  // A scalar of type T at `at`, in the file's byte order; the caller checked the bounds.
+  template <class T>
+  T load(const char* at) const {
+    std::array<char, sizeof(T)> bytes;
+    std::memcpy(bytes.data(), at, sizeof(T));
+    if (swap_bytes_) std::reverse(bytes.begin(), bytes.end());
+    return std::bit_cast<T>(bytes);
+  }
+
+  // Calls fn.template operator()<T>() with the C++ type of an integer PLY type.
+  template <class Fn>
+  static void dispatch_integer(PlyType type, Fn&& fn) {
+    switch (type) {
+      case PlyType::int8: fn.template operator()<std::int8_t>(); return;
+      case PlyType::uint8: fn.template operator()<std::uint8_t>(); return;
+      case PlyType::int16: fn.template operator()<std::int16_t>(); return;
+      case PlyType::uint16: fn.template operator()<std::uint16_t>(); return;
+      case PlyType::int32: fn.template operator()<std::int32_t>(); return;
+      case PlyType::uint32: fn.template operator()<std::uint32_t>(); return;
+      case PlyType::float32:
+      case PlyType::float64: break;
+    }
+  }
+
+  double load_number(PlyType type, const char* at) const {
+    switch (type) {
+      case PlyType::int8: return load<std::int8_t>(at);
+      case PlyType::uint8: return load<std::uint8_t>(at);
+      case PlyType::int16: return load<std::int16_t>(at);
+      case PlyType::uint16: return load<std::uint16_t>(at);
+      case PlyType::int32: return load<std::int32_t>(at);
+      case PlyType::uint32: return load<std::uint32_t>(at);
+      case PlyType::float32: return load<float>(at);
+      case PlyType::float64: return load<double>(at);
+    }
+    return 0;
+  }
+
+  // Vertex records of fixed size (no list property): straight into the position array. The
+  // records the data holds in full are read first, so that a bad coordinate before the end of
+  // a truncated file is reported as a read record by record would report it.
+  void read_fixed_vertices(TriangleMesh& mesh) {
+    const std::vector<PlyProperty>& properties = layout_.vertex->properties;
+    std::size_t record_size = 0;
+    std::array<std::size_t, 3> offset{};
+    for (std::size_t p = 0; p < properties.size(); ++p) {
+      for (std::size_t axis = 0; axis < 3; ++axis)
+        if (layout_.xyz[axis] == p) offset[axis] = record_size;
+      record_size += size_of(properties[p].type);
+    }
+    const std::array<PlyType, 3> type{properties[layout_.xyz[0]].type,
+                                      properties[layout_.xyz[1]].type,
+                                      properties[layout_.xyz[2]].type};
+    const std::uint64_t complete =
+        std::min<std::uint64_t>(layout_.vertex->count,
+                                static_cast<std::size_t>(end_ - position_) / record_size);
+    const std::size_t first = mesh.positions.size();
+    mesh.positions.resize(first + complete);
+    Vec3* out = mesh.positions.data() + first;
+    const bool all_float = type[0] == PlyType::float32 && type[1] == PlyType::float32 &&
+                           type[2] == PlyType::float32;
+    for (record_ = 0; record_ < complete; ++record_, position_ += record_size) {
+      Vec3& position = out[record_];
+      if (all_float) {
+        position = {load<float>(position_ + offset[0]), load<float>(position_ + offset[1]),
+                    load<float>(position_ + offset[2])};
+      } else {
+        for (std::size_t axis = 0; axis < 3; ++axis)
+          position[axis] = load_number(type[axis], position_ + offset[axis]);
+      }
+      if (!position.allFinite())
+        fail(file_, "coordinate is NaN or infinite (vertex " + std::to_string(record_) + ")");
+    }
+    if (complete < layout_.vertex->count) truncated();
+  }
+
+  // The face element's only list is its index list: its other properties are skipped by size.
+  bool face_list_is_only_list() const {
+    const std::vector<PlyProperty>& properties = layout_.face->properties;
+    for (std::size_t p = 0; p < properties.size(); ++p)
+      if (p != layout_.indices && properties[p].is_list) return false;
+    return true;
+  }
+
+  // Face records with the index list as the only list, its count of type Count and its items of
+  // type Index; the same checks and messages as read_face, without a type switch per value.
+  template <class Count, class Index>
+  void read_faces(InputMesh& result) {
+    const std::vector<PlyProperty>& properties = layout_.face->properties;
+    std::size_t before = 0, after = 0;  // bytes of the scalar properties around the list
+    for (std::size_t p = 0; p < properties.size(); ++p)
+      if (p != layout_.indices) (p < layout_.indices ? before : after) += size_of(properties[p].type);
+    const std::uint64_t vertex_count = layout_.vertex->count;
+    std::vector<Triangle>& triangles = result.mesh.triangles;
+    for (record_ = 0; record_ < layout_.face->count; ++record_) {
+      if (static_cast<std::size_t>(end_ - position_) < before + sizeof(Count)) {
+        position_ = end_;
+        truncated();
+      }
+      const auto corner_count = static_cast<std::int64_t>(load<Count>(position_ + before));
+      position_ += before + sizeof(Count);
+      if (corner_count < 0)
+        fail(file_, "negative list count " + std::to_string(corner_count) + " (" +
+                        record_label() + ", byte offset " + std::to_string(position_ - begin_) +
+                        ")");
+      if (corner_count < 3)
+        fail(file_, face_count_error(corner_count) + " (face " + std::to_string(record_) + ")");
+      const auto available = static_cast<std::size_t>(end_ - position_) / sizeof(Index);
+      // Indices the data holds, checked before the truncation is reported (as read_face does).
+      const std::size_t readable = std::min<std::uint64_t>(corner_count, available);
+      corners_.clear();
+      for (std::size_t k = 0; k < readable; ++k) {
+        const auto index = static_cast<std::int64_t>(load<Index>(position_ + k * sizeof(Index)));
+        if (index < 0 || static_cast<std::uint64_t>(index) >= vertex_count)
+          fail(file_, index_error(index, vertex_count) + " (face " + std::to_string(record_) + ")");
+        corners_.push_back(static_cast<std::int32_t>(index));
+      }
+      if (readable < static_cast<std::uint64_t>(corner_count)) truncated();
+      position_ += readable * sizeof(Index);
+      if (static_cast<std::size_t>(end_ - position_) < after) truncated();
+      position_ += after;
+      if (corners_.size() == 3) triangles.push_back({corners_[0], corners_[1], corners_[2]});
+      else add_polygon(result.mesh, corners_);
+      ++result.polygon_count;
+    }
   }
 
   void read_vertex(TriangleMesh& mesh) {

@@ -381,6 +381,45 @@ std::string triangle_ply(float bad_y, std::int32_t last_index, std::uint8_t corn
   return b.data();
 }
 
+// Vertex records of scalars only and face records with scalars on both sides of the index
+// list: the layout most writers use, read without a type switch per value.
+TEST_F(MeshReader, BinaryPlyScalarRecordsAroundTheLists) {
+  for (const bool big_endian : {false, true}) {
+    Bytes b(big_endian);
+    b.text(std::string("ply\nformat ") +
+           (big_endian ? "binary_big_endian" : "binary_little_endian") +
+           " 1.0\nelement vertex 4\nproperty uchar red\nproperty float z\nproperty double x\n"
+           "property short y\nelement face 2\nproperty short flags\n"
+           "property list int ushort vertex_index\nproperty double quality\nend_header\n");
+    const float zs[4] = {0.5f, -1.0f, 2.0f, 0.0f};
+    const double xs[4] = {0.1, 1.0, 1.0, -2.5};
+    const std::int16_t ys[4] = {0, -3, 7, 300};
+    for (int v = 0; v < 4; ++v) b.put(std::uint8_t{9}).put(zs[v]).put(xs[v]).put(ys[v]);
+    b.put(std::int16_t{-1}).put(std::int32_t{3});
+    for (std::uint16_t i : {0, 1, 2}) b.put(i);
+    b.put(0.5);
+    b.put(std::int16_t{7}).put(std::int32_t{4});
+    for (std::uint16_t i : {3, 2, 1, 0}) b.put(i);
+    b.put(-0.5);
+    const InputMesh input = read_mesh(write("scalar.ply", b.data()));
+    EXPECT_EQ(input.mesh.positions,
+              positions({{0.1, 0, 0.5}, {1, -3, -1}, {1, 7, 2}, {-2.5, 300, 0}}))
+        << "big endian " << big_endian;
+    EXPECT_EQ(input.mesh.triangles, std::vector<Triangle>({{0, 1, 2}, {3, 2, 1}, {3, 1, 0}}));
+    EXPECT_EQ(input.polygon_count, 2u);
+    const std::string whole = b.data();
+    expect_error("cut_after.ply", whole.substr(0, whole.size() - 3), {"truncated", "face 1 of 2"});
+  }
+}
+
+// A bad coordinate before the point where a file is cut is reported as the first error, as a
+// reader going record by record would.
+TEST_F(MeshReader, BinaryPlyBadCoordinateBeforeTheCutComesFirst) {
+  const std::string whole = triangle_ply(std::nanf(""), 2);
+  expect_error("nan_cut.ply", whole.substr(0, triangle_ply_header.size() + 32),
+               {"NaN or infinite", "(vertex 1)"});
+}
+
 TEST_F(MeshReader, BinaryPlyErrorsNameTheRecord) {
   EXPECT_EQ(read_mesh(write("good.ply", triangle_ply(0.0f, 2))).mesh.triangles.size(), 1u);
   expect_error("nan.ply", triangle_ply(std::nanf(""), 2), {"NaN or infinite", "(vertex 1)"});
