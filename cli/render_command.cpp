@@ -30,7 +30,7 @@ struct RenderArgs {
 void run_render(const RenderArgs& args) {
   povgen::RenderRequest request;
   request.scene_dir = args.dir;
-  request.force = args.force;
+  request.skip_rendered = !args.force;
   request.jobs = args.jobs > 0 ? args.jobs : povgen::default_render_processes();
   if (!args.frames.empty()) request.frames = povgen::parse_frame_range(args.frames, "--frames");
   // The POV-Ray executable: TOONWATER_POVRAY when set (a path or a name on PATH), else povray.

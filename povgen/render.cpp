@@ -348,7 +348,7 @@ RenderReport render_frames(const RenderRequest& request, const RenderProgressFn&
   remove_stale_temporaries(run.dir);  // frames of runs that were killed
   const std::vector<long> requested = requested_frames(run.dir, run.ini, request.frames);
   const std::vector<long> frames =
-      request.force ? requested : frames_without_image(run.dir, run.ini, requested);
+      request.skip_rendered ? frames_without_image(run.dir, run.ini, requested) : requested;
   const std::vector<std::vector<long>> ranges = split_into_ranges(frames, request.jobs);
   // With gaps (frames that have their image) there can be more ranges than processes: each
   // process takes the next range when it is done.

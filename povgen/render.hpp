@@ -39,8 +39,9 @@ struct RenderRequest {
   std::optional<FrameRange> frames;          // default: all frames in scene.ini
   std::string povray = "povray";             // the executable, looked up on PATH
   std::vector<std::string> extra_arguments;  // passed to every povray run
-  // render_frames: render frames that already have their image too (frames_without_image).
-  bool force = false;
+  // render_frames: skip the frames that already have their image (frames_without_image), as
+  // `toonwater render` does unless --force. Off for callers that render a scene they just wrote.
+  bool skip_rendered = false;
   // When it becomes true (a signal handler sets it), running povray processes are terminated,
   // no further frame starts, and render_frames throws InterruptedError; images
   // already renamed into DIR stay, nothing partial or temporary is left.
@@ -98,14 +99,14 @@ int default_render_processes();
 // ranges.
 std::vector<std::vector<long>> split_into_ranges(const std::vector<long>& frames, int processes);
 
-// Frames that already have their image are skipped unless `request.force`.
+// Frames that already have their image are skipped with `request.skip_rendered`.
 // Throws InputError when the directory holds no povgen scene or the range is outside it.
 // Throws InterruptedError when `request.stop` interrupted the run.
 RenderReport render_frames(const RenderRequest& request, const RenderProgressFn& progress);
 
 // Renders the request's frames in one POV-Ray process over the range (+SF/+EF): POV-Ray's start-up
 // is paid once, not per frame. This is what a render-farm task runs. `request.jobs` is ignored
-// (POV-Ray gets every core), and so is `request.force`: every frame of the request is rendered
+// (POV-Ray gets every core), and so is `request.skip_rendered`: every frame of the request is rendered
 // (the farm chose them with frames_without_image). Images are published as in render_frames. When POV-Ray fails, the
 // images of the frames before the failed one are kept (POV-Ray had moved on from them; after a
 // signal the last image is not trusted), the failed frame is reported with POV-Ray's message and
