@@ -24,11 +24,13 @@ struct RenderArgs {
   std::string dir;
   int jobs = 0;
   std::string frames;
+  bool force = false;
 };
 
 void run_render(const RenderArgs& args) {
   povgen::RenderRequest request;
   request.scene_dir = args.dir;
+  request.skip_rendered = !args.force;
   request.jobs = args.jobs > 0 ? args.jobs : povgen::default_render_processes();
   if (!args.frames.empty()) request.frames = povgen::parse_frame_range(args.frames, "--frames");
   // The POV-Ray executable: TOONWATER_POVRAY when set (a path or a name on PATH), else povray.
@@ -52,8 +54,8 @@ void run_render(const RenderArgs& args) {
   }
   for (const auto& f : r.failures)
     std::fprintf(stderr, "render: frame %ld failed: %s\n", f.frame, f.message.c_str());
-  std::fprintf(stderr, "render: %zu frame(s) rendered, %zu failed, %.2f s\n", r.rendered,
-               r.failures.size(), r.seconds);
+  std::fprintf(stderr, "render: %zu frame(s) rendered, %zu skipped (already rendered), %zu failed, %.2f s\n",
+               r.rendered, r.skipped, r.failures.size(), r.seconds);
   if (!r.failures.empty())
     throw povgen::PovrayError(args.dir + ": " + std::to_string(r.failures.size()) +
                               " frame(s) failed to render");
@@ -71,7 +73,9 @@ void add_render_command(CLI::App& app) {
   auto farm = std::make_shared<FarmArgs>();
   add_render_farm_options(cmd, farm);
   cmd->callback([args, farm] {
-    if (!run_render_on_farm(args->dir, args->frames, *farm)) run_render(*args);
+    if (run_render_on_farm(args->dir, args->frames, *farm)) return;
+    args->force = farm->force;  // local and farm renders skip frames with an image alike
+    run_render(*args);
   });
 }
 

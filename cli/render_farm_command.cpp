@@ -48,7 +48,7 @@ void add_render_farm_options(CLI::App* cmd, const std::shared_ptr<FarmArgs>& far
   cmd->add_flag("--no-wait", farm->no_wait, "Slurm: print the job id and return at once");
   cmd->add_flag("--status", farm->status, "Report on the farm job last submitted for DIR");
   cmd->add_option("--hosts", farm->hosts, "GNU parallel: ssh login file (--sshloginfile; ':' is this machine)");
-  cmd->add_flag("--force", farm->force, "Farm: render frames that already have an image too");
+  cmd->add_flag("--force", farm->force, "Render frames that already have an image too");
 }
 
 bool run_render_on_farm(const std::string& dir, const std::string& frames, const FarmArgs& farm) {
@@ -62,9 +62,9 @@ bool run_render_on_farm(const std::string& dir, const std::string& frames, const
   }
   if (farm.on.empty()) {
     if (!farm.partition.empty() || farm.frames_per_task || !farm.sbatch_args.empty() ||
-        farm.no_wait || !farm.hosts.empty() || farm.force)
-      throw InputError("--partition, --frames-per-task, --sbatch-arg, --no-wait, --hosts and "
-                       "--force need --on slurm|parallel");
+        farm.no_wait || !farm.hosts.empty())
+      throw InputError("--partition, --frames-per-task, --sbatch-arg, --no-wait and --hosts "
+                       "need --on slurm|parallel");
     return false;
   }
   povgen::FarmRequest request;

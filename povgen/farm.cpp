@@ -18,14 +18,8 @@ namespace fs = std::filesystem;
 
 std::vector<long> frames_to_render(const FarmRequest& request, const SceneFrames& scene) {
   const fs::path dir = fs::absolute(request.scene_dir);
-  std::vector<long> frames;
-  for (const long f : requested_frames(dir, scene, request.frames)) {
-    std::error_code ec;
-    const fs::path image = frame_image_path(dir, scene, f);
-    if (request.force || !fs::is_regular_file(image, ec) || fs::file_size(image, ec) == 0)
-      frames.push_back(f);
-  }
-  return frames;
+  const std::vector<long> frames = requested_frames(dir, scene, request.frames);
+  return request.force ? frames : frames_without_image(dir, scene, frames);
 }
 
 FarmWork farm_work(const FarmRequest& request, const SceneFrames& scene) {

@@ -454,18 +454,28 @@ SequenceSurvey survey_sequence(SceneRun& run, FrameCache& cache, const std::atom
   }
   return survey;
 }
-// The shell faces written (shell_culling.hpp): empty for all of them (then the shell stays
-// closed), else a mark per face. `keep`: the faces the shell is limited to anyway.
+
+// An object's shell, written whole: it is small next to the water's, and the water and other
+// objects come near it (shell_culling.hpp). Counted in the report.
+void count_whole_shell(SceneRun& run, const SceneMesh& mesh, std::span<const double> offsets) {
+  if (offsets.empty()) return;
+  run.report.shell_faces += mesh.triangles.size();
+  run.report.shell_faces_kept += mesh.triangles.size();
+}
+
+// The water's shell faces written (shell_culling.hpp): empty for all of them (then the shell
+// stays closed), else a mark per face. `keep`: the faces the shell is limited to anyway.
 // `may_cull`: nothing beyond shell_culling.hpp's rule forbids culling this shell.
-std::vector<bool> kept_shell_faces(SceneRun& run, const SceneMesh& mesh,
-                                   std::span<const double> offsets, bool no_reflection,
-                                   bool may_cull, std::span<const KeepOutBox> keep_out,
-                                   const std::vector<bool>* keep) {
+std::vector<bool> kept_water_shell_faces(SceneRun& run, const SceneMesh& mesh,
+                                         std::span<const double> offsets, bool may_cull,
+                                         std::span<const KeepOutBox> keep_out,
+                                         const std::vector<bool>* keep) {
   std::vector<bool> kept;
   if (offsets.empty()) return kept;
   run.report.shell_faces += mesh.triangles.size();
+  // The water's shell is no_reflection whenever the water reflects (scene_writer.cpp).
   if (run.request.cull_shells && may_cull &&
-      shell_met_by_camera_rays_only(run.config, no_reflection))
+      shell_met_by_camera_rays_only(run.config, /*shell_no_reflection=*/true))
     kept = shell_faces_seen_from_behind(mesh, offsets, run.layout.camera.location, keep_out, keep);
   else if (keep)
     kept = *keep;
@@ -488,12 +498,8 @@ void write_object(SceneRun& run, std::size_t i, const fs::path& path, long frame
       run.config.outline.enabled && oc.outline
           ? shell_offsets(run.config.outline, s.mesh, run.layout.camera, run.config.render.width)
           : std::vector<double>{};
-  // An object's shell is kept whole: it is small next to the water's, and the water and other
-  // objects come near it (shell_culling.hpp).
-  const std::vector<bool> shell_faces =
-      kept_shell_faces(run, s.mesh, offsets, false, /*may_cull=*/false, {}, nullptr);
-  std::string text = mesh_include(s, "Obj_" + oc.name, run.light, offsets, nullptr,
-                                  shell_faces.empty() ? nullptr : &shell_faces);
+  count_whole_shell(run, s.mesh, offsets);
+  std::string text = mesh_include(s, "Obj_" + oc.name, run.light, offsets, nullptr, nullptr);
   run.report.write_seconds += seconds_since(start);
   run.write(object_include_name(oc.name, run.objects[i].placement.animated, frame), text);
   // The object with its shell: the water's shell faces keep away from it to be dropped.
@@ -579,11 +585,10 @@ void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long writt
     for (std::size_t f = 0; f < upward.size(); ++f) textures->index[f] = upward[f] ? 0 : 1;
   }
   const bool free_surface_shell = see_through_volume && config.water.body == WaterBody::clear;
-  // The water's shell is no_reflection whenever the water reflects (scene_writer.cpp).
   // Flow lines are strokes on the water, reaching up towards its shell.
   const std::vector<bool> shell_faces =
-      kept_shell_faces(run, s.mesh, offsets, /*no_reflection=*/true, s.flow_lines.empty(),
-                       run.keep_out, free_surface_shell ? &upward : nullptr);
+      kept_water_shell_faces(run, s.mesh, offsets, s.flow_lines.empty(), run.keep_out,
+                             free_surface_shell ? &upward : nullptr);
   const std::string text = mesh_include(s, "Water", run.light, offsets,
                                         textures ? &*textures : nullptr,
                                         shell_faces.empty() ? nullptr : &shell_faces) +

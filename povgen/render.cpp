@@ -301,20 +301,41 @@ class RunReport {
 
 }  // namespace
 
+std::vector<long> frames_without_image(const fs::path& scene_dir, const SceneFrames& scene,
+                                       const std::vector<long>& frames) {
+  std::vector<long> missing;
+  for (const long f : frames) {
+    std::error_code ec;
+    const fs::path image = frame_image_path(scene_dir, scene, f);
+    if (!fs::is_regular_file(image, ec) || fs::file_size(image, ec) == 0) missing.push_back(f);
+  }
+  return missing;
+}
+
 int default_render_processes() {
   return 4 * static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 std::vector<std::vector<long>> split_into_ranges(const std::vector<long>& frames, int processes) {
+  // Runs of consecutive frames first: a POV-Ray range (+SF/+EF) renders every frame between.
+  std::vector<std::vector<long>> runs;
+  for (const long f : frames) {
+    if (runs.empty() || runs.back().back() != f - 1) runs.emplace_back();
+    runs.back().push_back(f);
+  }
+  const std::size_t wanted = static_cast<std::size_t>(std::max(processes, 1));
   std::vector<std::vector<long>> ranges;
-  const std::size_t count = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(processes, 1)),
-                                                    1, std::max<std::size_t>(frames.size(), 1));
-  for (std::size_t r = 0, begin = 0; r < count && begin < frames.size(); ++r) {
-    // The first frames.size() % count ranges are one frame longer.
-    const std::size_t length = frames.size() / count + (r < frames.size() % count ? 1 : 0);
-    ranges.emplace_back(frames.begin() + static_cast<std::ptrdiff_t>(begin),
-                        frames.begin() + static_cast<std::ptrdiff_t>(begin + length));
-    begin += length;
+  for (const std::vector<long>& run : runs) {
+    // This run's share of the processes, rounded, at least one and at most a frame each.
+    const std::size_t share = (wanted * run.size() + frames.size() / 2) / frames.size();
+    const std::size_t count = std::clamp<std::size_t>(share, 1, run.size());
+    for (std::size_t r = 0, begin = 0; r < count; ++r) {
+      // The first run.size() % count ranges are one frame longer.
+      const std::size_t length = run.size() / count + (r < run.size() % count ? 1 : 0);
+      ranges.emplace_back(run.begin() + static_cast<std::ptrdiff_t>(begin),
+                          run.begin() + static_cast<std::ptrdiff_t>(begin + length));
+      begin += length;
+    }
   }
   return ranges;
 }
@@ -325,23 +346,36 @@ RenderReport render_frames(const RenderRequest& request, const RenderProgressFn&
   run.dir = checked_scene_dir(request.scene_dir);
   run.ini = read_ini_frames(run.dir / "scene.ini");
   remove_stale_temporaries(run.dir);  // frames of runs that were killed
-  const std::vector<long> frames = requested_frames(run.dir, run.ini, request.frames);
+  const std::vector<long> requested = requested_frames(run.dir, run.ini, request.frames);
+  const std::vector<long> frames =
+      request.skip_rendered ? frames_without_image(run.dir, run.ini, requested) : requested;
   const std::vector<std::vector<long>> ranges = split_into_ranges(frames, request.jobs);
-  run.threads = povray_threads(static_cast<int>(ranges.size()));
+  // With gaps (frames that have their image) there can be more ranges than processes: each
+  // process takes the next range when it is done.
+  const std::size_t processes =
+      std::clamp<std::size_t>(static_cast<std::size_t>(std::max(request.jobs, 1)), 1,
+                              std::max<std::size_t>(ranges.size(), 1));
+  run.threads = povray_threads(static_cast<int>(processes));
 
   RunReport report(frames.size(), progress);
   const FrameDoneFn done = [&](long frame, const std::string& failure) { report.done(frame, failure); };
+  std::atomic<std::size_t> next_range{0};
+  auto work = [&] {
+    for (std::size_t r = next_range++; r < ranges.size(); r = next_range++)
+      render_range(run, ranges[r], done);
+  };
   {
     std::vector<std::jthread> pool;
-    for (std::size_t r = 1; r < ranges.size(); ++r)
-      pool.emplace_back([&, r] { render_range(run, ranges[r], done); });
-    render_range(run, ranges[0], done);
+    for (std::size_t p = 1; p < processes; ++p) pool.emplace_back(work);
+    work();
   }
   if (stop_requested(request.stop))
     throw InterruptedError(run.dir.string() + ": interrupted after " +
                            std::to_string(report.rendered()) + " of " +
                            std::to_string(frames.size()) + " frame(s)");
-  return report.finish();
+  RenderReport done_report = report.finish();
+  done_report.skipped = requested.size() - frames.size();
+  return done_report;
 }
 
 RenderReport render_frames_in_one_process(const RenderRequest& request,

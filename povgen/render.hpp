@@ -39,6 +39,9 @@ struct RenderRequest {
   std::optional<FrameRange> frames;          // default: all frames in scene.ini
   std::string povray = "povray";             // the executable, looked up on PATH
   std::vector<std::string> extra_arguments;  // passed to every povray run
+  // render_frames: skip the frames that already have their image (frames_without_image), as
+  // `toonwater render` does unless --force. Off for callers that render a scene they just wrote.
+  bool skip_rendered = false;
   // When it becomes true (a signal handler sets it), running povray processes are terminated,
   // no further frame starts, and render_frames throws InterruptedError; images
   // already renamed into DIR stay, nothing partial or temporary is left.
@@ -52,6 +55,7 @@ struct FrameFailure {
 
 struct RenderReport {
   std::size_t rendered = 0;
+  std::size_t skipped = 0;             // frames that had their image before (not forced)
   std::vector<FrameFailure> failures;  // by frame number
   double seconds = 0;
 };
@@ -75,6 +79,13 @@ std::vector<long> requested_frames(const std::filesystem::path& scene_dir, const
 std::filesystem::path frame_image_path(const std::filesystem::path& scene_dir,
                                        const SceneFrames& frames, long frame);
 
+// The frames of `frames` that still need rendering, in order: those without a non-empty image
+// in `scene_dir`. Images are renamed into place complete, so an image there is a finished
+// frame, whichever run, task or machine made it; this is what makes a local render and a
+// farm run resumable.
+std::vector<long> frames_without_image(const std::filesystem::path& scene_dir,
+                                       const SceneFrames& scene, const std::vector<long>& frames);
+
 // Called after each frame: frames done, total, seconds since the start.
 using RenderProgressFn = std::function<void(std::size_t, std::size_t, double)>;
 
@@ -82,17 +93,21 @@ using RenderProgressFn = std::function<void(std::size_t, std::size_t, double)>;
 // and parses on one thread. Each holds a parsed frame: fewer (--jobs) where memory is short.
 int default_render_processes();
 
-// `frames` cut into at most `processes` runs of consecutive frames, as equal in length as they
-// can be (the first ones one frame longer), in order.
+// `frames` (ascending) cut into ranges of consecutive frames, in order: each run of consecutive
+// frames gets its share of `processes` (rounded, at least one range), cut into ranges as equal
+// in length as they can be (the first ones one frame longer). Without gaps, at most `processes`
+// ranges.
 std::vector<std::vector<long>> split_into_ranges(const std::vector<long>& frames, int processes);
 
+// Frames that already have their image are skipped with `request.skip_rendered`.
 // Throws InputError when the directory holds no povgen scene or the range is outside it.
 // Throws InterruptedError when `request.stop` interrupted the run.
 RenderReport render_frames(const RenderRequest& request, const RenderProgressFn& progress);
 
 // Renders the request's frames in one POV-Ray process over the range (+SF/+EF): POV-Ray's start-up
 // is paid once, not per frame. This is what a render-farm task runs. `request.jobs` is ignored
-// (POV-Ray gets every core). Images are published as in render_frames. When POV-Ray fails, the
+// (POV-Ray gets every core), and so is `request.skip_rendered`: every frame of the request is rendered
+// (the farm chose them with frames_without_image). Images are published as in render_frames. When POV-Ray fails, the
 // images of the frames before the failed one are kept (POV-Ray had moved on from them; after a
 // signal the last image is not trusted), the failed frame is reported with POV-Ray's message and
 // its log, and a new process takes the frames after it; render_frames does the same per range.

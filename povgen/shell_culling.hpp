@@ -23,8 +23,24 @@
 //   - the water does not reflect, or the shell is no_reflection (scene_writer.cpp: the water's
 //     shell whenever the water reflects, an object's when its reflection target is none),
 // every ray that meets the shell is a camera ray, and the faces that face the camera can be
-// dropped without changing a pixel. With refraction nothing is dropped: a ray refracted
-// through the water can leave it under any face and meet that face's shell from behind.
+// dropped without changing a pixel.
+//
+// With refraction nothing is dropped, and no rule from the camera alone can drop anything:
+//   - A ray refracted into the water that meets the surface again from inside, at a face with
+//     normal N, leaves it (or, past the critical angle, is reflected inside, and can meet
+//     another face) going outward, d·N > 0. The face's shell lies its offset outside that face,
+//     with the same outward normal, so the leaving ray meets the shell from behind: a line
+//     pixel, seen through the water. Which faces such rays reach depends on the whole path
+//     through the water (entry face, ior, internal reflections), not on where the camera is: a
+//     face that faces the camera can be one of them (a ray entering one side of a crest and
+//     leaving through its top), so camera culling could drop a face a ray meets.
+//   - POV-Ray 3.7 cannot keep refracted rays off an object: its ray-type modifiers are
+//     no_image, no_reflection, no_shadow and no_radiosity. no_image hides an object from camera
+//     rays and from their refracted continuations alike (both are the same ray once it has
+//     passed through a transparent surface), so it would hide the camera's outlines too; no
+//     other construct (clipped_by, a bounding object, an interior) distinguishes the two rays.
+// Keeping only the faces such rays can reach would take tracing the refracted rays of every
+// pixel with POV-Ray's own arithmetic before writing the scene; that is not done.
 //
 // Two more differences between passing a front face and not meeting it at all:
 //   - One trace level less per dropped face: this changes a pixel only where a ray ran out of

@@ -153,7 +153,7 @@ TEST_F(HostileCli, RenderFailsWhenPovrayFailsSilentlyOrWritesNoImage) {
   Outcome r = toonwater({"render", "scene"}, {{"TOONWATER_POVRAY", fake_povray("exit 1")}});
   EXPECT_EQ(r.exit_code, exit_code::povray_failed) << r.err;
   EXPECT_TRUE(has(r.err, "frame 0 failed: POV-Ray exited with status 1")) << r.err;
-  EXPECT_TRUE(has(r.err, "0 frame(s) rendered, 2 failed")) << r.err;
+  EXPECT_TRUE(has(r.err, "0 frame(s) rendered, 0 skipped (already rendered), 2 failed")) << r.err;
   // Exit 0 without an image, and exit 0 with an empty one.
   r = toonwater({"render", "scene"}, {{"TOONWATER_POVRAY", fake_povray("exit 0")}});
   EXPECT_EQ(r.exit_code, exit_code::povray_failed) << r.err;

@@ -105,7 +105,7 @@ TEST_F(FarmScene, LocalRenderRunsOneProcessPerRangeWithPovraysOwnImages) {
   const fs::path scene = copy_scene("ranges");
   CommandResult r = run_toonwater({"render", scene.string(), "--jobs", "3"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("6 frame(s) rendered, 0 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("6 frame(s) rendered, 0 skipped (already rendered), 0 failed"), std::string::npos) << r.output;
   std::string runs = read_text(work_ / "runs.log");
   EXPECT_EQ(std::count(runs.begin(), runs.end(), '\n'), 3) << runs;
   for (const char* range : {"+SF1 +EF2", "+SF3 +EF4", "+SF5 +EF6"})
@@ -119,7 +119,7 @@ TEST_F(FarmScene, LocalRenderRunsOneProcessPerRangeWithPovraysOwnImages) {
   EXPECT_EQ(r.exit_code, 5) << r.output;
   EXPECT_NE(r.output.find("frame 2 failed"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("water_0002.inc"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("5 frame(s) rendered, 1 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("5 frame(s) rendered, 0 skipped (already rendered), 1 failed"), std::string::npos) << r.output;
   runs = read_text(work_ / "runs.log");
   EXPECT_NE(runs.find("+SF3 +EF3"), std::string::npos) << "a new process for frame 3: " << runs;
   EXPECT_FALSE(fs::exists(broken / frame_name(2)));
@@ -173,6 +173,42 @@ TEST_F(FarmScene, FramesWithAnImageAreSkippedUnlessForced) {
   ASSERT_EQ(forced.exit_code, 0) << forced.output;
   EXPECT_NE(forced.output.find("6 frame(s) rendered, 0 skipped"), std::string::npos) << forced.output;
   EXPECT_NE(fs::last_write_time(scene / frame_name(1)), before);
+}
+
+// The local render skips frames with an image as the farm does (an empty image is no image),
+// renders the others in ranges that do not cross the skipped frames, and --force renders all.
+TEST_F(FarmScene, LocalRenderSkipsFramesWithAnImageUnlessForced) {
+  const fs::path scene = copy_scene("local_resume");
+  for (int f : {1, 2, 3, 5}) fs::copy_file(reference() / frame_name(f), scene / frame_name(f));
+  write_text(scene / frame_name(6), "");
+  const auto before = fs::last_write_time(scene / frame_name(1));
+  write_logging_povray(work_ / "bin", work_ / "runs.log");
+  prepend_to_path(work_ / "bin");
+  const CommandResult r = run_toonwater({"render", scene.string(), "--jobs", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("2 frame(s) rendered, 4 skipped (already rendered), 0 failed"),
+            std::string::npos) << r.output;
+  const std::string runs = read_text(work_ / "runs.log");
+  EXPECT_EQ(std::count(runs.begin(), runs.end(), '\n'), 2) << runs;
+  for (const char* range : {"+SF4 +EF4", "+SF6 +EF6"})
+    EXPECT_NE(runs.find(range), std::string::npos) << range << " in " << runs;
+  EXPECT_EQ(fs::last_write_time(scene / frame_name(1)), before);
+  expect_frames_like(scene, reference());
+
+  const CommandResult forced = run_toonwater({"render", scene.string(), "--jobs", "2", "--force"});
+  ASSERT_EQ(forced.exit_code, 0) << forced.output;
+  EXPECT_NE(forced.output.find("6 frame(s) rendered, 0 skipped"), std::string::npos) << forced.output;
+  EXPECT_NE(fs::last_write_time(scene / frame_name(1)), before);
+  expect_frames_like(scene, reference());
+}
+
+TEST(RenderRanges, RangesDoNotCrossGapsAndShareTheProcesses) {
+  using Ranges = std::vector<std::vector<long>>;
+  EXPECT_EQ(povgen::split_into_ranges({1, 2, 3, 4, 5, 6, 7}, 3), (Ranges{{1, 2, 3}, {4, 5}, {6, 7}}));
+  EXPECT_EQ(povgen::split_into_ranges({4, 6}, 2), (Ranges{{4}, {6}}));
+  EXPECT_EQ(povgen::split_into_ranges({1, 2, 3, 4, 7, 8}, 3), (Ranges{{1, 2}, {3, 4}, {7, 8}}));
+  EXPECT_EQ(povgen::split_into_ranges({1, 2, 5}, 1), (Ranges{{1, 2}, {5}}));
+  EXPECT_TRUE(povgen::split_into_ranges({}, 4).empty());
 }
 
 TEST_F(FarmScene, MissingOrFailingSbatchIsAClearErrorWithTheCommand) {

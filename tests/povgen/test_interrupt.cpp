@@ -237,9 +237,11 @@ TEST_P(Interrupt, RenderStopsPovrayAndLeavesOnlyWholeImages) {
   EXPECT_EQ(images().size(), static_cast<std::size_t>(frame_count));
   expect_whole_images();
 
-  // Interrupted over the complete set: all images stay whole.
+  // Interrupted over the complete set (--force: every frame has its image): all images stay whole.
   {
-    Background run(args, dir / "third.log");
+    std::vector<std::string> forced = args;
+    forced.push_back("--force");
+    Background run(forced, dir / "third.log");
     ASSERT_TRUE(run.wait_for_output("frame 4/")) << run.output();
     run.signal(GetParam());
     EXPECT_NE(run.wait(), 0) << run.output();

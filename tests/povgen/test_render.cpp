@@ -463,16 +463,17 @@ TEST(PovgenRender, TwoFrameSequenceRendersWithOnePovrayCommandAndWithRender) {
   fs::remove(out / "frame_2.png");
   r = run_toonwater({"render", out.string(), "--jobs", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("2 frame(s) rendered, 0 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("2 frame(s) rendered, 0 skipped (already rendered), 0 failed"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(out / "frame_1.png") && fs::exists(out / "frame_2.png"));
 
-  // A broken frame is reported with POV-Ray's own message; the other frame still renders.
+  // A broken frame is reported with POV-Ray's own message; the other frame still renders
+  // (--force: both have their image from the run before).
   write_text(out / "water_0002.inc", "#declare Water_mesh = mesh2 { vertex_vectors { 1, <0,0,0> }");
-  r = run_toonwater({"render", out.string(), "--jobs", "2"});
+  r = run_toonwater({"render", out.string(), "--jobs", "2", "--force"});
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("frame 2 failed"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("rror"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("1 frame(s) rendered, 1 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 frame(s) rendered, 0 skipped (already rendered), 1 failed"), std::string::npos) << r.output;
 }
 
 TEST(PovgenRender, MantaflowWakeSequence) {

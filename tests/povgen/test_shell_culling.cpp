@@ -184,5 +184,22 @@ TEST(ShellCullingGeometry, KeepsTheFacesTheEyeSeesFromBehind) {
   EXPECT_GT(std::count(beside.begin(), beside.end(), true), std::count(kept.begin(), kept.end(), true));
 }
 
+// Which shells only camera rays meet (the premise of culling): none where the water refracts,
+// whatever else holds; where it only reflects, the shells that reflected rays cannot see.
+TEST(ShellCullingRule, OnlyWhereNoRefractedOrReflectedRayCanMeetTheShell) {
+  SceneConfig config;
+  config.water.shading = WaterShading::toon;
+  config.water.transmit = 0.6;
+  config.water.reflection = 0.0;
+  EXPECT_FALSE(shell_met_by_camera_rays_only(config, true)) << "refracting";
+  config.water.reflection = 0.3;
+  EXPECT_FALSE(shell_met_by_camera_rays_only(config, true)) << "refracting and reflecting";
+  config.water.transmit = 0;
+  EXPECT_TRUE(shell_met_by_camera_rays_only(config, true)) << "reflecting, no_reflection shell";
+  EXPECT_FALSE(shell_met_by_camera_rays_only(config, false)) << "reflecting, reflected shell";
+  config.water.reflection = 0;
+  EXPECT_TRUE(shell_met_by_camera_rays_only(config, false)) << "opaque, no reflection";
+}
+
 }  // namespace
 }  // namespace toonwater::test
