@@ -63,6 +63,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 namespace toonwater {
 namespace {
@@ -153,8 +154,9 @@ void add_laplacian_terms(OneRing& ring, double la, double lb, double lab, const 
 //
 // Without `intrinsic`, the Laplacian's cotangents come from the faces' positions; with it, from
 // its faces and lengths. Angles, normal and area always come from the mesh's own faces.
-OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double scale,
-                        const IntrinsicTriangulation* intrinsic, std::int32_t v) {
+[[gnu::always_inline]] inline OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double scale,
+                                                      const IntrinsicTriangulation* intrinsic,
+                                                      std::int32_t v) {
   OneRing ring;
   double turn_re = 1.0, turn_im = 0.0;  // the running product, kept at unit length
   int turns = 0;
@@ -233,6 +235,86 @@ void set_undefined(CurvatureField& field, std::size_t v) {
   field.status[v] = CurvatureStatus::undefined;
 }
 
+
+struct GatherInput {
+  const TriangleMesh& mesh;
+  const MeshTopology& topology;
+  double scale;
+  const IntrinsicTriangulation* intrinsic;
+};
+
+struct GatherCounts {
+  std::size_t shapeless = 0, mollified = 0, caps = 0;
+  double mollification = 0.0;
+};
+
+// Gathers vertices [begin, end) and writes their fields. Forced inline so that each of the two
+// instantiations below compiles all of it, the gather included, for its own instruction set.
+[[gnu::always_inline]] inline void gather_vertices(const GatherInput& in, std::size_t begin,
+                                                   std::size_t end, CurvatureField& field,
+                                                   GatherCounts& counts) {
+  const double scale = in.scale, scale2 = scale * scale;
+  for (std::size_t v = begin; v < end; ++v) {
+    const OneRing ring = gather_one_ring(in.mesh, in.topology.vertex_faces, scale, in.intrinsic,
+                                         static_cast<std::int32_t>(v));
+    counts.shapeless += ring.shapeless;
+    counts.mollified += ring.mollified;
+    counts.caps += ring.caps;
+    counts.mollification = std::max(counts.mollification, ring.mollification);
+    const double normal_length = ring.normal.norm();
+    field.normal[v] = normal_length > 0.0 ? Vec3(ring.normal / normal_length) : Vec3::Zero();
+    const double area = ring.area / scale2;
+    field.area[v] = std::isfinite(area) ? area : 0.0;
+    const VertexKind kind = in.topology.kind[v];
+    if (!(ring.area > 0.0) || normal_length == 0.0 || kind == VertexKind::isolated) {
+      set_undefined(field, v);
+      continue;
+    }
+    if (kind != VertexKind::interior || ring.at_shapeless) {
+      field.status[v] = CurvatureStatus::extrapolated;
+      continue;
+    }
+    // In scaled units, then back: K ∝ 1/s², H ∝ 1/s.
+    const double gaussian = ring.angle_deficit / ring.area * scale2;
+    const double projected = ring.laplacian.dot(field.normal[v]);
+    const double length = ring.laplacian.norm();
+    const double laplacian_along_normal = length <= std::abs(projected) * normal_deviation_secant
+                                              ? std::copysign(length, projected)
+                                              : projected * normal_deviation_secant;
+    const double mean = laplacian_along_normal / (4.0 * ring.area) * scale;
+    if (!std::isfinite(gaussian) || !std::isfinite(mean)) {
+      set_undefined(field, v);
+      continue;
+    }
+    set_curvature(field, v, gaussian, mean);
+    field.status[v] = CurvatureStatus::computed;
+  }
+}
+
+// The same code for any x86-64 (SSE2) and for processors with AVX2 and FMA, chosen at run time:
+// the portable build must not assume AVX2. This file is compiled with floating-point
+// contraction allowed (analyzer/CMakeLists.txt), which on x86-64 only the second can use: there
+// a·b + c becomes one fused multiply-add, rounded once. Its results differ from the portable
+// path's by round-off only (tested); multiplying by the power-of-two scale stays exact, so the
+// scale invariance holds in both.
+void gather_vertices_portable(const GatherInput& in, std::size_t begin, std::size_t end,
+                              CurvatureField& field, GatherCounts& counts) {
+  gather_vertices(in, begin, end, field, counts);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+[[gnu::target("avx2,fma")]] void gather_vertices_avx2_fma(const GatherInput& in, std::size_t begin,
+                                                          std::size_t end, CurvatureField& field,
+                                                          GatherCounts& counts) {
+  gather_vertices(in, begin, end, field, counts);
+}
+#else
+void gather_vertices_avx2_fma(const GatherInput& in, std::size_t begin, std::size_t end,
+                              CurvatureField& field, GatherCounts& counts) {
+  gather_vertices(in, begin, end, field, counts);
+}
+#endif
+
 }  // namespace
 
 void set_curvature(CurvatureField& field, std::size_t v, double gaussian, double mean) {
@@ -270,10 +352,21 @@ void extrapolate_from_neighbours(const TriangleMesh& mesh, const VertexFaces& vf
       std::count(field.status.begin(), field.status.end(), CurvatureStatus::extrapolated));
 }
 
-CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& topology) {
+bool avx2_fma_supported() {
+#if defined(__x86_64__) && defined(__GNUC__)
+  static const bool supported = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return supported;
+#else
+  return false;
+#endif
+}
+
+CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& topology,
+                                 CurvatureKernel kernel) {
+  if (kernel == CurvatureKernel::avx2_fma && !avx2_fma_supported())
+    throw std::invalid_argument("compute_curvature: this processor has no AVX2 and FMA");
   const std::size_t n = mesh.positions.size();
   const double scale = power_of_two_scale(mesh.positions);
-  const double scale2 = scale * scale;
 
   // The arrays are zero-filled as they are sized, and the filling (the first touch of every
   // page) costs about as much as a tenth of the gather: half of them on each of two cores.
@@ -297,53 +390,19 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   // split over the cores with no shared writes. The first pass also finds the mollification
   // the mesh needs; only a mesh that needs one is gathered again with it.
   const std::size_t workers = worker_count(n);
-  struct Counts {
-    std::size_t shapeless = 0, mollified = 0, caps = 0;
-    double mollification = 0.0;
-  };
+  const bool use_avx2_fma = kernel == CurvatureKernel::avx2_fma ||
+                            (kernel == CurvatureKernel::fastest && avx2_fma_supported());
   auto gather_all = [&](const IntrinsicTriangulation* intrinsic) {
-    std::vector<Counts> counts(workers);
+    std::vector<GatherCounts> counts(workers);
+    const GatherInput input{mesh, topology, scale, intrinsic};
     parallel_chunks(n, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
-      Counts& mine = counts[worker];
-      for (std::size_t v = begin; v < end; ++v) {
-        const OneRing ring = gather_one_ring(mesh, topology.vertex_faces, scale, intrinsic,
-                                             static_cast<std::int32_t>(v));
-        mine.shapeless += ring.shapeless;
-        mine.mollified += ring.mollified;
-        mine.caps += ring.caps;
-        mine.mollification = std::max(mine.mollification, ring.mollification);
-        const double normal_length = ring.normal.norm();
-        field.normal[v] = normal_length > 0.0 ? Vec3(ring.normal / normal_length) : Vec3::Zero();
-        const double area = ring.area / scale2;
-        field.area[v] = std::isfinite(area) ? area : 0.0;
-        if (!(ring.area > 0.0) || normal_length == 0.0 ||
-            topology.kind[v] == VertexKind::isolated) {
-          set_undefined(field, v);
-          continue;
-        }
-        if (topology.kind[v] != VertexKind::interior || ring.at_shapeless) {
-          field.status[v] = CurvatureStatus::extrapolated;
-          continue;
-        }
-        // In scaled units, then back: K ∝ 1/s², H ∝ 1/s.
-        const double gaussian = ring.angle_deficit / ring.area * scale2;
-        const double projected = ring.laplacian.dot(field.normal[v]);
-        const double length = ring.laplacian.norm();
-        const double laplacian_along_normal =
-            length <= std::abs(projected) * normal_deviation_secant
-                ? std::copysign(length, projected)
-                : projected * normal_deviation_secant;
-        const double mean = laplacian_along_normal / (4.0 * ring.area) * scale;
-        if (!std::isfinite(gaussian) || !std::isfinite(mean)) {
-          set_undefined(field, v);
-          continue;
-        }
-        set_curvature(field, v, gaussian, mean);
-        field.status[v] = CurvatureStatus::computed;
-      }
+      if (use_avx2_fma)
+        gather_vertices_avx2_fma(input, begin, end, field, counts[worker]);
+      else
+        gather_vertices_portable(input, begin, end, field, counts[worker]);
     });
-    Counts total;
-    for (const Counts& c : counts) {
+    GatherCounts total;
+    for (const GatherCounts& c : counts) {
       total.shapeless += c.shapeless;
       total.mollified += c.mollified;
       total.caps += c.caps;
@@ -351,7 +410,7 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
     }
     return total;
   };
-  const Counts counts = gather_all(nullptr);
+  const GatherCounts counts = gather_all(nullptr);
   if (counts.mollification > 0.0 || counts.caps > 0) {
     const IntrinsicTriangulation intrinsic =
         intrinsic_delaunay(mesh, topology.vertex_faces, scale, std::max(counts.mollification, 0.0));

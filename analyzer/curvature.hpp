@@ -56,8 +56,15 @@ struct CurvatureField {
   std::size_t undefined_vertices = 0;
 };
 
+// The same gather compiled for any x86-64 and for processors with AVX2 and FMA (fused
+// multiply-adds: results differ by round-off only). `fastest` takes the second where the
+// processor has it; asking for `avx2_fma` where it has not throws std::invalid_argument.
+enum class CurvatureKernel : std::uint8_t { fastest, portable, avx2_fma };
+bool avx2_fma_supported();
+
 // `mesh` should be consistently oriented (orient_consistently) for the signs to mean anything.
-CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& topology);
+CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& topology,
+                                 CurvatureKernel kernel = CurvatureKernel::fastest);
 
 // Shared by the estimators.
 // Sets K and H of vertex v and the principal curvatures k1,2 = H ± sqrt(max(H² − K, 0)).
