@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.hpp"
 #include "analyzer/mesh_reader.hpp"
+#include "povgen/scene_directory.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -301,13 +302,32 @@ class RunReport {
 
 }  // namespace
 
+namespace {
+
+// When the scene in `scene_dir` was last written: the newest of the files povgen writes for
+// every scene (a hand edit of scene.pov or scene.ini counts too).
+fs::file_time_type scene_written(const fs::path& scene_dir) {
+  fs::file_time_type newest = fs::file_time_type::min();
+  for (const char* name : {scene_marker, "scene.pov", "scene.ini"}) {
+    std::error_code ec;
+    const fs::file_time_type written = fs::last_write_time(scene_dir / name, ec);
+    if (!ec) newest = std::max(newest, written);
+  }
+  return newest;
+}
+
+}  // namespace
+
 std::vector<long> frames_without_image(const fs::path& scene_dir, const SceneFrames& scene,
                                        const std::vector<long>& frames) {
+  const fs::file_time_type scene_time = scene_written(scene_dir);
   std::vector<long> missing;
   for (const long f : frames) {
     std::error_code ec;
     const fs::path image = frame_image_path(scene_dir, scene, f);
-    if (!fs::is_regular_file(image, ec) || fs::file_size(image, ec) == 0) missing.push_back(f);
+    const bool finished = fs::is_regular_file(image, ec) && fs::file_size(image, ec) > 0 &&
+                          fs::last_write_time(image, ec) >= scene_time && !ec;
+    if (!finished) missing.push_back(f);
   }
   return missing;
 }

@@ -80,9 +80,11 @@ std::filesystem::path frame_image_path(const std::filesystem::path& scene_dir,
                                        const SceneFrames& frames, long frame);
 
 // The frames of `frames` that still need rendering, in order: those without a non-empty image
-// in `scene_dir`. Images are renamed into place complete, so an image there is a finished
-// frame, whichever run, task or machine made it; this is what makes a local render and a
-// farm run resumable.
+// in `scene_dir` that is at least as new as the scene (its marker file, scene.pov and
+// scene.ini). Images are renamed into place complete, so such an image is a finished frame,
+// whichever run, task or machine made it; this is what makes a local render and a farm run
+// resumable. An image older than the scene is one of an earlier scene, which povgen carries
+// over when it rewrites the directory: its frame is rendered again, as make would.
 std::vector<long> frames_without_image(const std::filesystem::path& scene_dir,
                                        const SceneFrames& scene, const std::vector<long>& frames);
 

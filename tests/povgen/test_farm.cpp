@@ -202,6 +202,32 @@ TEST_F(FarmScene, LocalRenderSkipsFramesWithAnImageUnlessForced) {
   expect_frames_like(scene, reference());
 }
 
+// povgen carries an earlier scene's images over when it rewrites the directory: they are older
+// than the new scene, so the render draws every frame again instead of keeping stale pictures.
+TEST_F(FarmScene, ImagesOfAnEarlierSceneAreRenderedAgain) {
+  const fs::path scene = work_ / "rewritten";
+  fs::copy(reference(), scene, fs::copy_options::recursive);
+  const int wider = kFarmWidth + 16;
+  const CommandResult pov = run_toonwater(
+      {"povgen", "--config", (dir_->path() / "scene.toml").string(), "--water",
+       (dir_->path() / "sim/water_####.obj").string(), "--set", "render.width=" + std::to_string(wider),
+       "--set", "render.height=" + std::to_string(kFarmHeight), "--out", scene.string()});
+  ASSERT_EQ(pov.exit_code, 0) << pov.output;
+  ASSERT_TRUE(fs::exists(scene / frame_name(1)));  // carried over from the earlier scene
+
+  const CommandResult r = run_toonwater({"render", scene.string(), "--jobs", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(std::to_string(kFarmFrames) + " frame(s) rendered, 0 skipped"),
+            std::string::npos) << r.output;
+  for (int f = 1; f <= kFarmFrames; ++f) EXPECT_EQ(read_image(scene / frame_name(f)).width, wider) << f;
+
+  // Rendered now, the images are the scene's: a second render skips them all.
+  const CommandResult again = run_toonwater({"render", scene.string(), "--jobs", "2"});
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("0 frame(s) rendered, " + std::to_string(kFarmFrames) + " skipped"),
+            std::string::npos) << again.output;
+}
+
 TEST(RenderRanges, RangesDoNotCrossGapsAndShareTheProcesses) {
   using Ranges = std::vector<std::vector<long>>;
   EXPECT_EQ(povgen::split_into_ranges({1, 2, 3, 4, 5, 6, 7}, 3), (Ranges{{1, 2, 3}, {4, 5}, {6, 7}}));
