@@ -1,7 +1,8 @@
 // Angle-weighted vertex normals (Thürmer and Wüthrich 1998): n_v = normalize(Σ θ_f n_f) over the
 // faces f around v, with θ_f the face's angle at v and n_f its unit normal (by its winding). The
 // curvature gather (curvature.cpp) computes the same normal with the same per-corner term, so
-// meshes shaded with or without curvature get identical normals.
+// meshes shaded with or without curvature get the same normals (to round-off where the gather's
+// AVX2 copy runs with fused multiply-adds).
 #pragma once
 
 #include "analyzer/geometry_tolerances.hpp"
