@@ -21,9 +21,20 @@
 
 namespace toonwater {
 
+// Faces steeper than 60° are not free surface (the default of FreeSurfaceOptions, and the
+// vertex normals povgen takes for the water line).
+constexpr double free_surface_min_up_component = 0.5;
+
+// The outline shell of a closed volume's top (povgen's mesh2_writer) takes faces far below the
+// free surface's slope: it must reach round the rounded edge between the water and the tank's
+// walls up to where it turns away from the camera, or the volume's back and side silhouettes
+// lose their outline. (Shell faces from the free-surface selection, with or without its
+// one-ring border, dropped them on the Mantaflow wake.)
+constexpr double shell_min_up_component = 0.1;
+
 struct FreeSurfaceOptions {
   Axis up = Axis::y;
-  double min_up_component = 0.5;      // faces steeper than 60° are not free surface
+  double min_up_component = free_surface_min_up_component;
   std::optional<double> rest_height;  // default: median height of the largest patch
   double max_depth = 2.0;             // in median edge lengths below the rest level
   std::size_t min_patch_vertices = 16;  // smaller detached patches (droplets) carry no flow

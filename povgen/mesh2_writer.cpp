@@ -1,5 +1,6 @@
 #include "povgen/mesh2_writer.hpp"
 
+#include "analyzer/free_surface.hpp"
 #include "common/parallel.hpp"
 
 #include <algorithm>
@@ -187,13 +188,6 @@ void append_mesh2(std::string& out, std::string_view identifier, const SceneMesh
   append(out, identifier, mesh, uv, {}, mesh.triangles, mesh.closed, /*normals=*/true, textures,
          position_decimals(mesh, 0.0));
 }
-
-// Far below the free surface's n·up > 0.5 (free_surface.hpp): the shell of a clear volume must
-// reach round the rounded edge between the water and the tank's walls up to where it turns
-// away from the camera, or the volume's back and side silhouettes lose their outline. (Shell
-// faces from the free-surface selection, with or without its one-ring border, dropped them on
-// the Mantaflow wake.)
-constexpr double shell_min_up_component = 0.1;
 
 std::vector<bool> upward_faces(const SceneMesh& mesh) {
   std::vector<bool> up(mesh.triangles.size());

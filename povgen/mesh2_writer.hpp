@@ -36,9 +36,10 @@ struct FaceTextures {
 void append_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
                   std::span<const TextureCoordinate> uv, const FaceTextures* textures = nullptr);
 
-// Per face: its normal (wound to agree with the vertex normals) points up, n·y > 0.1 — the
-// free surface of a closed liquid volume with the rounded edge round to its walls, as opposed to
-// its walls and floor (mesh2_writer.cpp says why not the free-surface selection).
+// Per face: its normal (wound to agree with the vertex normals) points up,
+// n·y > shell_min_up_component — the free surface of a closed liquid volume with the rounded
+// edge round to its walls, as opposed to its walls and floor (free_surface.hpp says why not the
+// free-surface selection).
 std::vector<bool> upward_faces(const SceneMesh& mesh);
 
 // Face t wound so that POV-Ray's face normal (a−b)×(c−b) agrees with its vertex normals: how

@@ -3,6 +3,7 @@
 #include "analyzer/analysis.hpp"
 #include "common/atomic_file.hpp"
 #include "analyzer/frame_source.hpp"
+#include "analyzer/free_surface.hpp"
 #include "analyzer/maps/map_writer.hpp"
 #include "analyzer/maps/sequence_maps.hpp"
 #include "analyzer/maps/top_down_map.hpp"
@@ -138,7 +139,7 @@ double water_line(const SceneMesh& water, const Vec3& lo, const Vec3& hi) {
   std::vector<double> heights;
   for (std::size_t v = 0; v < water.positions.size(); ++v) {
     const Vec3& p = water.positions[v];
-    if (water.normals[v].y() > 0.5 && p.x() >= lo.x() - grow.x() && p.x() <= hi.x() + grow.x() &&
+    if (water.normals[v].y() > free_surface_min_up_component && p.x() >= lo.x() - grow.x() && p.x() <= hi.x() + grow.x() &&
         p.z() >= lo.z() - grow.z() && p.z() <= hi.z() + grow.z())
       heights.push_back(p.y());
   }
