@@ -88,8 +88,10 @@ class RecordReader {
   template <class T>
   std::vector<T> vector() {
     const auto n = value<std::uint64_t>();
+    const char* from = next(n * sizeof(T));
     std::vector<T> v(n);
-    std::memcpy(reinterpret_cast<char*>(v.data()), next(n * sizeof(T)), n * sizeof(T));
+    // An empty vector's data() may be null, which memcpy must not be given even for 0 bytes.
+    if (n > 0) std::memcpy(reinterpret_cast<char*>(v.data()), from, n * sizeof(T));
     return v;
   }
   std::string string() {
