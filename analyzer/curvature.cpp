@@ -235,7 +235,6 @@ void set_undefined(CurvatureField& field, std::size_t v) {
   field.status[v] = CurvatureStatus::undefined;
 }
 
-
 struct GatherInput {
   const TriangleMesh& mesh;
   const MeshTopology& topology;

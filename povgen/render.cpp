@@ -300,10 +300,6 @@ class RunReport {
   RenderReport report_;
 };
 
-}  // namespace
-
-namespace {
-
 // When the scene in `scene_dir` was last written: the newest of the files povgen writes for
 // every scene (a hand edit of scene.pov or scene.ini counts too).
 fs::file_time_type scene_written(const fs::path& scene_dir) {
