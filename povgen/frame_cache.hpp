@@ -23,6 +23,11 @@
 
 namespace toonwater::povgen {
 
+template <class T>
+constexpr bool is_vector = false;
+template <class T, class A>
+constexpr bool is_vector<std::vector<T, A>> = true;
+
 class FrameCache {
  public:
   FrameCache(std::filesystem::path spill_file, std::size_t memory_budget);
@@ -53,8 +58,25 @@ class FrameCache {
 
 // Plain values (numbers, fixed-size Eigen vectors, index triples: no pointers) and vectors of
 // them packed into a record by their bytes, and read back in the same order.
+//
+// Both classes also take `field(x)`, which packs x or reads it back into x by its type, and
+// `count(v)`, which packs v's size or resizes v to it: a record's layout is then written once,
+// as one function template over the two (povgen.cpp), and packing and reading cannot drift.
 class RecordWriter {
  public:
+  template <class T>
+  void field(const T& v) {
+    if constexpr (std::is_same_v<T, std::string>)
+      string(v);
+    else if constexpr (is_vector<T>)
+      vector(v);
+    else
+      value(v);
+  }
+  template <class T>
+  void count(const std::vector<T>& v) {
+    value<std::uint64_t>(v.size());
+  }
   template <class T>
   void value(const T& v) {
     bytes_.append(reinterpret_cast<const char*>(&v), sizeof v);
@@ -79,6 +101,19 @@ class RecordWriter {
 class RecordReader {
  public:
   explicit RecordReader(const std::string& bytes) : bytes_(bytes) {}
+  template <class T>
+  void field(T& v) {
+    if constexpr (std::is_same_v<T, std::string>)
+      v = string();
+    else if constexpr (is_vector<T>)
+      v = vector<typename T::value_type>();
+    else
+      v = value<T>();
+  }
+  template <class T>
+  void count(std::vector<T>& v) {
+    v.resize(value<std::uint64_t>());
+  }
   template <class T>
   T value() {
     T v;

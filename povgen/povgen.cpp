@@ -338,76 +338,62 @@ struct MapInputs {
 };
 
 // A frame's record in the FrameCache: why it has no water ("" when it has), then, with water,
-// its map inputs (when the scene has maps) and its prepared surface.
+// its map inputs (when the scene has maps) and its prepared surface; then, where the survey
+// read them, the frame's animated objects' meshes. Each part's fields are listed once, for
+// packing (Record = RecordWriter, const fields) and reading back (RecordReader).
+template <class Record, class Mesh, class Curvature, class Labels, class FreeSurface>
+void map_input_fields(Record& record, Mesh& surface, Curvature& curvature, Labels& label,
+                      FreeSurface& free_surface) {
+  record.field(surface.positions);
+  record.field(surface.triangles);
+  record.field(curvature.gaussian);
+  record.field(curvature.mean);
+  record.field(curvature.k1);
+  record.field(curvature.k2);
+  record.field(label);
+  record.field(free_surface);
+}
+
 void pack_map_inputs(RecordWriter& out, const Analysis& a) {
-  out.vector(a.surface.positions);
-  out.vector(a.surface.triangles);
-  out.vector(a.curvature.gaussian);
-  out.vector(a.curvature.mean);
-  out.vector(a.curvature.k1);
-  out.vector(a.curvature.k2);
-  out.vector(a.flow.label);
-  out.vector(a.flow.free_surface);
+  map_input_fields(out, a.surface, a.curvature, a.flow.label, a.flow.free_surface);
 }
 
 MapInputs unpack_map_inputs(RecordReader& in) {
   MapInputs m;
-  m.surface.positions = in.vector<Vec3>();
-  m.surface.triangles = in.vector<Triangle>();
-  m.curvature.gaussian = in.vector<double>();
-  m.curvature.mean = in.vector<double>();
-  m.curvature.k1 = in.vector<double>();
-  m.curvature.k2 = in.vector<double>();
-  m.label = in.vector<std::int8_t>();
-  m.free_surface = in.vector<std::uint8_t>();
+  map_input_fields(in, m.surface, m.curvature, m.label, m.free_surface);
   return m;
 }
 
-void pack_surface(RecordWriter& out, const PreparedSurface& s) {
-  out.vector(s.mesh.positions);
-  out.vector(s.mesh.normals);
-  out.vector(s.mesh.triangles);
-  out.value(s.mesh.closed);
-  out.value(s.mesh.degenerate_faces);
-  out.value(s.mesh.replaced_normals);
-  out.value(s.mesh.min);
-  out.value(s.mesh.max);
-  out.vector(s.flow_field);
-  out.value<std::uint64_t>(s.flow_lines.size());
-  for (const FlowLine& line : s.flow_lines) {
-    out.value(line.sign);
-    out.value(line.closed);
-    out.vector(line.points);
-    out.vector(line.taper);
+// `view_range` is the sequence's, set when the frame is written.
+template <class Record, class Surface>
+void surface_fields(Record& record, Surface& s) {
+  record.field(s.mesh.positions);
+  record.field(s.mesh.normals);
+  record.field(s.mesh.triangles);
+  record.field(s.mesh.closed);
+  record.field(s.mesh.degenerate_faces);
+  record.field(s.mesh.replaced_normals);
+  record.field(s.mesh.min);
+  record.field(s.mesh.max);
+  record.field(s.flow_field);
+  record.count(s.flow_lines);
+  for (auto& line : s.flow_lines) {
+    record.field(line.sign);
+    record.field(line.closed);
+    record.field(line.points);
+    record.field(line.taper);
   }
-  out.vector(s.view_values);
-  out.value(s.ridge_vertices);
-  out.value(s.valley_vertices);
-  out.value(s.analysis_seconds);
+  record.field(s.view_values);
+  record.field(s.ridge_vertices);
+  record.field(s.valley_vertices);
+  record.field(s.analysis_seconds);
 }
+
+void pack_surface(RecordWriter& out, const PreparedSurface& s) { surface_fields(out, s); }
 
 PreparedSurface unpack_surface(RecordReader& in) {
   PreparedSurface s;
-  s.mesh.positions = in.vector<Vec3>();
-  s.mesh.normals = in.vector<Vec3>();
-  s.mesh.triangles = in.vector<Triangle>();
-  s.mesh.closed = in.value<bool>();
-  s.mesh.degenerate_faces = in.value<std::size_t>();
-  s.mesh.replaced_normals = in.value<std::size_t>();
-  s.mesh.min = in.value<Vec3>();
-  s.mesh.max = in.value<Vec3>();
-  s.flow_field = in.vector<double>();
-  s.flow_lines.resize(in.value<std::uint64_t>());
-  for (FlowLine& line : s.flow_lines) {
-    line.sign = in.value<std::int8_t>();
-    line.closed = in.value<bool>();
-    line.points = in.vector<Vec3>();
-    line.taper = in.vector<double>();
-  }
-  s.view_values = in.vector<double>();
-  s.ridge_vertices = in.value<std::size_t>();
-  s.valley_vertices = in.value<std::size_t>();
-  s.analysis_seconds = in.value<double>();
+  surface_fields(in, s);
   return s;
 }
 
