@@ -59,11 +59,17 @@ void run_povgen(const PovgenArgs& args) {
   // Ctrl-C stops between frames; the scene directory is then left as it was.
   std::signal(SIGINT, request_povgen_stop);
   std::signal(SIGTERM, request_povgen_stop);
-  const auto start = std::chrono::steady_clock::now();
+  // Each pass's progress is timed from its own start, so the time left is the pass's.
   FrameProgress shown("povgen");
-  auto progress = [&](std::size_t done, std::size_t total) {
-    shown.update(done, total,
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  auto pass_start = std::chrono::steady_clock::now(), last_update = pass_start;
+  std::optional<povgen::PovgenPass> shown_pass;
+  auto progress = [&](povgen::PovgenPass pass, std::size_t done, std::size_t total) {
+    const auto now = std::chrono::steady_clock::now();
+    if (shown_pass && *shown_pass != pass) pass_start = last_update;  // as the last pass ended
+    shown_pass = pass;
+    last_update = now;
+    shown.update(done, total, std::chrono::duration<double>(now - pass_start).count(),
+                 pass == povgen::PovgenPass::survey ? "survey" : nullptr);
   };
   povgen::PovgenReport r;
   try {

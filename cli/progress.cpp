@@ -9,11 +9,12 @@ namespace toonwater::cli {
 FrameProgress::FrameProgress(const char* command)
     : command_(command), terminal_(::isatty(STDERR_FILENO) == 1) {}
 
-void FrameProgress::update(std::size_t done, std::size_t total, double elapsed) {
+void FrameProgress::update(std::size_t done, std::size_t total, double elapsed, const char* pass) {
   const double left =
       done == 0 ? 0.0 : elapsed / static_cast<double>(done) * static_cast<double>(total - done);
-  std::fprintf(stderr, "%s%s: frame %zu/%zu, %.1f s, about %.1f s left%s", terminal_ ? "\r" : "",
-               command_, done, total, elapsed, left, terminal_ ? "   " : "\n");
+  std::fprintf(stderr, "%s%s: %s%sframe %zu/%zu, %.1f s, about %.1f s left%s",
+               terminal_ ? "\r" : "", command_, pass ? pass : "", pass ? ", " : "", done, total,
+               elapsed, left, terminal_ ? "   " : "\n");
   line_open_ = terminal_;
   if (done == total) finish_line();
 }

@@ -10,8 +10,10 @@ namespace toonwater::cli {
 class FrameProgress {
  public:
   explicit FrameProgress(const char* command);
-  // `done` of `total` frames after `elapsed` seconds.
-  void update(std::size_t done, std::size_t total, double elapsed);
+  // `done` of `total` frames after `elapsed` seconds, of a named pass of the command's when
+  // it makes more than one ("survey": "povgen: survey, frame 3/24, ..."), and then `elapsed`
+  // and the time left are the pass's own.
+  void update(std::size_t done, std::size_t total, double elapsed, const char* pass = nullptr);
   // Ends a rewritten line that is still open (before an error or a warning).
   void finish_line();
 

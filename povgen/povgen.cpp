@@ -404,11 +404,13 @@ void throw_if_stopped(const SceneRun& run, const std::atomic<bool>* stop) {
 // The survey, for a sequence that shares something: each water frame read and analysed once,
 // what the sequence shares gathered from it, and what writing it needs kept in `cache`; then
 // the objects' meshes for the camera's box.
-SequenceSurvey survey_sequence(SceneRun& run, FrameCache& cache, const std::atomic<bool>* stop) {
+SequenceSurvey survey_sequence(SceneRun& run, FrameCache& cache, const ProgressFn& progress,
+                               const std::atomic<bool>* stop) {
   SequenceSurvey survey;
   if (run.plan.maps) survey.maps.emplace(run.request.up);
   FrameSource source(run.plan.frames);
   RecordWriter record;  // one buffer for every frame's record
+  std::size_t done = 0;
   for (const auto& [frame, path] : run.water.frames) {
     throw_if_stopped(run, stop);
     SourceFrame f = run.read_water(source, path);
@@ -425,6 +427,7 @@ SequenceSurvey survey_sequence(SceneRun& run, FrameCache& cache, const std::atom
       pack_surface(record, run.prepare(f));
     }
     cache.put(record.bytes());
+    if (progress) progress(PovgenPass::survey, ++done, run.water.frames.size());
   }
   run.report.water_reads += source.reads();
   if (!run.plan.camera_box) return survey;
@@ -630,7 +633,7 @@ void write_frames(SceneRun& run, FrameCache* cache, const ProgressFn& progress,
         write_water_frame(run, s, frame, written_frame);
     }
     ++run.report.frames;
-    if (progress) progress(++done, run.water.frames.size());
+    if (progress) progress(PovgenPass::frames, ++done, run.water.frames.size());
   }
   if (source) run.report.water_reads += source->reads();
 }
@@ -669,7 +672,7 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   SequenceSurvey survey;
   if (run.plan.shares()) {
     cache.emplace(run.out_dir / ".frame_cache.bin", request.frame_cache_bytes);
-    survey = survey_sequence(run, *cache, stop);
+    survey = survey_sequence(run, *cache, progress, stop);
   }
   run.layout.camera = frame_camera(config, request.up, survey.box_min, survey.box_max);
   if (run.plan.shading != WaterShading::toon) run.view_range = view_range(survey.view, run.plan.shading);

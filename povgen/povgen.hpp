@@ -126,8 +126,13 @@ struct PovgenReport {
   double maps_seconds = 0;
 };
 
-// Called after each frame: frames done, frames in total.
-using ProgressFn = std::function<void(std::size_t, std::size_t)>;
+// The passes over the frames that report progress: the survey (each frame read and analysed,
+// where the sequence shares something, e.g. the default camera's box), then the frame loop
+// (each frame's include written).
+enum class PovgenPass : std::uint8_t { survey, frames };
+
+// Called after each frame of a pass: the pass, frames done, frames in total.
+using ProgressFn = std::function<void(PovgenPass, std::size_t, std::size_t)>;
 
 // Frame selection, objects, a survey of the sequence where it shares something, then the frame
 // loop: each water frame read and analysed once (frame_source.hpp), and written once, with its

@@ -547,6 +547,9 @@ TEST_F(HostileCli, ProgressIsLinesWhenStandardErrorIsNotATerminal) {
   EXPECT_FALSE(has(r.err, "\r")) << r.err;
   EXPECT_TRUE(has(r.err, "povgen: frame 1/3, ")) << r.err;
   EXPECT_TRUE(has(r.err, "\npovgen: frame 2/3, ")) << r.err;
+  // The default camera frames the whole sequence: its survey shows first, a line a frame.
+  EXPECT_TRUE(has(r.err, "povgen: survey, frame 1/3, ")) << r.err;
+  EXPECT_LT(r.err.find("povgen: survey, frame 3/3, "), r.err.find("povgen: frame 1/3, ")) << r.err;
 }
 
 TEST_F(HostileCli, ErrorsAreOneLineWithTheDocumentedCode) {

@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <map>
+#include <tuple>
 
 namespace toonwater::test {
 namespace {
@@ -52,7 +53,8 @@ void write_frames(const fs::path& dir) {
 
 povgen::PovgenReport generate(const fs::path& dir, const std::string& out,
                               const std::vector<std::string>& overrides, bool maps,
-                              std::size_t cache_bytes = povgen::PovgenRequest{}.frame_cache_bytes) {
+                              std::size_t cache_bytes = povgen::PovgenRequest{}.frame_cache_bytes,
+                              const povgen::ProgressFn& progress = {}) {
   povgen::ConfigSources sources;
   sources.overrides = overrides;
   const povgen::SceneConfig config = povgen::load_config(sources);
@@ -62,7 +64,7 @@ povgen::PovgenReport generate(const fs::path& dir, const std::string& out,
   request.out_dir = dir / out;
   if (maps) request.maps_dir = dir / (out + "_maps");
   request.frame_cache_bytes = cache_bytes;
-  return povgen::generate_scene(config, request, {}, nullptr);
+  return povgen::generate_scene(config, request, progress, nullptr);
 }
 
 TEST(PovgenFrameReads, MapsAndACurvatureViewReadEachFrameOnce) {
@@ -91,6 +93,31 @@ TEST(PovgenFrameReads, AToonSceneThatSharesNothingReadsEachFrameOnce) {
   EXPECT_EQ(r.cached_frames, 0u);
   // The default camera frames the sequence's box: the survey reads each frame, the loop none.
   EXPECT_EQ(generate(dir.path(), "framed", {}, false).water_reads, frame_count);
+}
+
+// The survey, now the longer of the two passes, reports its frames before the frame loop does.
+TEST(PovgenFrameReads, TheSurveyReportsItsFramesBeforeTheFrameLoop) {
+  ScratchDir dir;
+  write_frames(dir.path());
+  using Call = std::tuple<povgen::PovgenPass, std::size_t, std::size_t>;
+  const auto calls_of = [&](const std::string& out, const std::vector<std::string>& overrides) {
+    std::vector<Call> calls;
+    generate(dir.path(), out, overrides, false, povgen::PovgenRequest{}.frame_cache_bytes,
+             [&](povgen::PovgenPass pass, std::size_t done, std::size_t total) {
+               calls.emplace_back(pass, done, total);
+             });
+    return calls;
+  };
+  std::vector<Call> loop;
+  for (std::size_t f = 1; f <= frame_count; ++f)
+    loop.emplace_back(povgen::PovgenPass::frames, f, frame_count);
+  std::vector<Call> survey_then_loop;
+  for (std::size_t f = 1; f <= frame_count; ++f)
+    survey_then_loop.emplace_back(povgen::PovgenPass::survey, f, frame_count);
+  survey_then_loop.insert(survey_then_loop.end(), loop.begin(), loop.end());
+  EXPECT_EQ(calls_of("framed", {}), survey_then_loop) << "the default camera surveys";
+  EXPECT_EQ(calls_of("fixed", {"camera.location=[0, 3, -3]", "camera.look_at=[0, 0, 0]"}), loop)
+      << "a fixed camera and toon shading share nothing: no survey";
 }
 
 // Every file of a directory with its bytes (maps by their content, image_content).
