@@ -25,6 +25,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 namespace toonwater::povgen {
 namespace {
@@ -302,6 +304,9 @@ struct SceneRun {
   std::optional<MapView> map_view;
   MapRanges map_ranges;
   bool have_water_box = false;
+  // Per object, the mesh the survey read for the include written next (a static object's, or an
+  // animated one's for the frame being written), taken by that include: read once, not twice.
+  std::vector<std::optional<TriangleMesh>> object_mesh;
 
   void write(const fs::path& name, const std::string& text) {
     const auto start = Clock::now();
@@ -312,7 +317,13 @@ struct SceneRun {
     const auto start = Clock::now();
     InputMesh m = read_mesh(path);
     report.read_seconds += seconds_since(start);
+    ++report.object_reads;
     return std::move(m.mesh);
+  }
+  // Object i's mesh from `path`: the survey's copy where it kept one, else read now.
+  TriangleMesh take_object(std::size_t i, const fs::path& path) {
+    std::optional<TriangleMesh> kept = std::exchange(object_mesh[i], std::nullopt);
+    return kept ? std::move(*kept) : read_object(path);
   }
   // One water frame from its file, read and analysed (frame_source.hpp).
   SourceFrame read_water(FrameSource& source, const fs::path& path) {
@@ -339,13 +350,19 @@ struct MapInputs {
 
 // A frame's record in the FrameCache: why it has no water ("" when it has), then, with water,
 // its map inputs (when the scene has maps) and its prepared surface; then, where the survey
-// read them, the frame's animated objects' meshes. Each part's fields are listed once, for
-// packing (Record = RecordWriter, const fields) and reading back (RecordReader).
+// read them (for the camera's box), the frame's animated objects' meshes. Each part's fields
+// are listed once, for packing (Record = RecordWriter, const fields) and reading back
+// (RecordReader).
+template <class Record, class Mesh>
+void mesh_fields(Record& record, Mesh& mesh) {
+  record.field(mesh.positions);
+  record.field(mesh.triangles);
+}
+
 template <class Record, class Mesh, class Curvature, class Labels, class FreeSurface>
 void map_input_fields(Record& record, Mesh& surface, Curvature& curvature, Labels& label,
                       FreeSurface& free_surface) {
-  record.field(surface.positions);
-  record.field(surface.triangles);
+  mesh_fields(record, surface);
   record.field(curvature.gaussian);
   record.field(curvature.mean);
   record.field(curvature.k1);
@@ -410,6 +427,18 @@ SequenceSurvey survey_sequence(SceneRun& run, FrameCache& cache, const ProgressF
   if (run.plan.maps) survey.maps.emplace(run.request.up);
   FrameSource source(run.plan.frames);
   RecordWriter record;  // one buffer for every frame's record
+  // The objects' meshes count in the camera's box: a static object's is kept for its include,
+  // an animated object's goes into each frame's record.
+  const bool read_objects = run.plan.camera_box;
+  auto grow = [&](const TriangleMesh& m) {
+    for (const Vec3& p : m.positions) survey.grow_box(p, p, run.request.up);
+  };
+  for (std::size_t i = 0; read_objects && i < run.objects.size(); ++i) {
+    const ObjectSource& o = run.objects[i];
+    if (o.placement.animated) continue;
+    run.object_mesh[i] = run.read_object(o.sequence.frames.begin()->second);
+    grow(*run.object_mesh[i]);
+  }
   std::size_t done = 0;
   for (const auto& [frame, path] : run.water.frames) {
     throw_if_stopped(run, stop);
@@ -426,22 +455,16 @@ SequenceSurvey survey_sequence(SceneRun& run, FrameCache& cache, const ProgressF
       }
       pack_surface(record, run.prepare(f));
     }
+    for (const ObjectSource& o : run.objects) {
+      if (!read_objects || !o.placement.animated) continue;
+      const TriangleMesh mesh = run.read_object(o.sequence.frames.at(frame));
+      grow(mesh);
+      mesh_fields(record, mesh);
+    }
     cache.put(record.bytes());
     if (progress) progress(PovgenPass::survey, ++done, run.water.frames.size());
   }
   run.report.water_reads += source.reads();
-  if (!run.plan.camera_box) return survey;
-  auto grow = [&](const TriangleMesh& m) {
-    for (const Vec3& p : m.positions) survey.grow_box(p, p, run.request.up);
-  };
-  for (const ObjectSource& o : run.objects) {
-    if (!o.placement.animated) {
-      grow(run.read_object(o.sequence.frames.begin()->second));
-      continue;
-    }
-    for (const auto& [frame, path] : run.water.frames)
-      grow(run.read_object(o.sequence.frames.at(frame)));
-  }
   return survey;
 }
 
@@ -479,7 +502,7 @@ std::vector<bool> kept_water_shell_faces(SceneRun& run, const SceneMesh& mesh,
 void write_object(SceneRun& run, std::size_t i, const fs::path& path, long frame) {
   const ObjectConfig& oc = *run.objects[i].placement.config;
   const PreparedSurface s =
-      prepare_surface(geometry_analysis(run.read_object(path)), run.request.up, nullptr);
+      prepare_surface(geometry_analysis(run.take_object(i, path)), run.request.up, nullptr);
   if (s.mesh.triangles.empty())
     throw InputError(path.string() + ": object '" + oc.name + "': all " +
                      std::to_string(s.mesh.degenerate_faces) + " faces are degenerate (zero area)");
@@ -607,6 +630,8 @@ void write_frames(SceneRun& run, FrameCache* cache, const ProgressFn& progress,
       empty = record.string();
       if (empty.empty() && run.map_view) maps = unpack_map_inputs(record);
       if (empty.empty()) s = unpack_surface(record);
+      for (std::size_t i = 0; run.plan.camera_box && i < run.objects.size(); ++i)
+        if (run.objects[i].placement.animated) mesh_fields(record, run.object_mesh[i].emplace());
     } else {
       SourceFrame f = run.read_water(*source, path);
       empty = f.empty;
@@ -657,6 +682,7 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   run.object_box.resize(run.objects.size());
   run.keep_out.resize(run.objects.size());
   run.submerged.assign(run.objects.size(), false);
+  run.object_mesh.resize(run.objects.size());
 
   if (!request.maps_dir.empty() && fs::is_directory(request.maps_dir))
     remove_stale_temporaries(request.maps_dir);

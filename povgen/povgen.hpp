@@ -118,8 +118,9 @@ struct PovgenReport {
   std::size_t ridge_vertices = 0, valley_vertices = 0;
   std::vector<std::string> empty_frames;  // "PATH: why", frames left without water (no faces)
   double read_seconds = 0, analysis_seconds = 0, simplify_seconds = 0, write_seconds = 0;
-  // Water mesh files read: once per frame.
-  std::size_t water_reads = 0;
+  // Water mesh files read: once per frame. Object mesh files read: once per static object,
+  // once per frame for an animated one.
+  std::size_t water_reads = 0, object_reads = 0;
   std::size_t cached_frames = 0, spilled_frames = 0;  // kept for the frame loop; of them on disk
   std::size_t map_frames = 0;  // frames with maps (those with water)
   MapRanges map_ranges;        // the maps' shared colour ranges

@@ -5,6 +5,7 @@
 // with the same output either way. The maps written from the scene's analyses equal those of
 // the maps' own two passes.
 #include "analyzer/maps/sequence_maps.hpp"
+#include "corpus/analytic_surfaces.hpp"
 #include "povgen/config.hpp"
 #include "povgen/povgen.hpp"
 #include "tests/povgen/povgen_test_util.hpp"
@@ -129,6 +130,46 @@ std::map<std::string, std::string> directory_content(const fs::path& dir) {
         p.extension() == ".exr" || p.extension() == ".png" ? image_content(p) : read_text(p);
   }
   return files;
+}
+
+// With the default camera the survey reads the objects for the camera's box and keeps them for
+// their includes: each object file is read once (a static object once, an animated one once a
+// frame), and the scene is the same whether the frames wait in memory or in the cache's file.
+TEST(PovgenFrameReads, TheDefaultCameraReadsEachObjectFileOnce) {
+  ScratchDir dir;
+  write_frames(dir.path());
+  write_obj(dir / "rock.obj", make_icosphere(1, 0.2).mesh);
+  for (std::size_t f = 0; f < frame_count; ++f) {
+    TriangleMesh buoy = make_icosphere(1, 0.1).mesh;
+    for (Vec3& p : buoy.positions) p += Vec3(0.2 * static_cast<double>(f), 0.1, 0.0);
+    write_obj(dir / ("buoy_000" + std::to_string(f + 1) + ".obj"), buoy);
+  }
+  const auto scene = [&](const std::string& out, std::size_t cache_bytes,
+                         const std::vector<std::string>& overrides = {}) {
+    povgen::ConfigSources sources;
+    sources.overrides = overrides;
+    sources.object_patterns = {(dir / "rock.obj").string(), (dir / "buoy_####.obj").string()};
+    povgen::PovgenRequest request;
+    request.water_pattern = (dir / "water_####.obj").string();
+    request.base_dir = dir.path();
+    request.out_dir = dir / out;
+    request.frame_cache_bytes = cache_bytes;
+    return povgen::generate_scene(povgen::load_config(sources), request, {}, nullptr);
+  };
+  const povgen::PovgenReport memory = scene("memory", povgen::PovgenRequest{}.frame_cache_bytes);
+  const povgen::PovgenReport file = scene("file", 0);
+  EXPECT_EQ(memory.object_reads, 1 + frame_count);
+  EXPECT_EQ(file.object_reads, 1 + frame_count);
+  EXPECT_EQ(file.spilled_frames, frame_count);
+  const auto memory_scene = directory_content(dir / "memory");
+  EXPECT_TRUE(memory_scene == directory_content(dir / "file"));
+  // Each frame's include holds that frame's buoy.
+  ASSERT_TRUE(memory_scene.count("obj_buoy.0001.inc") && memory_scene.count("obj_buoy.0002.inc"))
+      << memory_scene.size() << " files";
+  EXPECT_NE(memory_scene.at("obj_buoy.0001.inc"), memory_scene.at("obj_buoy.0002.inc"));
+  // A fixed camera needs no survey: the frame loop reads each file, once too.
+  EXPECT_EQ(scene("fixed", 0, {"camera.location=[0, 3, -3]", "camera.look_at=[0, 0, 0]"}).object_reads,
+            1 + frame_count);
 }
 
 // Frames spilled to the cache's file give the same scene and maps as frames kept in memory,
