@@ -8,7 +8,6 @@
 #include "common/atomic_file.hpp"
 #include "analyzer/curvature_export.hpp"
 #include "analyzer/maps/map_writer.hpp"
-#include "analyzer/maps/sequence_maps.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "analyzer/stopwatch.hpp"
 #include "images/image_codec.hpp"

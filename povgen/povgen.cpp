@@ -5,7 +5,6 @@
 #include "analyzer/frame_source.hpp"
 #include "analyzer/free_surface.hpp"
 #include "analyzer/maps/map_writer.hpp"
-#include "analyzer/maps/sequence_maps.hpp"
 #include "analyzer/maps/top_down_map.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "analyzer/stopwatch.hpp"

@@ -93,6 +93,12 @@ void write_png(const ImageCodec& codec, const fs::path& path, const PreviewImage
 
 }  // namespace
 
+std::string frame_stem(const fs::path& frame) {
+  fs::path stem = frame.stem();
+  if (frame.extension() == ".gz") stem = stem.stem();
+  return stem.string();
+}
+
 MapFiles write_maps(const fs::path& dir, const std::string& stem, const TopDownMap& map,
                     const MapRanges& ranges) {
   std::error_code error;

@@ -29,7 +29,13 @@ MapFiles write_maps(const std::filesystem::path& dir, const std::string& stem,
 MapFiles write_maps(const std::filesystem::path& dir, const std::string& stem,
                     const TopDownMap& map, const MapRanges& ranges);
 
+// The name a frame's maps take: the file name without its mesh extensions ("water_0001" for
+// water_0001.obj, "fluid_mesh_0001" for fluid_mesh_0001.bobj.gz).
+std::string frame_stem(const std::filesystem::path& frame);
+
 // The single-frame case: plan from this analysis alone, then write. Returns the ranges used.
+// A sequence's maps share one view and one range: plan them over every frame (MapPlanner), then
+// write each frame with write_maps, as `povgen --maps` does.
 MapRanges write_frame_maps(const std::filesystem::path& dir, const std::string& stem,
                            const Analysis& analysis, Axis up, const MapOptions& options,
                            MapFiles* files = nullptr);

@@ -3,8 +3,9 @@
 // box, a curvature view's colour range, the maps' view and ranges) the survey reads them and
 // keeps each frame (povgen/frame_cache.hpp) for the frame loop, in memory or spilled to a file,
 // with the same output either way. The maps written from the scene's analyses equal those of
-// the maps' own two passes.
-#include "analyzer/maps/sequence_maps.hpp"
+// the sequence's maps planned and written from the library alone.
+#include "analyzer/frame_source.hpp"
+#include "analyzer/maps/map_writer.hpp"
 #include "corpus/analytic_surfaces.hpp"
 #include "povgen/config.hpp"
 #include "povgen/povgen.hpp"
@@ -193,26 +194,38 @@ TEST(PovgenFrameReads, FramesSpilledToAFileGiveTheSameSceneAndMaps) {
   EXPECT_NE(file_scene.at("water_0001.inc"), file_scene.at("water_0002.inc"));
 }
 
-// The maps from povgen's own frames and coherence run are the maps of the sequence alone.
+// The maps from povgen's own frames and coherence run are the maps of the sequence alone: each
+// frame analysed in order with coherence, planned together (MapPlanner), then written.
 TEST(PovgenFrameReads, SceneMapsEqualTheSequenceMaps) {
   ScratchDir dir;
   write_frames(dir.path());
   const povgen::PovgenReport r = generate(dir.path(), "toon", {}, true);
-  std::vector<fs::path> frames;
-  for (std::size_t f = 0; f < frame_count; ++f)
-    frames.push_back(dir / ("water_000" + std::to_string(f + 1) + ".obj"));
-  const SequenceMaps alone =
-      write_sequence_maps(frames, povgen::analysis_options(povgen::FlowConfig{}, Axis::y,
-                                                           povgen::WaterShading::toon),
-                          MapOptions{}, dir / "alone", true);
-  EXPECT_EQ(r.map_ranges.gaussian, alone.ranges.gaussian);
-  EXPECT_EQ(r.map_ranges.mean, alone.ranges.mean);
-  for (const char* stem : {"water_0001", "water_0002", "water_0003"})
+  FrameSourceOptions options;
+  options.analysis =
+      povgen::analysis_options(povgen::FlowConfig{}, Axis::y, povgen::WaterShading::toon);
+  options.coherent = true;
+  FrameSource source(options);
+  std::vector<Analysis> analyses;
+  MapPlanner planner(Axis::y);
+  for (std::size_t f = 0; f < frame_count; ++f) {
+    SourceFrame frame = source.read(dir / ("water_000" + std::to_string(f + 1) + ".obj"));
+    ASSERT_TRUE(frame.analysis);
+    planner.add(*frame.analysis);
+    analyses.push_back(std::move(*frame.analysis));
+  }
+  const MapView view = planner.view(MapOptions{});
+  const MapRanges ranges = planner.ranges(MapOptions{}.percentile);
+  EXPECT_EQ(r.map_ranges.gaussian, ranges.gaussian);
+  EXPECT_EQ(r.map_ranges.mean, ranges.mean);
+  for (std::size_t f = 0; f < frame_count; ++f) {
+    const std::string stem = "water_000" + std::to_string(f + 1);
+    write_maps(dir / "alone", stem, analyses[f], view, ranges);
     for (const char* suffix : {".exr", "_K.png", "_H.png", "_label.png"}) {
-      const std::string name = std::string(stem) + suffix;
+      const std::string name = stem + suffix;
       EXPECT_TRUE(image_content(dir / "toon_maps" / name) == image_content(dir / "alone" / name))
           << name;
     }
+  }
 }
 
 }  // namespace
