@@ -24,13 +24,13 @@ struct RenderArgs {
   std::string dir;
   int jobs = 0;
   std::string frames;
-  bool force = false;
 };
 
-void run_render(const RenderArgs& args) {
+// `force`: the farm options' --force (local and farm renders skip frames with an image alike).
+void run_render(const RenderArgs& args, bool force) {
   povgen::RenderRequest request;
   request.scene_dir = args.dir;
-  request.skip_rendered = !args.force;
+  request.skip_rendered = !force;
   request.jobs = args.jobs > 0 ? args.jobs : povgen::default_render_processes();
   if (!args.frames.empty()) request.frames = povgen::parse_frame_range(args.frames, "--frames");
   // The POV-Ray executable: TOONWATER_POVRAY when set (a path or a name on PATH), else povray.
@@ -74,8 +74,7 @@ void add_render_command(CLI::App& app) {
   add_render_farm_options(cmd, farm);
   cmd->callback([args, farm] {
     if (run_render_on_farm(args->dir, args->frames, *farm)) return;
-    args->force = farm->force;  // local and farm renders skip frames with an image alike
-    run_render(*args);
+    run_render(*args, farm->force);
   });
 }
 

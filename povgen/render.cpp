@@ -55,13 +55,15 @@ SceneFrames read_ini_frames(const fs::path& ini) {
 bool stop_requested(const std::atomic<bool>* stop) { return stop && stop->load(); }
 
 // Waits for `pid`, calling `tick` every 20 ms meanwhile; once `stop` is set, terminates it
-// (SIGTERM, then SIGKILL if it lingers).
-int wait_for(pid_t pid, const std::atomic<bool>* stop, const std::function<void()>& tick) {
+// (SIGTERM, then SIGKILL if it lingers). When `tick` returns true, the process has done all that
+// was asked of it: it is killed at once instead of waited for, and the status is 0.
+int wait_for(pid_t pid, const std::atomic<bool>* stop, const std::function<bool()>& tick) {
   using namespace std::chrono_literals;
   int status = 0;
+  bool finished = false;
   auto deadline = std::chrono::steady_clock::time_point::max();
   for (;;) {
-    const pid_t r = ::waitpid(pid, &status, WNOHANG);
+    const pid_t r = ::waitpid(pid, &status, finished ? 0 : WNOHANG);
     if (r == pid) break;
     if (r < 0 && errno != EINTR) return -1;
     if (r == 0) {
@@ -72,10 +74,15 @@ int wait_for(pid_t pid, const std::atomic<bool>* stop, const std::function<void(
       } else if (now > deadline) {
         ::kill(pid, SIGKILL);
       }
-      if (!stop_requested(stop) && tick) tick();
+      if (!stop_requested(stop) && tick && tick()) {
+        ::kill(pid, SIGKILL);
+        finished = true;
+        continue;
+      }
       std::this_thread::sleep_for(20ms);
     }
   }
+  if (finished) return 0;
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
@@ -84,7 +91,7 @@ constexpr int cannot_write_log = 125, cannot_enter_directory = 126, cannot_execu
 
 // Runs one povray process in `dir` with its output in `log`; returns its exit status.
 int run_povray(const fs::path& dir, const std::vector<std::string>& args, const fs::path& log,
-               const std::atomic<bool>* stop, const std::function<void()>& tick) {
+               const std::atomic<bool>* stop, const std::function<bool()>& tick) {
   std::vector<std::string> copies = args;
   std::vector<char*> argv;
   for (auto& a : copies) argv.push_back(a.data());
@@ -125,6 +132,22 @@ fs::path checked_scene_dir(const fs::path& scene_dir) {
   if (!fs::is_regular_file(dir / "scene.pov"))
     throw InputError(dir.string() + ": no povgen scene here (scene.pov missing)");
   return dir;
+}
+
+// Whether `image` is a whole PNG file: it ends with the IEND chunk, which a PNG writer writes
+// last (an empty chunk: length 0, type IEND, its CRC). A file still being written ends elsewhere.
+bool is_whole_png(const fs::path& image) {
+  static constexpr unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+  const int fd = ::open(image.c_str(), O_RDONLY);
+  if (fd < 0) return false;
+  unsigned char tail[sizeof iend];
+  const off_t size = ::lseek(fd, 0, SEEK_END);
+  const bool whole = size >= static_cast<off_t>(8 + sizeof iend) &&
+                     ::pread(fd, tail, sizeof tail, size - static_cast<off_t>(sizeof tail)) ==
+                         static_cast<ssize_t>(sizeof tail) &&
+                     std::equal(std::begin(tail), std::end(tail), std::begin(iend));
+  ::close(fd);
+  return whole;
 }
 
 std::string povray_threads(int jobs) {
@@ -191,10 +214,12 @@ using FrameDoneFn = std::function<void(long frame, const std::string& failure)>;
 
 // Renders `frames` (consecutive) with one POV-Ray process over the range (+SF/+EF), into a
 // hidden temporary directory of DIR. A frame's image is complete once POV-Ray has written the
-// next frame's image (it renders and writes the frames in order) or has exited with status 0;
-// then it is renamed into DIR, so DIR only ever holds complete images, and `done` is called.
-// When POV-Ray fails, the frame after the last complete image failed (after a signal, or when
-// every image is there, the last image is not trusted and that frame failed); its log is kept
+// next frame's image (it renders and writes the frames in order), once it is a whole PNG, or
+// once POV-Ray has exited with status 0; then it is renamed into DIR, so DIR only ever holds
+// complete images, and `done` is called. Once every image is published POV-Ray is killed rather
+// than waited for through its shut-down. When POV-Ray fails, the frame after the last complete
+// image failed (after a signal, or when every image is there but the last is not a whole PNG,
+// the last image is not trusted and that frame failed); its log is kept
 // as render_N.log and a new process takes the frames after it. Stops when the request's stop
 // flag is set: the running process is terminated and its unpublished images are removed.
 void render_range(const RangeRun& run, const std::vector<long>& frames, const FrameDoneFn& done) {
@@ -231,8 +256,19 @@ void render_range(const RangeRun& run, const std::vector<long>& frames, const Fr
       std::error_code e;
       return fs::is_regular_file(frame_image_path(work, run.ini, frames[i]), e);
     };
+    // Frame i's image is complete once the next frame's image is there, or once it is a whole
+    // PNG: then POV-Ray is done with it (it writes an image only when its frame is finished,
+    // never on a cancel).
+    auto is_complete = [&](std::size_t i) {
+      return (i + 1 < frames.size() && has_image(i + 1)) ||
+             is_whole_png(frame_image_path(work, run.ini, frames[i]));
+    };
+    // Publishes the complete images; true once every frame's image is published, when POV-Ray
+    // has nothing left to do but shut down (about 0.4 s of idle wall time, which would be the
+    // tail of a run): it is killed instead.
     auto publish_finished = [&] {
-      while (published + 1 < frames.size() && has_image(published + 1)) publish(published++);
+      while (published < frames.size() && is_complete(published)) publish(published++);
+      return published == frames.size();
     };
     std::vector<std::string> args{request.povray, "scene.ini", run.threads,
                                   "+O" + work_name + "/" + run.ini.output_name};

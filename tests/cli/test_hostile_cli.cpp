@@ -174,6 +174,31 @@ TEST_F(HostileCli, RenderFailsWhenPovrayFailsSilentlyOrWritesNoImage) {
   EXPECT_TRUE(has(r.err, "cannot run")) << r.err;
 }
 
+// A frame's image is published once it is a whole PNG (it ends with the IEND chunk), without
+// waiting for POV-Ray's exit: the process is killed then, and its exit status does not matter.
+// An image cut short is not trusted when POV-Ray fails.
+TEST_F(HostileCli, RenderPublishesWholePngsWhateverPovrayDoesAfterAndDistrustsCutOnes) {
+  write_sequence(2);
+  ASSERT_EQ(toonwater({"povgen", "--water", "water_####.obj", "--out", "scene"}).exit_code, 0);
+  const std::string frame_of_run =
+      "for a; do case $a in +O*) o=${a#+O};; +SF*) f=${a#+SF};; esac; done\n";
+  const std::string png_start = "\\211PNG\\r\\n\\032\\n\\000\\000\\000\\015IHDR";
+  const std::string iend = "\\000\\000\\000\\000IEND\\256B`\\202";
+  Outcome r = toonwater({"render", "scene"},
+                        {{"TOONWATER_POVRAY", fake_povray(frame_of_run + "printf '" + png_start +
+                                                          iend + "' > \"$o$f.png\"; exit 1")}});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(r.err, "2 frame(s) rendered, 0 skipped (already rendered), 0 failed")) << r.err;
+  EXPECT_TRUE(fs::exists(at("scene/frame_0.png")) && fs::exists(at("scene/frame_1.png")));
+
+  r = toonwater({"render", "scene", "--force"},
+                {{"TOONWATER_POVRAY",
+                  fake_povray(frame_of_run + "printf '" + png_start + "' > \"$o$f.png\"; exit 1")}});
+  EXPECT_EQ(r.exit_code, exit_code::povray_failed) << r.err;
+  EXPECT_TRUE(has(r.err, "frame 0 failed: POV-Ray exited with status 1")) << r.err;
+  EXPECT_TRUE(has(r.err, "0 frame(s) rendered, 0 skipped (already rendered), 2 failed")) << r.err;
+}
+
 TEST_F(HostileCli, AStreamOnAFullDiskIsAnOutputFailure) {
   write_text(at("w.obj"), grid_obj());
   const Outcome r = toonwater({"analyze", "w.obj", "--csv", "/dev/full"});
