@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <map>
 #include <utility>
+#include <vector>
 
 namespace toonwater {
 namespace {
@@ -55,6 +56,24 @@ TEST(Topology, ClosedSurfacesAreAllInteriorWithTheirEulerCharacteristic) {
     const auto f = static_cast<long>(mesh.triangles.size());
     EXPECT_EQ(v - 3 * f / 2 + f, euler);
   }
+}
+
+// The rows are built on every core; they must be what one pass in face order gives.
+TEST(Topology, VertexFacesOfALargeMeshListEachVertexsFacesInOrder) {
+  TriangleMesh mesh = make_wave_field(300, 0.1, 6.0, 1.0).mesh;  // 178k faces: several chunks
+  mesh.triangles[1000] = {5, 5, 6};                                // ignored: a repeated corner
+  std::reverse(mesh.triangles.begin() + 50000, mesh.triangles.end());  // rows across chunks
+  const VertexFaces vf = build_vertex_faces(mesh.positions.size(), mesh.triangles);
+  std::vector<std::vector<std::int32_t>> expected(mesh.positions.size());
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    if (!has_repeated_corner(mesh.triangles[f]))
+      for (const std::int32_t v : mesh.triangles[f]) expected[v].push_back(static_cast<std::int32_t>(f));
+  ASSERT_EQ(vf.offsets.size(), mesh.positions.size() + 1);
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const auto row = vf.of(static_cast<std::int32_t>(v));
+    ASSERT_EQ(std::vector<std::int32_t>(row.begin(), row.end()), expected[v]) << v;
+  }
+  EXPECT_EQ(analyze_topology(mesh).components, 1u);
 }
 
 TEST(Topology, AGridHasItsRimAsBoundary) {
