@@ -127,31 +127,6 @@ VertexEdges classify_vertex(const TriangleMesh& mesh, const VertexFaces& vf, std
   return result;
 }
 
-// Vertices in a face, joined along the faces' edges on every core; `kind` tells the used
-// (non-isolated) ones.
-std::size_t count_components(const TriangleMesh& mesh, const std::vector<VertexKind>& kind) {
-  const std::size_t n = mesh.positions.size();
-  const std::span<const Triangle> triangles = mesh.triangles;
-  DisjointSets sets(n);
-  join_in_parallel(sets, triangles.size(),
-                   vertex_ranges(triangles, n, worker_count(triangles.size())),
-                   [&](std::size_t f, auto& join) {
-                     const Triangle& t = triangles[f];
-                     if (has_repeated_corner(t)) return;
-                     join(t[0], t[1]);
-                     join(t[1], t[2]);
-                   });
-  const std::size_t chunks = worker_count(n);
-  std::vector<std::size_t> roots(chunks, 0);
-  parallel_chunks(n, chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      const auto i = static_cast<std::int32_t>(v);
-      roots[chunk] += kind[v] != VertexKind::isolated && sets.root_of(i) == i;
-    }
-  });
-  return std::accumulate(roots.begin(), roots.end(), std::size_t{0});
-}
-
 }  // namespace
 
 MeshTopology analyze_topology(const TriangleMesh& mesh) {
@@ -193,8 +168,33 @@ MeshTopology analyze_topology(const TriangleMesh& mesh) {
   topo.boundary_edges = boundary_edge_ends / 2;  // each edge was seen from both of its ends
   topo.nonmanifold_edges = nonmanifold_edge_ends / 2;
   topo.misoriented_edges = misoriented_edge_ends / 2;
-  topo.components = count_components(mesh, topo.kind);
   return topo;
+}
+
+// Vertices in a face, joined along the faces' edges on every core; a root that is a used
+// (non-isolated) vertex is one component.
+std::size_t count_components(const TriangleMesh& mesh, const MeshTopology& topology) {
+  const std::vector<VertexKind>& kind = topology.kind;
+  const std::size_t n = mesh.positions.size();
+  const std::span<const Triangle> triangles = mesh.triangles;
+  DisjointSets sets(n);
+  join_in_parallel(sets, triangles.size(),
+                   vertex_ranges(triangles, n, worker_count(triangles.size())),
+                   [&](std::size_t f, auto& join) {
+                     const Triangle& t = triangles[f];
+                     if (has_repeated_corner(t)) return;
+                     join(t[0], t[1]);
+                     join(t[1], t[2]);
+                   });
+  const std::size_t chunks = worker_count(n);
+  std::vector<std::size_t> roots(chunks, 0);
+  parallel_chunks(n, chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      const auto i = static_cast<std::int32_t>(v);
+      roots[chunk] += kind[v] != VertexKind::isolated && sets.root_of(i) == i;
+    }
+  });
+  return std::accumulate(roots.begin(), roots.end(), std::size_t{0});
 }
 
 namespace {
