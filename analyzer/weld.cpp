@@ -43,21 +43,20 @@ WeldedMesh weld_coincident_vertices(TriangleMesh mesh) {
   if (n > static_cast<std::size_t>(INT32_MAX)) throw std::length_error("too many vertices to weld");
   const std::vector<Vec3>& positions = mesh.positions;
   const std::size_t chunks = worker_count(n);
-  const std::size_t parts = chunks;
+  const std::size_t parts = std::min<std::size_t>(chunks, 64);  // a part is a byte below
 
-  // The hashes first (on every core), each chunk listing its vertices by part in input order,
-  // so that each part's insertion below can prefetch the slot it will probe a few vertices
-  // ahead: the probes are random over a table far larger than the cache, and waiting for each
-  // in turn was most of the cost.
+  // The hashes first (on every core), so that each part's insertion below can prefetch the slot
+  // it will probe a few vertices ahead: the probes are random over a table far larger than the
+  // cache, and waiting for each in turn was most of the cost.
   std::vector<std::uint32_t> hash(n);
-  std::vector<std::vector<std::vector<std::int32_t>>> members(
-      chunks, std::vector<std::vector<std::int32_t>>(parts));  // [chunk][part]
+  std::vector<std::uint8_t> part_of(n);
+  std::vector<std::vector<std::size_t>> part_sizes(chunks, std::vector<std::size_t>(parts, 0));
   parallel_chunks(n, chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    for (auto& list : members[chunk]) list.reserve((end - begin) / parts + (end - begin) / 16 + 16);
     for (std::size_t v = begin; v < end; ++v) {
       const std::uint64_t h = position_hash(positions[v]);
       hash[v] = static_cast<std::uint32_t>(h);
-      members[chunk][((h >> 32) * parts) >> 32].push_back(static_cast<std::int32_t>(v));
+      part_of[v] = static_cast<std::uint8_t>(((h >> 32) * parts) >> 32);
+      ++part_sizes[chunk][part_of[v]];
     }
   });
 
@@ -65,26 +64,22 @@ WeldedMesh weld_coincident_vertices(TriangleMesh mesh) {
   std::vector<std::int32_t> first(n);
   parallel_chunks(parts, parts, [&](std::size_t part, std::size_t, std::size_t) {
     std::size_t size = 0;
-    for (const auto& lists : members) size += lists[part].size();
+    for (const auto& sizes : part_sizes) size += sizes[part];
     const std::size_t capacity = std::bit_ceil(std::max<std::size_t>(2 * size, 16));
     const std::size_t mask = capacity - 1;
     std::vector<std::int32_t> slots(capacity, -1);  // input vertex index, or -1 for empty
     constexpr std::size_t prefetch_distance = 16;
-    for (const auto& lists : members) {  // the chunks in order: the part's vertices in input order
-      const std::vector<std::int32_t>& list = lists[part];
-      for (std::size_t i = 0; i < list.size(); ++i) {
-        if (i + prefetch_distance < list.size())
-          __builtin_prefetch(&slots[hash[list[i + prefetch_distance]] & mask]);
-        const std::int32_t v = list[i];
-        const Vec3& p = positions[v];
-        std::size_t slot = hash[v] & mask;
-        while (slots[slot] >= 0 && positions[slots[slot]] != p) slot = (slot + 1) & mask;
-        if (slots[slot] < 0) slots[slot] = v;
-        first[v] = slots[slot];
-      }
+    for (std::size_t v = 0; v < n; ++v) {
+      const std::size_t ahead = v + prefetch_distance;
+      if (ahead < n && part_of[ahead] == part) __builtin_prefetch(&slots[hash[ahead] & mask]);
+      if (part_of[v] != part) continue;
+      const Vec3& p = positions[v];
+      std::size_t slot = hash[v] & mask;
+      while (slots[slot] >= 0 && positions[slots[slot]] != p) slot = (slot + 1) & mask;
+      if (slots[slot] < 0) slots[slot] = static_cast<std::int32_t>(v);
+      first[v] = slots[slot];
     }
   });
-  members = {};
 
   // Welded indices: first occurrences numbered in input order, counted per chunk first.
   std::vector<std::size_t> firsts_before(chunks + 1, 0);
