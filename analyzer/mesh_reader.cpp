@@ -1,8 +1,9 @@
-// read_mesh: loads the file with one read, picks the reader by extension, and checks that a mesh
+// read_mesh: loads the file (one pread per core), picks the reader by extension, and checks that a mesh
 // came out. Also the parsing helpers the format readers share (readers/readers.hpp).
 #include "analyzer/mesh_reader.hpp"
 
 #include "analyzer/readers/readers.hpp"
+#include "common/parallel.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -16,6 +17,7 @@
 #include <cstdlib>
 #include <memory>
 #include <system_error>
+#include <vector>
 
 namespace toonwater {
 namespace readers {
@@ -146,7 +148,9 @@ using readers::SourceFile;
   readers::fail(file, std::string(what) + ": " + std::generic_category().message(error));
 }
 
-// The whole file, read with one read() (more only if the kernel returns it in pieces).
+// The whole file, read with one pread() per core into its own part of the buffer (more calls
+// only if the kernel returns a part in pieces): the copy and the first touch of the buffer's
+// pages are the cost, and they split over the cores.
 std::unique_ptr<char[]> load_file(const SourceFile& file, std::size_t& size) {
   const int fd = ::open(file.name.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) fail_errno(file, "cannot open", errno);
@@ -160,15 +164,31 @@ std::unique_ptr<char[]> load_file(const SourceFile& file, std::size_t& size) {
   if (!S_ISREG(info.st_mode)) readers::fail(file, "is not a regular file");
   size = static_cast<std::size_t>(info.st_size);
   auto bytes = std::make_unique_for_overwrite<char[]>(size);
-  std::size_t done = 0;
-  while (done < size) {
-    const ssize_t n = ::read(fd, bytes.get() + done, size - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) fail_errno(file, "cannot read", errno);
-    if (n == 0) break;  // the file shrank while we read it
-    done += static_cast<std::size_t>(n);
+  constexpr std::size_t min_part_bytes = std::size_t{1} << 20;
+  const std::size_t parts = worker_count(size, min_part_bytes);
+  std::vector<std::size_t> part_end(parts);  // where each part's data ends (short: the file shrank)
+  std::vector<int> part_error(parts, 0);
+  parallel_chunks(size, parts, [&](std::size_t part, std::size_t begin, std::size_t end) {
+    std::size_t done = begin;
+    while (done < end) {
+      const ssize_t n = ::pread(fd, bytes.get() + done, end - done, static_cast<off_t>(done));
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) {
+        part_error[part] = errno;
+        break;
+      }
+      if (n == 0) break;
+      done += static_cast<std::size_t>(n);
+    }
+    part_end[part] = done;
+  });
+  for (std::size_t part = 0; part < parts; ++part) {
+    if (part_error[part] != 0) fail_errno(file, "cannot read", part_error[part]);
+    if (part_end[part] != size * (part + 1) / parts) {  // the file shrank while we read it
+      size = part_end[part];
+      break;
+    }
   }
-  size = done;
   return bytes;
 }
 

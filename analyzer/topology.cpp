@@ -10,8 +10,10 @@
 #include "common/parallel.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <numeric>
 #include <queue>
+#include <utility>
 
 namespace toonwater {
 
@@ -20,17 +22,43 @@ bool has_repeated_corner(const Triangle& t) {
 }
 
 VertexFaces build_vertex_faces(std::size_t vertex_count, std::span<const Triangle> triangles) {
+  // A counting sort of the face corners by vertex, on every core: each chunk of faces counts its
+  // own corners per vertex, and a vertex's row then holds chunk 0's faces, then chunk 1's, and so
+  // on, so every row lists its faces in ascending order whatever the number of chunks.
+  const std::size_t chunks = worker_count(triangles.size());
+  std::vector<std::unique_ptr<std::int32_t[]>> cursor(chunks);  // per chunk and vertex
+  parallel_chunks(triangles.size(), chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    cursor[chunk] = std::make_unique<std::int32_t[]>(vertex_count);  // zeroed by its own thread
+    std::int32_t* count = cursor[chunk].get();
+    for (std::size_t f = begin; f < end; ++f)
+      if (!has_repeated_corner(triangles[f]))
+        for (std::int32_t v : triangles[f]) ++count[v];
+  });
   VertexFaces vf;
-  vf.offsets.assign(vertex_count + 1, 0);
-  for (const Triangle& t : triangles)
-    if (!has_repeated_corner(t))
-      for (std::int32_t v : t) ++vf.offsets[v + 1];
+  vf.offsets.resize(vertex_count + 1);
+  vf.offsets[0] = 0;
+  const std::size_t vertex_chunks = worker_count(vertex_count);
+  parallel_chunks(vertex_count, vertex_chunks, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      std::int32_t faces = 0;
+      for (const auto& count : cursor) faces += count[v];
+      vf.offsets[v + 1] = faces;
+    }
+  });
   std::partial_sum(vf.offsets.begin(), vf.offsets.end(), vf.offsets.begin());
-  vf.face_indices.resize(vf.offsets.back());
-  std::vector<std::int32_t> fill(vf.offsets.begin(), vf.offsets.end() - 1);
-  for (std::size_t f = 0; f < triangles.size(); ++f)
-    if (!has_repeated_corner(triangles[f]))
-      for (std::int32_t v : triangles[f]) vf.face_indices[fill[v]++] = static_cast<std::int32_t>(f);
+  parallel_chunks(vertex_count, vertex_chunks, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      std::int32_t row = vf.offsets[v];  // where each chunk's faces of v start
+      for (const auto& count : cursor) row += std::exchange(count[v], row);
+    }
+  });
+  vf.face_indices.resize(static_cast<std::size_t>(vf.offsets.back()));
+  parallel_chunks(triangles.size(), chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::int32_t* next = cursor[chunk].get();
+    for (std::size_t f = begin; f < end; ++f)
+      if (!has_repeated_corner(triangles[f]))
+        for (std::int32_t v : triangles[f]) vf.face_indices[next[v]++] = static_cast<std::int32_t>(f);
+  });
   return vf;
 }
 
@@ -99,21 +127,6 @@ VertexEdges classify_vertex(const TriangleMesh& mesh, const VertexFaces& vf, std
   return result;
 }
 
-// Vertices in a face, joined along the faces' edges; `kind` tells the used (non-isolated) ones.
-std::size_t count_components(const TriangleMesh& mesh, const std::vector<VertexKind>& kind) {
-  DisjointSets sets(mesh.positions.size());
-  for (const Triangle& t : mesh.triangles) {
-    if (has_repeated_corner(t)) continue;
-    sets.join(t[0], t[1]);
-    sets.join(t[1], t[2]);
-  }
-  std::size_t components = 0;
-  for (std::size_t v = 0; v < kind.size(); ++v)
-    components += kind[v] != VertexKind::isolated &&
-                  sets.root(static_cast<std::int32_t>(v)) == static_cast<std::int32_t>(v);
-  return components;
-}
-
 }  // namespace
 
 MeshTopology analyze_topology(const TriangleMesh& mesh) {
@@ -155,8 +168,33 @@ MeshTopology analyze_topology(const TriangleMesh& mesh) {
   topo.boundary_edges = boundary_edge_ends / 2;  // each edge was seen from both of its ends
   topo.nonmanifold_edges = nonmanifold_edge_ends / 2;
   topo.misoriented_edges = misoriented_edge_ends / 2;
-  topo.components = count_components(mesh, topo.kind);
   return topo;
+}
+
+// Vertices in a face, joined along the faces' edges on every core; a root that is a used
+// (non-isolated) vertex is one component.
+std::size_t count_components(const TriangleMesh& mesh, const MeshTopology& topology) {
+  const std::vector<VertexKind>& kind = topology.kind;
+  const std::size_t n = mesh.positions.size();
+  const std::span<const Triangle> triangles = mesh.triangles;
+  DisjointSets sets(n);
+  join_in_parallel(sets, triangles.size(),
+                   vertex_ranges(triangles, n, worker_count(triangles.size())),
+                   [&](std::size_t f, auto& join) {
+                     const Triangle& t = triangles[f];
+                     if (has_repeated_corner(t)) return;
+                     join(t[0], t[1]);
+                     join(t[1], t[2]);
+                   });
+  const std::size_t chunks = worker_count(n);
+  std::vector<std::size_t> roots(chunks, 0);
+  parallel_chunks(n, chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      const auto i = static_cast<std::int32_t>(v);
+      roots[chunk] += kind[v] != VertexKind::isolated && sets.root_of(i) == i;
+    }
+  });
+  return std::accumulate(roots.begin(), roots.end(), std::size_t{0});
 }
 
 namespace {

@@ -39,7 +39,6 @@ struct MeshTopology {
   std::size_t nonmanifold_edges = 0;
   // Two-face edges whose faces both wind them the same way (as read, before orient_consistently).
   std::size_t misoriented_edges = 0;
-  std::size_t components = 0;  // connected components (faces sharing a vertex)
 };
 
 // Faces with a repeated corner index are not faces of the surface; they are ignored here.
@@ -48,6 +47,11 @@ bool has_repeated_corner(const Triangle& t);
 VertexFaces build_vertex_faces(std::size_t vertex_count, std::span<const Triangle> triangles);
 
 MeshTopology analyze_topology(const TriangleMesh& mesh);
+
+// Connected components: sets of faces joined through shared vertices (isolated vertices are
+// none). `topology` is analyze_topology's of `mesh`. Not part of analyze_topology, whose other
+// results every analysis needs: no output of the analyzer depends on it.
+std::size_t count_components(const TriangleMesh& mesh, const MeshTopology& topology);
 
 // Flips faces so that neighbours across every two-face edge agree, component by component. Each
 // component keeps the orientation held by the larger share of its faces (by count), so the

@@ -2,8 +2,8 @@
 // (linear probing over a flat array of welded-vertex indices, at most half full), so the cost is
 // linear in the vertex count. Positions are compared with ==, so +0 and -0 weld, and hashed after
 // adding +0.0, which turns -0 into +0 so that both hash alike. The hashing and the renumbering
-// of the triangles run on every core; the insertion stays serial, so welded vertices keep the
-// order of their first occurrence.
+// of the triangles (skipped when nothing merged) run on every core; the insertion stays serial,
+// so welded vertices keep the order of their first occurrence.
 #include "analyzer/weld.hpp"
 
 #include "common/parallel.hpp"
@@ -70,6 +70,10 @@ WeldedMesh weld_coincident_vertices(TriangleMesh mesh) {
   welded.merged_vertex_count = n - count;
 
   std::vector<Triangle>& triangles = mesh.triangles;
+  if (count == n) {  // nothing merged: every vertex kept its index, the triangles are unchanged
+    welded.mesh = std::move(mesh);
+    return welded;
+  }
   parallel_chunks(triangles.size(), worker_count(triangles.size()),
                   [&](std::size_t, std::size_t begin, std::size_t end) {
                     for (std::size_t f = begin; f < end; ++f)

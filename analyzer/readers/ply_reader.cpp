@@ -5,9 +5,12 @@
 // are skipped — in binary files by their sizes, so they must be well-formed too. ASCII records
 // are read one per line, as every writer writes them, so that errors can name the line.
 // Binary vertex records without lists, and face records whose only list is the index list (what
-// writers write), are read in one loop per element with the types resolved once; other layouts
-// go property by property.
+// writers write), are read in one loop per element with the types resolved once, on every core
+// where the records have one size (vertices; faces that are all triangles); other layouts go
+// property by property.
 #include "analyzer/readers/readers.hpp"
+
+#include "common/parallel.hpp"
 
 #include <algorithm>
 #include <array>
@@ -511,18 +514,30 @@ class BinaryReader {
     Vec3* out = mesh.positions.data() + first;
     const bool all_float = type[0] == PlyType::float32 && type[1] == PlyType::float32 &&
                            type[2] == PlyType::float32;
-    for (record_ = 0; record_ < complete; ++record_, position_ += record_size) {
-      Vec3& position = out[record_];
-      if (all_float) {
-        position = {load<float>(position_ + offset[0]), load<float>(position_ + offset[1]),
-                    load<float>(position_ + offset[2])};
-      } else {
-        for (std::size_t axis = 0; axis < 3; ++axis)
-          position[axis] = load_number(type[axis], position_ + offset[axis]);
+    // On every core; each chunk notes its first bad record, and the first of all is reported.
+    const std::size_t chunks = worker_count(complete);
+    std::vector<std::uint64_t> first_bad(chunks, complete);
+    parallel_chunks(complete, chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+      const char* record = position_ + begin * record_size;
+      for (std::size_t r = begin; r < end; ++r, record += record_size) {
+        Vec3& position = out[r];
+        if (all_float) {
+          position = {load<float>(record + offset[0]), load<float>(record + offset[1]),
+                      load<float>(record + offset[2])};
+        } else {
+          for (std::size_t axis = 0; axis < 3; ++axis)
+            position[axis] = load_number(type[axis], record + offset[axis]);
+        }
+        if (!position.allFinite()) {
+          first_bad[chunk] = r;
+          return;
+        }
       }
-      if (!position.allFinite())
-        fail(file_, "coordinate is NaN or infinite (vertex " + std::to_string(record_) + ")");
-    }
+    });
+    record_ = *std::min_element(first_bad.begin(), first_bad.end());
+    if (record_ < complete)
+      fail(file_, "coordinate is NaN or infinite (vertex " + std::to_string(record_) + ")");
+    position_ += complete * record_size;
     if (complete < layout_.vertex->count) truncated();
   }
 
@@ -534,6 +549,49 @@ class BinaryReader {
     return true;
   }
 
+  // Face records that are all triangles have one size, so they can be read on every core: true
+  // when every record is a triangle whose indices are in range and the data holds them all.
+  // Otherwise nothing is read, and read_faces reads record by record, with its own messages.
+  template <class Count, class Index>
+  bool read_triangle_records(std::size_t before, std::size_t after, InputMesh& result) {
+    const std::size_t record_size = before + sizeof(Count) + 3 * sizeof(Index) + after;
+    const std::uint64_t count = layout_.face->count;
+    if (count > static_cast<std::size_t>(end_ - position_) / record_size) return false;
+    const std::uint64_t vertex_count = layout_.vertex->count;
+    std::vector<Triangle>& triangles = result.mesh.triangles;
+    const std::size_t first = triangles.size();
+    triangles.resize(first + count);
+    Triangle* out = triangles.data() + first;
+    const std::size_t chunks = worker_count(count);
+    std::vector<std::uint8_t> all_triangles(chunks, 1);
+    parallel_chunks(count, chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+      const char* record = position_ + begin * record_size + before;
+      for (std::size_t f = begin; f < end; ++f, record += record_size) {
+        if (load<Count>(record) != 3) {
+          all_triangles[chunk] = 0;
+          return;
+        }
+        for (std::size_t k = 0; k < 3; ++k) {
+          const auto index =
+              static_cast<std::int64_t>(load<Index>(record + sizeof(Count) + k * sizeof(Index)));
+          if (index < 0 || static_cast<std::uint64_t>(index) >= vertex_count) {
+            all_triangles[chunk] = 0;
+            return;
+          }
+          out[f][k] = static_cast<std::int32_t>(index);
+        }
+      }
+    });
+    if (std::find(all_triangles.begin(), all_triangles.end(), 0) != all_triangles.end()) {
+      triangles.resize(first);
+      return false;
+    }
+    position_ += count * record_size;
+    record_ = count;
+    result.polygon_count += count;
+    return true;
+  }
+
   // Face records with the index list as the only list, its count of type Count and its items of
   // type Index; the same checks and messages as read_face, without a type switch per value.
   template <class Count, class Index>
@@ -542,6 +600,7 @@ class BinaryReader {
     std::size_t before = 0, after = 0;  // bytes of the scalar properties around the list
     for (std::size_t p = 0; p < properties.size(); ++p)
       if (p != layout_.indices) (p < layout_.indices ? before : after) += size_of(properties[p].type);
+    if (read_triangle_records<Count, Index>(before, after, result)) return;
     const std::uint64_t vertex_count = layout_.vertex->count;
     std::vector<Triangle>& triangles = result.mesh.triangles;
     for (record_ = 0; record_ < layout_.face->count; ++record_) {

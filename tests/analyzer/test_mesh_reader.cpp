@@ -435,6 +435,58 @@ TEST_F(MeshReader, BinaryPlyErrorsNameTheRecord) {
   expect_error("long.ply", whole + "xy", {"2 unexpected bytes after the last element"});
 }
 
+// A grid of side x side vertices as a binary PLY, large enough to be read in several chunks;
+// `last_face` is written as the final record (three corners or more).
+std::string grid_ply(int side, std::vector<std::int32_t> last_face, float bad_x_at = -1,
+                     int bad_vertex = -1) {
+  const int faces = 2 * (side - 1) * (side - 1);
+  Bytes b;
+  b.text("ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(side * side) +
+         "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+         std::to_string(faces + 1) + "\nproperty list uchar int vertex_indices\nend_header\n");
+  for (int v = 0; v < side * side; ++v)
+    b.put(v == bad_vertex ? bad_x_at : static_cast<float>(v % side))
+        .put(static_cast<float>(v / side))
+        .put(0.25f * static_cast<float>(v % 7));
+  for (int i = 0; i + 1 < side; ++i)
+    for (int j = 0; j + 1 < side; ++j) {
+      const std::int32_t a = i * side + j;
+      b.put(std::uint8_t{3}).put(a).put(a + 1).put(a + side);
+      b.put(std::uint8_t{3}).put(a + 1).put(a + side + 1).put(a + side);
+    }
+  b.put(static_cast<std::uint8_t>(last_face.size()));
+  for (const std::int32_t index : last_face) b.put(index);
+  return b.data();
+}
+
+// Large files are read on every core: the same mesh, the same first error, whatever the split.
+TEST_F(MeshReader, LargeBinaryPlyReadsInChunksAsRecordByRecord) {
+  constexpr int side = 300;  // 90,000 vertices, 178,803 faces
+  const InputMesh input = read_mesh(write("grid.ply", grid_ply(side, {0, 1, side})));
+  ASSERT_EQ(input.mesh.positions.size(), std::size_t{side * side});
+  for (const int v : {0, 1, side, side * side / 2 + 3, side * side - 1})
+    EXPECT_EQ(input.mesh.positions[v], Vec3(v % side, v / side, 0.25 * (v % 7))) << v;
+  const std::size_t faces = 2 * (side - 1) * (side - 1) + 1;
+  ASSERT_EQ(input.mesh.triangles.size(), faces);
+  EXPECT_EQ(input.polygon_count, faces);
+  const std::int32_t last_cell = (side - 2) * side + side - 2;
+  EXPECT_EQ(input.mesh.triangles[faces - 2],
+            (Triangle{last_cell + 1, last_cell + side + 1, last_cell + side}));
+  EXPECT_EQ(input.mesh.triangles.back(), (Triangle{0, 1, side}));
+
+  // A quad as the last record: the faces are read record by record, the quad as two triangles.
+  const InputMesh quad = read_mesh(write("quad.ply", grid_ply(side, {0, 1, side + 1, side})));
+  EXPECT_EQ(quad.mesh.triangles.size(), faces + 1);
+  EXPECT_EQ(quad.polygon_count, faces);
+  EXPECT_EQ(std::vector<Triangle>(quad.mesh.triangles.begin(), quad.mesh.triangles.end() - 2),
+            std::vector<Triangle>(input.mesh.triangles.begin(), input.mesh.triangles.end() - 1));
+
+  expect_error("index.ply", grid_ply(side, {0, 1, side * side}),
+               {"face index 90000 out of range", "(face " + std::to_string(faces - 1) + ")"});
+  expect_error("nan.ply", grid_ply(side, {0, 1, side}, std::nanf(""), side * side - 5),
+               {"NaN or infinite", "(vertex 89995)"});
+}
+
 TEST_F(MeshReader, PlyHeaderAndAsciiErrorsNameTheLine) {
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\n";
   const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
