@@ -59,11 +59,16 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdlib>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <numbers>
+#include <span>
 #include <stdexcept>
+
+#include <sys/mman.h>
 
 namespace toonwater {
 namespace {
@@ -115,31 +120,103 @@ double power_of_two_below(double m) {
   return std::bit_cast<double>((2046 - biased) << 52);
 }
 
-// Whether re + i·im lies in [π, 2π) (see gather_one_ring).
+// Whether re + i·im lies in [π, 2π) (see add_corner).
 bool in_lower_half(double re, double im) { return im < 0.0 || (im == 0.0 && re < 0.0); }
 
-// What one vertex gathers from its incident faces.
-struct OneRing {
-  double area = 0.0;
-  double angle_deficit = 0.0;   // 2π − Σθ
-  Vec3 laplacian = Vec3::Zero();  // Σ (cot α + cot β)(xᵢ − xⱼ)
-  Vec3 normal = Vec3::Zero();     // Σ θ n_face
-  bool at_shapeless = false;      // a corner of a face with a zero-length edge
-  std::size_t shapeless = 0;      // such faces counted here: those whose first corner v is
-  std::size_t mollified = 0;      // faces counted here that need mollification
-  double mollification = 0.0;     // the largest δ those faces need
-  std::size_t caps = 0;           // faces counted here with an angle above 150°
+// One face's contributions to each of its corners, computed once for the three. Corner i's
+// neighbours are i + 1 and i + 2 (mod 3); edge[i] runs from corner i to corner i + 1.
+struct FaceTerms {
+  bool shapeless;         // a zero-length edge: no shape, no contributions
+  double double_area;     // |u × v|
+  double dot[3];          // u · v at each corner
+  Vec3 normal[3];         // θ n_face at each corner (vertex_normals.hpp)
+  double area[3];         // the corner's share of the mixed Voronoi area
+  Vec3 laplacian[3];      // the corner's Laplacian terms, from the positions
+  double mollification;   // the δ the face needs (≤ 0: none)
+  bool cap;               // an angle above 150°
 };
 
-// The Laplacian terms of corner x of a face (x, a, b) with edge lengths |xa| = la, |xb| = lb,
-// |ab| = lab; xa = a − x and xb = b − x are positions.
-void add_laplacian_terms(OneRing& ring, double la, double lb, double lab, const Vec3& xa,
-                         const Vec3& xb) {
-  const double la2 = la * la, lb2 = lb * lb, lab2 = lab * lab;
-  const double inverse_area = 0.5 / double_area_from_lengths(la, lb, lab);  // cot = (…)/(4A)
-  const double cot_a = (la2 + lab2 - lb2) * inverse_area;
-  const double cot_b = (lb2 + lab2 - la2) * inverse_area;
-  ring.laplacian -= cot_b * xa + cot_a * xb;
+// The face's terms from its scaled positions. Every corner takes the same cross product
+// u × v = edge[2] × edge[0] and the same reciprocal of its length, so the corners of one face
+// agree to the last bit on its plane and area.
+[[gnu::always_inline]] inline FaceTerms face_terms(const std::vector<Vec3>& positions,
+                                                   const Triangle& t, double scale) {
+  FaceTerms face;
+  // Written out in coordinates: kept in registers, where the compiler would store Eigen's
+  // three-element vectors in halves and reload them whole.
+  const Vec3& q0 = positions[t[0]];
+  const Vec3& q1 = positions[t[1]];
+  const Vec3& q2 = positions[t[2]];
+  const double p0[3] = {q0.x() * scale, q0.y() * scale, q0.z() * scale};
+  const double p1[3] = {q1.x() * scale, q1.y() * scale, q1.z() * scale};
+  const double p2[3] = {q2.x() * scale, q2.y() * scale, q2.z() * scale};
+  double edge[3][3];
+  for (int k = 0; k < 3; ++k) {
+    edge[0][k] = p1[k] - p0[k];
+    edge[1][k] = p2[k] - p1[k];
+    edge[2][k] = p0[k] - p2[k];
+  }
+  auto dot = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  const double length2[3] = {dot(edge[0], edge[0]), dot(edge[1], edge[1]), dot(edge[2], edge[2])};
+  face.shapeless = is_shapeless_triangle(length2[0], length2[1], length2[2]);
+  if (face.shapeless) return face;
+  const Vec3 cross(edge[2][1] * edge[0][2] - edge[2][2] * edge[0][1],
+                   edge[2][2] * edge[0][0] - edge[2][0] * edge[0][2],
+                   edge[2][0] * edge[0][1] - edge[2][1] * edge[0][0]);
+  const double double_area =
+      std::sqrt(cross.x() * cross.x() + cross.y() * cross.y() + cross.z() * cross.z());
+  face.double_area = double_area;
+  // At corner i, u = edge[i] and v = −edge[i + 2].
+  face.dot[0] = -dot(edge[0], edge[2]);
+  face.dot[1] = -dot(edge[1], edge[0]);
+  face.dot[2] = -dot(edge[2], edge[1]);
+  const double longest2 = std::max({length2[0], length2[1], length2[2]});
+  for (int i = 0; i < 3; ++i)
+    face.normal[i] = corner_normal_term(cross, double_area, face.dot[i], longest2);
+  face.mollification = double_area >= mollification_area_ratio * longest2
+                           ? 0.0
+                           : mollification_needed(length2[0], length2[2], length2[1]);
+  face.cap = std::min({face.dot[0], face.dot[1], face.dot[2]}) < cap_cotangent * double_area;
+  // Mixed Voronoi area (Meyer et al. 2002, Fig. 4), always the mesh's own.
+  const double inverse_area = 1.0 / double_area;
+  const double cot[3] = {face.dot[0] * inverse_area, face.dot[1] * inverse_area,
+                         face.dot[2] * inverse_area};
+  const bool obtuse = face.dot[0] < 0.0 || face.dot[1] < 0.0 || face.dot[2] < 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const int next = i == 2 ? 0 : i + 1, last = i == 0 ? 2 : i - 1;
+    if (face.dot[i] < 0.0)
+      face.area[i] = 0.25 * double_area;
+    else if (obtuse)
+      face.area[i] = 0.125 * double_area;
+    else
+      face.area[i] = 0.125 * (length2[i] * cot[last] + length2[last] * cot[next]);
+    // Cotangent Laplacian: edge i → next is weighted by the cotangent at last, edge i → last
+    // by that at next.
+    face.laplacian[i] = Vec3(cot[next] * edge[last][0] - cot[last] * edge[i][0],
+                             cot[next] * edge[last][1] - cot[last] * edge[i][1],
+                             cot[next] * edge[last][2] - cot[last] * edge[i][2]);
+  }
+  return face;
+}
+
+// What one vertex sums over its faces, but for its normal and area, which are summed in place
+// in the field's arrays.
+struct RingSums {
+  Vec3 laplacian;     // Σ (cot α + cot β)(xᵢ − xⱼ)
+  double turn_re;     // the running product of the corners' u·v + i|u×v|
+  double turn_im;
+  std::int32_t turns;
+  bool at_shapeless;  // a corner of a face with a zero-length edge
+};
+
+void start_ring(RingSums& sums, Vec3& normal, double& area) {
+  sums.laplacian = Vec3::Zero();
+  sums.turn_re = 1.0;
+  sums.turn_im = 0.0;
+  sums.turns = 0;
+  sums.at_shapeless = false;
+  normal = Vec3::Zero();
+  area = 0.0;
 }
 
 // The angle sum Σθ is accumulated as the argument of the product of the complex numbers
@@ -151,84 +228,37 @@ void add_laplacian_terms(OneRing& ring, double la, double lb, double lab, const 
 // per corner. The product is not normalised by |u||v| (a square root and a division per
 // corner) but brought back to a magnitude in [1, 2) after each step by a power of two, which is
 // exact: the argument is that of the unit product up to round-off.
-//
-// Without `intrinsic`, the Laplacian's cotangents come from the faces' positions; with it, from
-// its faces and lengths. Angles, normal and area always come from the mesh's own faces.
-[[gnu::always_inline]] inline OneRing gather_one_ring(const TriangleMesh& mesh, const VertexFaces& vf, double scale,
-                                                      const IntrinsicTriangulation* intrinsic,
-                                                      std::int32_t v) {
-  OneRing ring;
-  double turn_re = 1.0, turn_im = 0.0;  // the running product, kept at unit length
-  int turns = 0;
-  const Vec3 x = mesh.positions[v] * scale;
-  for (std::int32_t f : vf.of(v)) {
-    const Triangle& t = mesh.triangles[f];
-    const int corner = t[0] == v ? 0 : t[1] == v ? 1 : 2;
-    const Vec3 a = mesh.positions[t[(corner + 1) % 3]] * scale;
-    const Vec3 b = mesh.positions[t[(corner + 2) % 3]] * scale;
-    const Vec3 xa = a - x, xb = b - x, ab = b - a;
-    const double xa2 = xa.squaredNorm(), xb2 = xb.squaredNorm(), ab2 = ab.squaredNorm();
-    const bool counts_here = corner == 0;
-    if (is_shapeless_triangle(xa2, xb2, ab2)) {  // a face with a zero-length edge: no shape
-      ring.at_shapeless = true;
-      ring.shapeless += counts_here;
-      continue;
-    }
-    const Vec3 cross = xa.cross(xb);
-    const double double_area = cross.norm();
-    const double dot_x = xa.dot(xb);     // at this vertex
-    const double dot_a = -xa.dot(ab);    // at a: between a→x and a→b
-    const double dot_b = xb.dot(ab);     // at b: between b→x and b→a
-
-    // Written out: std::complex's operator* and abs guard against inf/NaN at several times the cost.
-    const double next_re = turn_re * dot_x - turn_im * double_area;
-    const double next_im = turn_re * double_area + turn_im * dot_x;
-    turns += !in_lower_half(turn_re, turn_im) && in_lower_half(next_re, next_im);
-    const double normaliser = power_of_two_below(std::max(std::abs(next_re), std::abs(next_im)));
-    turn_re = next_re * normaliser;
-    turn_im = next_im * normaliser;
-
-    const double longest2 = std::max({xa2, xb2, ab2});
-    ring.normal += corner_normal_term(cross, double_area, dot_x, longest2);
-    if (counts_here && !(double_area >= mollification_area_ratio * longest2)) {
-      const double needed = mollification_needed(xa2, xb2, ab2);
-      if (needed > 0.0) {
-        ++ring.mollified;
-        ring.mollification = std::max(ring.mollification, needed);
-      }
-    }
-
-    if (counts_here && std::min({dot_x, dot_a, dot_b}) < cap_cotangent * double_area) ++ring.caps;
-    // Mixed Voronoi area (Meyer et al. 2002, Fig. 4), always the mesh's own.
-    const double face_area = 0.5 * double_area;
-    const double inverse_area = 1.0 / double_area;
-    const double cot_a = dot_a * inverse_area, cot_b = dot_b * inverse_area;
-    if (dot_x < 0.0)
-      ring.area += 0.5 * face_area;
-    else if (dot_a < 0.0 || dot_b < 0.0)
-      ring.area += 0.25 * face_area;
-    else
-      ring.area += 0.125 * (xa2 * cot_b + xb2 * cot_a);
-
-    // Cotangent Laplacian: edge x–a is weighted by the cotangent at b, edge x–b by that at a.
-    if (!intrinsic) ring.laplacian -= cot_b * xa + cot_a * xb;
+[[gnu::always_inline]] inline void add_corner(const FaceTerms& face, int corner, bool laplacian,
+                                              RingSums& sums, Vec3& normal, double& area) {
+  if (face.shapeless) {
+    sums.at_shapeless = true;
+    return;
   }
-  if (intrinsic) {
-    for (std::int32_t f : intrinsic->vertex_faces.of(v)) {
-      const Triangle& t = intrinsic->faces[f];
-      const auto& l = intrinsic->lengths[f];
-      const int corner = t[0] == v ? 0 : t[1] == v ? 1 : 2;
-      const int next = (corner + 1) % 3, last = (corner + 2) % 3;
-      const Vec3 xa = mesh.positions[t[next]] * scale - x, xb = mesh.positions[t[last]] * scale - x;
-      add_laplacian_terms(ring, l[corner], l[last], l[next], xa, xb);
-    }
-  }
-  // The argument in [−π, π), on the side of the branch cut that the turn count assumes.
-  const double argument = in_lower_half(turn_re, turn_im) ? -std::atan2(std::abs(turn_im), turn_re)
-                                                          : std::atan2(std::abs(turn_im), turn_re);
-  ring.angle_deficit = -(argument + 2.0 * std::numbers::pi * (turns - 1));
-  return ring;
+  // Written out: std::complex's operator* and abs guard against inf/NaN at several times the cost.
+  const double dot = face.dot[corner], double_area = face.double_area;
+  const double next_re = sums.turn_re * dot - sums.turn_im * double_area;
+  const double next_im = sums.turn_re * double_area + sums.turn_im * dot;
+  sums.turns += !in_lower_half(sums.turn_re, sums.turn_im) && in_lower_half(next_re, next_im);
+  const double normaliser = power_of_two_below(std::max(std::abs(next_re), std::abs(next_im)));
+  sums.turn_re = next_re * normaliser;
+  sums.turn_im = next_im * normaliser;
+  normal += face.normal[corner];
+  area += face.area[corner];
+  if (laplacian) sums.laplacian += face.laplacian[corner];
 }
+
+// The Laplacian terms of corner x of a face (x, a, b) with edge lengths |xa| = la, |xb| = lb,
+// |ab| = lab; xa = a − x and xb = b − x are positions.
+void add_laplacian_terms(Vec3& laplacian, double la, double lb, double lab, const Vec3& xa,
+                         const Vec3& xb) {
+  const double la2 = la * la, lb2 = lb * lb, lab2 = lab * lab;
+  const double inverse_area = 0.5 / double_area_from_lengths(la, lb, lab);  // cot = (…)/(4A)
+  const double cot_a = (la2 + lab2 - lb2) * inverse_area;
+  const double cot_b = (lb2 + lab2 - la2) * inverse_area;
+  laplacian -= cot_b * xa + cot_a * xb;
+}
+
+int corner_of(const Triangle& t, std::int32_t v) { return t[0] == v ? 0 : t[1] == v ? 1 : 2; }
 
 void set_undefined(CurvatureField& field, std::size_t v) {
   set_curvature(field, v, 0.0, 0.0);
@@ -239,7 +269,12 @@ struct GatherInput {
   const TriangleMesh& mesh;
   const MeshTopology& topology;
   double scale;
+  // Without it, the Laplacian's cotangents come from the faces' positions; with it, from its
+  // faces and lengths. Angles, normal and area always come from the mesh's own faces.
   const IntrinsicTriangulation* intrinsic;
+  // The face chunks of the face pass: chunk c is [face_bounds[c], face_bounds[c + 1]).
+  std::span<const std::size_t> face_bounds;
+  RingSums* sums;  // per vertex
 };
 
 struct GatherCounts {
@@ -247,40 +282,111 @@ struct GatherCounts {
   double mollification = 0.0;
 };
 
-// Gathers vertices [begin, end) and writes their fields. Forced inline so that each of the two
-// instantiations below compiles all of it, the gather included, for its own instruction set.
-[[gnu::always_inline]] inline void gather_vertices(const GatherInput& in, std::size_t begin,
-                                                   std::size_t end, CurvatureField& field,
-                                                   GatherCounts& counts) {
+// Whether all of v's faces lie in one face chunk: the face pass then sums v's terms in the
+// order of its faces, which is the order of its row (build_vertex_faces fills each row in
+// ascending face order). Otherwise v is summed by the vertex pass, from its row, in that same
+// order: either way the same sums, whatever the number of chunks.
+bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t> face_bounds) {
+  const auto first = static_cast<std::size_t>(row.front()), last = static_cast<std::size_t>(row.back());
+  for (std::size_t c = 1; c + 1 < face_bounds.size(); ++c)
+    if (first < face_bounds[c] && face_bounds[c] <= last) return false;
+  return true;
+}
+
+// The face pass over faces [begin, end): each face's terms are computed once and added to the
+// sums of those of its corners whose faces all lie in [begin, end). The first face of a vertex
+// starts its sums, so no array needs clearing beforehand. Forced inline so that each of the two
+// instantiations below compiles all of it for its own instruction set.
+[[gnu::always_inline]] inline void sum_faces(const GatherInput& in, std::size_t begin,
+                                             std::size_t end, CurvatureField& field,
+                                             GatherCounts& counts) {
+  const VertexFaces& vf = in.topology.vertex_faces;
+  const std::vector<Triangle>& triangles = in.mesh.triangles;
+  const bool laplacian = in.intrinsic == nullptr;
+  for (std::size_t f = begin; f < end; ++f) {
+    const Triangle& t = triangles[f];
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;  // in no row (topology.hpp)
+    const FaceTerms face = face_terms(in.mesh.positions, t, in.scale);
+    if (face.shapeless) {
+      ++counts.shapeless;
+    } else {
+      if (face.mollification > 0.0) {
+        ++counts.mollified;
+        counts.mollification = std::max(counts.mollification, face.mollification);
+      }
+      counts.caps += face.cap;
+    }
+    for (int corner = 0; corner < 3; ++corner) {
+      const std::int32_t v = t[corner];
+      const std::int32_t first = vf.face_indices[vf.offsets[v]];
+      const std::int32_t last = vf.face_indices[vf.offsets[v + 1] - 1];
+      if (static_cast<std::size_t>(first) < begin || static_cast<std::size_t>(last) >= end) continue;
+      if (static_cast<std::size_t>(first) == f) start_ring(in.sums[v], field.normal[v], field.area[v]);
+      add_corner(face, corner, laplacian, in.sums[v], field.normal[v], field.area[v]);
+    }
+  }
+}
+
+// The vertex pass over vertices [begin, end): sums the vertices the face pass left out, then
+// turns every vertex's sums into its fields.
+[[gnu::always_inline]] inline void finish_vertices(const GatherInput& in, std::size_t begin,
+                                                   std::size_t end, CurvatureField& field) {
+  const VertexFaces& vf = in.topology.vertex_faces;
   const double scale = in.scale, scale2 = scale * scale;
   for (std::size_t v = begin; v < end; ++v) {
-    const OneRing ring = gather_one_ring(in.mesh, in.topology.vertex_faces, scale, in.intrinsic,
-                                         static_cast<std::int32_t>(v));
-    counts.shapeless += ring.shapeless;
-    counts.mollified += ring.mollified;
-    counts.caps += ring.caps;
-    counts.mollification = std::max(counts.mollification, ring.mollification);
-    const double normal_length = ring.normal.norm();
-    field.normal[v] = normal_length > 0.0 ? Vec3(ring.normal / normal_length) : Vec3::Zero();
-    const double area = ring.area / scale2;
+    const auto vertex = static_cast<std::int32_t>(v);
+    const std::span<const std::int32_t> row = vf.of(vertex);
+    RingSums& sums = in.sums[v];
+    if (row.empty()) {
+      start_ring(sums, field.normal[v], field.area[v]);
+    } else if (!in_one_chunk(row, in.face_bounds)) {
+      start_ring(sums, field.normal[v], field.area[v]);
+      for (std::int32_t f : row) {
+        const Triangle& t = in.mesh.triangles[f];
+        add_corner(face_terms(in.mesh.positions, t, scale), corner_of(t, vertex),
+                   in.intrinsic == nullptr, sums, field.normal[v], field.area[v]);
+      }
+    }
+    if (in.intrinsic) {
+      const Vec3 x = in.mesh.positions[v] * scale;
+      for (std::int32_t f : in.intrinsic->vertex_faces.of(vertex)) {
+        const Triangle& t = in.intrinsic->faces[f];
+        const auto& l = in.intrinsic->lengths[f];
+        const int corner = corner_of(t, vertex);
+        const int next = (corner + 1) % 3, last = (corner + 2) % 3;
+        const Vec3 xa = in.mesh.positions[t[next]] * scale - x;
+        const Vec3 xb = in.mesh.positions[t[last]] * scale - x;
+        add_laplacian_terms(sums.laplacian, l[corner], l[last], l[next], xa, xb);
+      }
+    }
+    const double ring_area = field.area[v];
+    const Vec3 normal_sum = field.normal[v];
+    const double normal_length = normal_sum.norm();
+    field.normal[v] = normal_length > 0.0 ? Vec3(normal_sum / normal_length) : Vec3::Zero();
+    const double area = ring_area / scale2;
     field.area[v] = std::isfinite(area) ? area : 0.0;
     const VertexKind kind = in.topology.kind[v];
-    if (!(ring.area > 0.0) || normal_length == 0.0 || kind == VertexKind::isolated) {
+    if (!(ring_area > 0.0) || normal_length == 0.0 || kind == VertexKind::isolated) {
       set_undefined(field, v);
       continue;
     }
-    if (kind != VertexKind::interior || ring.at_shapeless) {
+    if (kind != VertexKind::interior || sums.at_shapeless) {
       field.status[v] = CurvatureStatus::extrapolated;
       continue;
     }
+    // The argument in [−π, π), on the side of the branch cut that the turn count assumes.
+    const double argument = in_lower_half(sums.turn_re, sums.turn_im)
+                                ? -std::atan2(std::abs(sums.turn_im), sums.turn_re)
+                                : std::atan2(std::abs(sums.turn_im), sums.turn_re);
+    const double angle_deficit = -(argument + 2.0 * std::numbers::pi * (sums.turns - 1));
     // In scaled units, then back: K ∝ 1/s², H ∝ 1/s.
-    const double gaussian = ring.angle_deficit / ring.area * scale2;
-    const double projected = ring.laplacian.dot(field.normal[v]);
-    const double length = ring.laplacian.norm();
+    const double gaussian = angle_deficit / ring_area * scale2;
+    const double projected = sums.laplacian.dot(field.normal[v]);
+    const double length = sums.laplacian.norm();
     const double laplacian_along_normal = length <= std::abs(projected) * normal_deviation_secant
                                               ? std::copysign(length, projected)
                                               : projected * normal_deviation_secant;
-    const double mean = laplacian_along_normal / (4.0 * ring.area) * scale;
+    const double mean = laplacian_along_normal / (4.0 * ring_area) * scale;
     if (!std::isfinite(gaussian) || !std::isfinite(mean)) {
       set_undefined(field, v);
       continue;
@@ -295,24 +401,46 @@ struct GatherCounts {
 // contraction allowed (analyzer/CMakeLists.txt), which on x86-64 only the second can use: there
 // a·b + c becomes one fused multiply-add, rounded once. Its results differ from the portable
 // path's by round-off only (tested); multiplying by the power-of-two scale stays exact, so the
-// scale invariance holds in both.
-void gather_vertices_portable(const GatherInput& in, std::size_t begin, std::size_t end,
-                              CurvatureField& field, GatherCounts& counts) {
-  gather_vertices(in, begin, end, field, counts);
+// scale invariance holds in both. Elsewhere there is only the portable code.
+void sum_faces_portable(const GatherInput& in, std::size_t begin, std::size_t end,
+                        CurvatureField& field, GatherCounts& counts) {
+  sum_faces(in, begin, end, field, counts);
+}
+void finish_vertices_portable(const GatherInput& in, std::size_t begin, std::size_t end,
+                              CurvatureField& field) {
+  finish_vertices(in, begin, end, field);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-[[gnu::target("avx2,fma")]] void gather_vertices_avx2_fma(const GatherInput& in, std::size_t begin,
-                                                          std::size_t end, CurvatureField& field,
-                                                          GatherCounts& counts) {
-  gather_vertices(in, begin, end, field, counts);
+#define TOONWATER_CURVATURE_AVX2_FMA 1
+[[gnu::target("avx2,fma")]] void sum_faces_avx2_fma(const GatherInput& in, std::size_t begin,
+                                                    std::size_t end, CurvatureField& field,
+                                                    GatherCounts& counts) {
+  sum_faces(in, begin, end, field, counts);
 }
-#else
-void gather_vertices_avx2_fma(const GatherInput& in, std::size_t begin, std::size_t end,
-                              CurvatureField& field, GatherCounts& counts) {
-  gather_vertices(in, begin, end, field, counts);
+[[gnu::target("avx2,fma")]] void finish_vertices_avx2_fma(const GatherInput& in, std::size_t begin,
+                                                          std::size_t end, CurvatureField& field) {
+  finish_vertices(in, begin, end, field);
 }
 #endif
+
+// The vertices' sums, left uninitialised (the face pass starts each), on huge pages where the
+// system grants them: every page is touched once, and faulting it in 4 KiB pages cost the
+// 1M-vertex bench about a sixth of the kernel's time.
+struct ScratchSums {
+  static constexpr std::size_t huge_page = std::size_t{1} << 21;
+  RingSums* data;
+  explicit ScratchSums(std::size_t n) {
+    const std::size_t bytes =
+        (std::max<std::size_t>(n, 1) * sizeof(RingSums) + huge_page - 1) / huge_page * huge_page;
+    data = static_cast<RingSums*>(std::aligned_alloc(huge_page, bytes));
+    if (!data) throw std::bad_alloc();
+    ::madvise(data, bytes, MADV_HUGEPAGE);
+  }
+  ~ScratchSums() { std::free(data); }
+  ScratchSums(const ScratchSums&) = delete;
+  ScratchSums& operator=(const ScratchSums&) = delete;
+};
 
 }  // namespace
 
@@ -352,7 +480,7 @@ void extrapolate_from_neighbours(const TriangleMesh& mesh, const VertexFaces& vf
 }
 
 bool avx2_fma_supported() {
-#if defined(__x86_64__) && defined(__GNUC__)
+#ifdef TOONWATER_CURVATURE_AVX2_FMA
   static const bool supported = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
   return supported;
 #else
@@ -385,20 +513,35 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
     }
   });
 
-  // Each vertex gathers from its own faces (compressed rows, no halfedges), so the vertices
-  // split over the cores with no shared writes. The first pass also finds the mollification
-  // the mesh needs; only a mesh that needs one is gathered again with it.
+  // Each face's terms are computed once, in a pass over contiguous ranges of faces, one per
+  // core; a vertex whose faces all lie in one range is summed there, the few others (faces on
+  // both sides of a range's end) afterwards in the vertex pass, in the same order. The first
+  // pass also finds the mollification the mesh needs; only a mesh that needs one is summed
+  // again with it.
   const std::size_t workers = worker_count(n);
-  const bool use_avx2_fma = kernel == CurvatureKernel::avx2_fma ||
-                            (kernel == CurvatureKernel::fastest && avx2_fma_supported());
-  auto gather_all = [&](const IntrinsicTriangulation* intrinsic) {
+  const std::size_t m = mesh.triangles.size();
+  std::vector<std::size_t> face_bounds(workers + 1);
+  for (std::size_t c = 0; c <= workers; ++c) face_bounds[c] = m * c / workers;  // as parallel_chunks
+  const ScratchSums sums(n);
+  bool use_avx2_fma = false;
+#ifdef TOONWATER_CURVATURE_AVX2_FMA
+  use_avx2_fma = kernel == CurvatureKernel::avx2_fma ||
+                 (kernel == CurvatureKernel::fastest && avx2_fma_supported());
+#endif
+  auto sum_all = [&](const IntrinsicTriangulation* intrinsic) {
     std::vector<GatherCounts> counts(workers);
-    const GatherInput input{mesh, topology, scale, intrinsic};
-    parallel_chunks(n, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
-      if (use_avx2_fma)
-        gather_vertices_avx2_fma(input, begin, end, field, counts[worker]);
-      else
-        gather_vertices_portable(input, begin, end, field, counts[worker]);
+    const GatherInput input{mesh, topology, scale, intrinsic, face_bounds, sums.data};
+    parallel_chunks(m, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
+#ifdef TOONWATER_CURVATURE_AVX2_FMA
+      if (use_avx2_fma) return sum_faces_avx2_fma(input, begin, end, field, counts[worker]);
+#endif
+      sum_faces_portable(input, begin, end, field, counts[worker]);
+    });
+    parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
+#ifdef TOONWATER_CURVATURE_AVX2_FMA
+      if (use_avx2_fma) return finish_vertices_avx2_fma(input, begin, end, field);
+#endif
+      finish_vertices_portable(input, begin, end, field);
     });
     GatherCounts total;
     for (const GatherCounts& c : counts) {
@@ -409,12 +552,12 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
     }
     return total;
   };
-  const GatherCounts counts = gather_all(nullptr);
+  const GatherCounts counts = sum_all(nullptr);
   if (counts.mollification > 0.0 || counts.caps > 0) {
     const IntrinsicTriangulation intrinsic =
         intrinsic_delaunay(mesh, topology.vertex_faces, scale, std::max(counts.mollification, 0.0));
     field.intrinsic_flips = intrinsic.flips;
-    gather_all(&intrinsic);
+    sum_all(&intrinsic);
   }
   // The rows hold three entries for each face without a repeated corner, and none for the others.
   field.degenerate_faces =
