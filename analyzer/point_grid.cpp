@@ -64,63 +64,44 @@ std::int64_t PointGrid::cell_along(double coordinate, int axis) const {
   return static_cast<std::int64_t>(std::clamp(t, -1.0, static_cast<double>(cells)));
 }
 
-// The closest point so far, with its place in the order of a full scan (which breaks ties).
-struct PointGrid::Best {
-  double distance2;
-  std::int32_t order = -1;  // position in the sorted arrays, plus an offset for the ring
-  std::int32_t index = -1;
-};
-
-void PointGrid::search_cell(const Vec3& p, std::int64_t a, std::int64_t b,
-                            std::int32_t order_offset, Best& best) const {
-  const std::int64_t cell = a * cells_b_ + b;
-  const std::int32_t end = cell_begin_[cell + 1];
-  for (std::int32_t i = cell_begin_[cell]; i < end; ++i) {
-    const double d2 = (sorted_points_[i] - p).squaredNorm();
-    if (d2 < best.distance2 || (d2 == best.distance2 && i + order_offset > best.order))
-      best = Best{d2, i + order_offset, sorted_index_[i]};
-  }
-}
-
-void PointGrid::search(const Vec3& p, std::int64_t ca, std::int64_t cb, int inner, int outer,
-                       std::int32_t order_offset, Best& best) const {
-  // The query's distance, in cell widths, to a row or column `d` cells away: a cell is skipped
-  // when it is farther than the best point found, so that no point in it can be closer or tie.
-  // A millionth of a cell off the gap keeps the bound below the distance of every point the
-  // build sorted into the cell, whatever the round-off of its floor((x − origin) / cell).
-  const double ta = (p[axis_a_] - origin_[axis_a_]) / cell_size_,
-               tb = (p[axis_b_] - origin_[axis_b_]) / cell_size_;
-  auto gap2 = [&](double t, std::int64_t cell) {
-    const double cell_double = static_cast<double>(cell);
-    const double gap = std::max({cell_double - t, t - (cell_double + 1.0), 0.0}) - 1e-6;
-    return gap > 0.0 ? gap * gap * cell_size_ * cell_size_ : 0.0;
+void PointGrid::scan(const Vec3& p, std::int64_t ca, std::int64_t cb, int inner, int outer,
+                     std::int32_t& best, double& best_distance2) const {
+  // The cells of a row are consecutive in the sorted arrays, so a run of them is one range.
+  auto scan_run = [&](std::int64_t a, std::int64_t b_first, std::int64_t b_last) {
+    b_first = std::max<std::int64_t>(b_first, 0);
+    b_last = std::min<std::int64_t>(b_last, cells_b_ - 1);
+    if (b_first > b_last) return;
+    const std::int32_t end = cell_begin_[a * cells_b_ + b_last + 1];
+    for (std::int32_t i = cell_begin_[a * cells_b_ + b_first]; i < end; ++i) {
+      const double d2 = (sorted_points_[i] - p).squaredNorm();
+      if (d2 <= best_distance2) {
+        best_distance2 = d2;
+        best = sorted_index_[i];
+      }
+    }
   };
   for (std::int64_t da = -outer; da <= outer; ++da) {
     const std::int64_t a = ca + da;
     if (a < 0 || a >= cells_a_) continue;
-    const double row_gap2 = gap2(ta, a);
-    if (row_gap2 > best.distance2) continue;
-    for (std::int64_t db = -outer; db <= outer; ++db) {
-      const std::int64_t b = cb + db;
-      if (b < 0 || b >= cells_b_ || std::max(std::abs(da), std::abs(db)) < inner) continue;
-      if (da == 0 && db == 0) continue;  // searched first, by closest()
-      if (row_gap2 + gap2(tb, b) > best.distance2) continue;
-      search_cell(p, a, b, order_offset, best);
+    if (std::abs(da) >= inner) {
+      scan_run(a, cb - outer, cb + outer);
+    } else {  // the row crosses the hole of the ring: its two ends
+      scan_run(a, cb - outer, cb - inner);
+      scan_run(a, cb + inner, cb + outer);
     }
   }
 }
 
 std::int32_t PointGrid::closest(const Vec3& p) const {
-  if (sorted_points_.empty()) return -1;
-  Best best{radius_ * radius_};
+  std::int32_t best = -1;
+  if (sorted_points_.empty()) return best;
+  double best_distance2 = radius_ * radius_;
   const std::int64_t ca = cell_along(p[axis_a_], axis_a_), cb = cell_along(p[axis_b_], axis_b_);
-  if (ca >= 0 && ca < cells_a_ && cb >= 0 && cb < cells_b_) search_cell(p, ca, cb, 0, best);
-  search(p, ca, cb, 0, 1, 0, best);
-  if (best.index >= 0 && best.distance2 <= cell_size_ * cell_size_) return best.index;
-  // The ring out to two cells holds every point within 2 cell widths >= the radius; in a full
-  // scan it comes after the block.
-  search(p, ca, cb, 2, 2, static_cast<std::int32_t>(sorted_points_.size()), best);
-  return best.index;
+  scan(p, ca, cb, 0, 1, best, best_distance2);
+  if (best >= 0 && best_distance2 <= cell_size_ * cell_size_) return best;
+  // The ring out to two cells holds every point within 2 cell widths >= the radius.
+  scan(p, ca, cb, 2, 2, best, best_distance2);
+  return best;
 }
 
 }  // namespace toonwater

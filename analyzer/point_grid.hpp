@@ -3,16 +3,12 @@
 // points of a column, whatever their height.
 //
 // Cells are half the radius wide (wider when the points are sparse, so that there are at most
-// about four cells a point). A query first searches the 3 × 3 cells around its own, which hold
-// every point within one cell width; only when none is that close does it search the ring out
-// to 5 × 5, which holds every point within the radius. Its own cell goes first, and a cell
-// farther (in the plane of the two axes) than the closest point found so far is skipped:
-// between two frames of a simulation nearly every vertex has a predecessor within half an
-// edge or so, so a query reads its own cell and seldom more than one other. Building is a
-// counting sort: linear in the points.
-//
-// Ties go to the point last in the order of a full scan (the 3 × 3 block row by row, then the
-// ring, each cell's points in input order), whatever order the cells are searched in.
+// about four cells a point). A query first scans the 3 × 3 cells around its own, which hold
+// every point within one cell width; only when none is that close does it scan the ring out to
+// 5 × 5, which holds every point within the radius. Between two frames of a simulation nearly
+// every vertex has a predecessor within half an edge or so, so nearly every query ends after
+// the first block, reading a few neighbouring rows of one array. Building is a counting sort:
+// linear in the points.
 #pragma once
 
 #include "analyzer/mesh.hpp"
@@ -29,13 +25,9 @@ class PointGrid {
   std::int32_t closest(const Vec3& p) const;
 
  private:
-  struct Best;
-  // Searches the cells (ca + da, cb + db) with max(|da|, |db|) in [inner, outer] but the
-  // query's own cell (ca, cb).
-  void search(const Vec3& p, std::int64_t ca, std::int64_t cb, int inner, int outer,
-              std::int32_t order_offset, Best& best) const;
-  void search_cell(const Vec3& p, std::int64_t a, std::int64_t b, std::int32_t order_offset,
-                   Best& best) const;
+  // Scans the cells (ca + da, cb + db) with max(|da|, |db|) in [inner, outer].
+  void scan(const Vec3& p, std::int64_t ca, std::int64_t cb, int inner, int outer,
+            std::int32_t& best, double& best_distance2) const;
   std::int64_t cell_along(double coordinate, int axis) const;
 
   double radius_ = 1.0, cell_size_ = 1.0;
