@@ -3,19 +3,13 @@
 // waking threads would cost more than the work.
 //
 // The other chunks run on a pool of hardware − 1 threads started once and asleep between calls:
-// starting threads anew cost about as much as a pass over a 55k-vertex mesh. Waking a sleeping
-// thread costs tens of microseconds too, and a stage on a 55k-vertex mesh makes dozens of calls
-// a few hundred microseconds apart; so a thread that has run a chunk, and a caller waiting for
-// the others, first watch for the next call or the last chunk for a short while (`spin_time`,
-// yielding the core to any other thread that wants it), then sleep. A call made while
+// starting threads anew cost about as much as a pass over a 55k-vertex mesh. A call made while
 // the pool is busy (from inside a chunk, or from a second thread) or with more chunks than the
 // pool has threads starts threads of its own, as does one in a child process forked after the
 // pool started (whose threads did not follow it).
 #pragma once
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -45,7 +39,7 @@ class ThreadPool {
   ~ThreadPool() {
     {
       std::lock_guard lock(mutex_);
-      stopping_.store(true, std::memory_order_release);
+      stopping_ = true;
     }
     wake_.notify_all();
     for (std::thread& thread : threads_) thread.join();
@@ -62,8 +56,8 @@ class ThreadPool {
       task_ = task;
       context_ = context;
       chunks_ = chunks;
-      remaining_.store(chunks - 1, std::memory_order_relaxed);
-      generation_.fetch_add(1, std::memory_order_release);
+      remaining_ = chunks - 1;
+      ++generation_;
     }
     wake_.notify_all();
     // The other chunks use the caller's context: wait for them even when this chunk throws.
@@ -73,10 +67,9 @@ class ThreadPool {
     } catch (...) {
       failure = std::current_exception();
     }
-    auto finished = [&] { return remaining_.load(std::memory_order_acquire) == 0; };
-    if (!spin_until(finished)) {
+    {
       std::unique_lock lock(mutex_);
-      done_.wait(lock, finished);
+      done_.wait(lock, [&] { return remaining_ == 0; });
     }
     if (failure) std::rethrow_exception(failure);
     return true;
@@ -88,61 +81,33 @@ class ThreadPool {
     for (std::size_t i = 0; i < threads; ++i) threads_.emplace_back([this, i] { serve(i + 1); });
   }
 
-  // How long a thread watches for the next call, or a caller for the last chunk, before it
-  // sleeps: a few passes' gap on a small mesh, and short enough not to matter on a busy machine
-  // (the watcher yields its core at every check).
-  static constexpr std::chrono::microseconds spin_time{50};
-
-  // Polls `ready` for up to spin_time; true once it holds.
-  template <class Ready>
-  static bool spin_until(Ready&& ready) {
-    const auto deadline = std::chrono::steady_clock::now() + spin_time;
-    for (;;) {
-      for (int i = 0; i < 16; ++i)
-        if (ready()) return true;
-      if (std::chrono::steady_clock::now() > deadline) return ready();
-      std::this_thread::yield();
-    }
-  }
-
   void serve(std::size_t chunk) {
     std::uint64_t seen = 0;
-    auto called = [&] {
-      return stopping_.load(std::memory_order_acquire) ||
-             generation_.load(std::memory_order_acquire) != seen;
-    };
+    std::unique_lock lock(mutex_);
     for (;;) {
-      spin_until(called);
-      // The call's fields are read under the lock: a thread that sat out the last call (fewer
-      // chunks than threads) may wake while the next one is being set up.
-      std::unique_lock lock(mutex_);
-      wake_.wait(lock, called);
+      wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
       if (stopping_) return;
-      seen = generation_.load(std::memory_order_relaxed);
+      seen = generation_;
       if (chunk >= chunks_) continue;  // fewer chunks than threads this time
       const Task task = task_;
       void* const context = context_;
       lock.unlock();
       task(context, chunk);
-      if (remaining_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
-        // Under the lock, so that a caller about to sleep on done_ cannot miss the notice.
-        std::lock_guard done_lock(mutex_);
-        done_.notify_one();
-      }
+      lock.lock();
+      if (--remaining_ == 0) done_.notify_one();
     }
   }
 
   const pid_t owner_;
   std::vector<std::thread> threads_;
   std::mutex busy_;   // held by the call the pool is running
-  std::mutex mutex_;  // guards the fields below; the atomics are written under it too
+  std::mutex mutex_;  // guards the fields below
   std::condition_variable wake_, done_;
   Task task_ = nullptr;
   void* context_ = nullptr;
-  std::size_t chunks_ = 0;
-  std::atomic<std::size_t> remaining_{0};  // chunks of the call not yet done, but the caller's
-  std::atomic<std::uint64_t> generation_{0};
-  std::atomic<bool> stopping_{false};
+  std::size_t chunks_ = 0, remaining_ = 0;
+  std::uint64_t generation_ = 0;
+  bool stopping_ = false;
 };
 
 template <class Fn>

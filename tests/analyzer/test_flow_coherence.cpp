@@ -37,9 +37,8 @@ TEST(PointGrid, FindsTheClosestPointWithinItsCell) {
   }
 }
 
-// Queries next to a point, as between two frames, end after the query's own cell and the
-// neighbours nearer than that point: the point they find must still be the closest, also when
-// it lies across a cell border from the query.
+// Queries next to a point, as between two frames: the point found is the closest, also when it
+// lies across a cell border from the query.
 TEST(PointGrid, FindsTheClosestPointAcrossCellBordersForNearQueries) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
