@@ -37,6 +37,29 @@ TEST(PointGrid, FindsTheClosestPointWithinItsCell) {
   }
 }
 
+// Queries next to a point, as between two frames: the point found is the closest, also when it
+// lies across a cell border from the query.
+TEST(PointGrid, FindsTheClosestPointAcrossCellBordersForNearQueries) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> points(5000);
+  for (Vec3& p : points) p = Vec3(u(rng), u(rng), 0.1 * u(rng));
+  const double radius = 0.1;
+  const PointGrid grid(points, radius);
+  std::normal_distribution<double> jitter(0.0, 0.01);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec3 q = points[rng() % points.size()] + Vec3(jitter(rng), jitter(rng), jitter(rng));
+    std::int32_t expected = -1;
+    double best = radius * radius;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if ((points[i] - q).squaredNorm() <= best) {
+        best = (points[i] - q).squaredNorm();
+        expected = static_cast<std::int32_t>(i);
+      }
+    EXPECT_EQ(grid.closest(q), expected);
+  }
+}
+
 Analysis analyze_frame(const TriangleMesh& mesh) {
   AnalyzeOptions options;
   options.flow.up = Axis::z;
