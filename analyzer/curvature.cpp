@@ -59,7 +59,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cstdlib>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -67,8 +66,6 @@
 #include <numbers>
 #include <span>
 #include <stdexcept>
-
-#include <sys/mman.h>
 
 namespace toonwater {
 namespace {
@@ -424,24 +421,6 @@ void finish_vertices_portable(const GatherInput& in, std::size_t begin, std::siz
 }
 #endif
 
-// The vertices' sums, left uninitialised (the face pass starts each), on huge pages where the
-// system grants them: every page is touched once, and faulting it in 4 KiB pages cost the
-// 1M-vertex bench about a sixth of the kernel's time.
-struct ScratchSums {
-  static constexpr std::size_t huge_page = std::size_t{1} << 21;
-  RingSums* data;
-  explicit ScratchSums(std::size_t n) {
-    const std::size_t bytes =
-        (std::max<std::size_t>(n, 1) * sizeof(RingSums) + huge_page - 1) / huge_page * huge_page;
-    data = static_cast<RingSums*>(std::aligned_alloc(huge_page, bytes));
-    if (!data) throw std::bad_alloc();
-    ::madvise(data, bytes, MADV_HUGEPAGE);
-  }
-  ~ScratchSums() { std::free(data); }
-  ScratchSums(const ScratchSums&) = delete;
-  ScratchSums& operator=(const ScratchSums&) = delete;
-};
-
 }  // namespace
 
 void set_curvature(CurvatureField& field, std::size_t v, double gaussian, double mean) {
@@ -522,7 +501,7 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   const std::size_t m = mesh.triangles.size();
   std::vector<std::size_t> face_bounds(workers + 1);
   for (std::size_t c = 0; c <= workers; ++c) face_bounds[c] = m * c / workers;  // as parallel_chunks
-  const ScratchSums sums(n);
+  const auto sums = std::make_unique_for_overwrite<RingSums[]>(n);
   bool use_avx2_fma = false;
 #ifdef TOONWATER_CURVATURE_AVX2_FMA
   use_avx2_fma = kernel == CurvatureKernel::avx2_fma ||
@@ -530,7 +509,7 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
 #endif
   auto sum_all = [&](const IntrinsicTriangulation* intrinsic) {
     std::vector<GatherCounts> counts(workers);
-    const GatherInput input{mesh, topology, scale, intrinsic, face_bounds, sums.data};
+    const GatherInput input{mesh, topology, scale, intrinsic, face_bounds, sums.get()};
     parallel_chunks(m, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
 #ifdef TOONWATER_CURVATURE_AVX2_FMA
       if (use_avx2_fma) return sum_faces_avx2_fma(input, begin, end, field, counts[worker]);

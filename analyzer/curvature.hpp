@@ -11,10 +11,9 @@
 //   k1,2 = H ± sqrt(max(H² − K, 0))
 //   n̂  = angle-weighted vertex normal (Thürmer and Wüthrich 1998)
 //
-// Each face's terms are computed once, in a pass over contiguous ranges of the flat triangle
-// array (one per core), and added to the sums of its corners; a vertex with faces in two ranges
-// is summed afterwards from its compressed row, in the same face order, so the results do not
-// depend on the number of cores and no two cores write one vertex. See curvature.cpp for how the angle sum is kept exact, how thin and
+// Each vertex gathers its sums from its incident faces, read from compressed rows over the flat
+// position and triangle arrays (no halfedge circulators); the vertices split over the cores
+// with no shared writes. See curvature.cpp for how the angle sum is kept exact, how thin and
 // degenerate faces are handled (L from the intrinsic Delaunay triangulation of mollified edge
 // lengths where the mesh has caps or near-collinear faces), and boundaries and non-manifold
 // vertices.
