@@ -111,7 +111,9 @@ TEST_F(SlurmFarm, ATaskKilledMidFrameLeavesNoPartialImageAndIsResubmitted) {
       run_toonwater({"render", scene.string(), "--on", "slurm", "--frames-per-task", "3"});
   ASSERT_TRUE(fs::exists(work_ / "killed-once"));  // the fault happened
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("3 frame(s) missing after the tasks ended; resubmitted"), std::string::npos)
+  // The killed task's frames without a whole image (how many it finished in its 0.5 s varies;
+  // a whole PNG is kept) are resubmitted.
+  EXPECT_NE(r.output.find("frame(s) missing after the tasks ended; resubmitted"), std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("1 task(s) resubmitted"), std::string::npos) << r.output;
   expect_frames_like(scene, reference());
