@@ -91,8 +91,8 @@ void set_vertex_rate(benchmark::State& state, std::size_t vertices) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * vertices));
 }
 
-void ReadObj(benchmark::State& state) {
-  const fs::path path = obj_file(state.range(0));
+// read_mesh of one file over and over.
+void read_repeatedly(benchmark::State& state, const fs::path& path) {
   std::size_t n = 0;
   for (auto _ : state) {
     InputMesh mesh = read_mesh(path);
@@ -102,16 +102,9 @@ void ReadObj(benchmark::State& state) {
   set_vertex_rate(state, n);
 }
 
-void ReadPly(benchmark::State& state) {
-  const fs::path path = ply_file(state.range(0));
-  std::size_t n = 0;
-  for (auto _ : state) {
-    InputMesh mesh = read_mesh(path);
-    n = mesh.mesh.positions.size();
-    benchmark::DoNotOptimize(mesh);
-  }
-  set_vertex_rate(state, n);
-}
+void ReadObj(benchmark::State& state) { read_repeatedly(state, obj_file(state.range(0))); }
+
+void ReadPly(benchmark::State& state) { read_repeatedly(state, ply_file(state.range(0))); }
 
 void Prepare(benchmark::State& state) {
   const TriangleMesh& input = wave_mesh(state.range(0));
