@@ -245,6 +245,9 @@ struct WaterPlan {
   bool camera_box = false;  // the camera is not configured
   FrameSourceOptions frames;
   bool shares() const { return camera_box || shading != WaterShading::toon || maps; }
+  // The survey reads the objects for the camera's box, and keeps them for their includes (a
+  // static object's mesh in SceneRun, an animated one's in each frame's record).
+  bool survey_reads_objects() const { return camera_box; }
 };
 
 WaterPlan plan_water(const SceneConfig& config, const PovgenRequest& request, std::size_t frames) {
@@ -418,17 +421,16 @@ void throw_if_stopped(const SceneRun& run, const std::atomic<bool>* stop) {
 }
 
 // The survey, for a sequence that shares something: each water frame read and analysed once,
-// what the sequence shares gathered from it, and what writing it needs kept in `cache`; then
-// the objects' meshes for the camera's box.
+// what the sequence shares gathered from it, and what writing it needs kept in `cache`; with
+// the default camera, the objects' meshes too, for the camera's box (read once: kept for
+// their includes).
 SequenceSurvey survey_sequence(SceneRun& run, FrameCache& cache, const ProgressFn& progress,
                                const std::atomic<bool>* stop) {
   SequenceSurvey survey;
   if (run.plan.maps) survey.maps.emplace(run.request.up);
   FrameSource source(run.plan.frames);
   RecordWriter record;  // one buffer for every frame's record
-  // The objects' meshes count in the camera's box: a static object's is kept for its include,
-  // an animated object's goes into each frame's record.
-  const bool read_objects = run.plan.camera_box;
+  const bool read_objects = run.plan.survey_reads_objects();
   auto grow = [&](const TriangleMesh& m) {
     for (const Vec3& p : m.positions) survey.grow_box(p, p, run.request.up);
   };
@@ -629,7 +631,7 @@ void write_frames(SceneRun& run, FrameCache* cache, const ProgressFn& progress,
       empty = record.string();
       if (empty.empty() && run.map_view) maps = unpack_map_inputs(record);
       if (empty.empty()) s = unpack_surface(record);
-      for (std::size_t i = 0; run.plan.camera_box && i < run.objects.size(); ++i)
+      for (std::size_t i = 0; run.plan.survey_reads_objects() && i < run.objects.size(); ++i)
         if (run.objects[i].placement.animated) mesh_fields(record, run.object_mesh[i].emplace());
     } else {
       SourceFrame f = run.read_water(*source, path);
