@@ -54,6 +54,7 @@
 
 #include "analyzer/geometry_tolerances.hpp"
 #include "analyzer/intrinsic_delaunay.hpp"
+#include "analyzer/lanes.hpp"
 #include "common/parallel.hpp"
 #include "analyzer/vertex_normals.hpp"
 
@@ -111,89 +112,134 @@ double mollification_needed(double xa2, double xb2, double ab2) {
 
 // 2^-e for the binary exponent e of m ≥ 0, from its exponent bits alone (a few integer
 // operations, where std::ilogb and std::ldexp are calls), so that m · 2^-e lies in [1, 2). Kept
-// finite at the ends: subnormals take e = −1023, and m ≥ 2^1023, inf and NaN take e = 1022.
-double power_of_two_below(double m) {
-  const std::uint64_t biased = std::min<std::uint64_t>((std::bit_cast<std::uint64_t>(m) >> 52) & 0x7ff, 2045);
-  return std::bit_cast<double>((2046 - biased) << 52);
+// finite at the ends: subnormals take e = −1023, and m ≥ 2^1023, inf and NaN take e = 1022. For
+// a double or four lanes (lanes.hpp).
+template <class Real>
+[[gnu::always_inline]] inline Real power_of_two_below(Real m) {
+  constexpr std::int64_t largest_biased = 2045;
+  if constexpr (std::is_same_v<Real, double>) {
+    const std::int64_t biased =
+        std::min((std::bit_cast<std::int64_t>(m) >> 52) & 0x7ff, largest_biased);
+    return std::bit_cast<double>((2046 - biased) << 52);
+  } else {
+    LaneMask biased = (std::bit_cast<LaneMask>(m) >> 52) & 0x7ff;
+    biased = biased > largest_biased ? LaneMask{} + largest_biased : biased;
+    return std::bit_cast<Lanes>((2046 - biased) << 52);
+  }
 }
 
-// Whether re + i·im lies in [π, 2π) (see add_corner).
-bool in_lower_half(double re, double im) { return im < 0.0 || (im == 0.0 && re < 0.0); }
+// Whether re + i·im lies in [π, 2π) (see add_corner). Without branches: which way they go
+// depends on the angles, and a turn is counted about once a vertex.
+bool in_lower_half(double re, double im) { return (im < 0.0) | ((im == 0.0) & (re < 0.0)); }
 
-// One face's contributions to each of its corners, computed once for the three. Corner i's
-// neighbours are i + 1 and i + 2 (mod 3); edge[i] runs from corner i to corner i + 1.
-struct FaceTerms {
-  bool shapeless;         // a zero-length edge: no shape, no contributions
-  double double_area;     // |u × v|
-  double dot[3];          // u · v at each corner
-  Vec3 normal[3];         // θ n_face at each corner (vertex_normals.hpp)
-  double area[3];         // the corner's share of the mixed Voronoi area
-  Vec3 laplacian[3];      // the corner's Laplacian terms, from the positions
-  double mollification;   // the δ the face needs (≤ 0: none)
-  bool cap;               // an angle above 150°
+// The terms of a block of faces, computed once for their three corners, one array a term so
+// that four faces are computed at once, one a lane (lanes.hpp). Corner i's neighbours are i + 1
+// and i + 2 (mod 3); edge[i] runs from corner i to corner i + 1. A block fits in the level-1
+// cache beside the vertex sums it is added to.
+constexpr std::size_t block_faces = 64;
+static_assert(block_faces % lane_count == 0);
+
+struct FaceBlock {
+  // Input: the faces' scaled corner positions, [corner][axis][face].
+  alignas(32) double position[3][3][block_faces];
+  // Output.
+  alignas(32) double double_area[block_faces];      // |u × v|
+  // u · v + i|u × v| at each corner, times the power of two that brings the larger of the
+  // two magnitudes into [1, 2) (add_corner).
+  alignas(32) double turn_re[3][block_faces];
+  alignas(32) double turn_im[3][block_faces];
+  alignas(32) double normal[3][3][block_faces];     // θ n_face at each corner (vertex_normals.hpp)
+  alignas(32) double area[3][block_faces];          // the corner's share of the mixed Voronoi area
+  alignas(32) double laplacian[3][3][block_faces];  // the corner's Laplacian terms, from the positions
+  alignas(32) double length2[3][block_faces];       // squared edge lengths
+  alignas(32) double longest2[block_faces];
+  alignas(32) std::int64_t shapeless[block_faces];  // nonzero: a zero-length edge, no shape, no terms
+  alignas(32) std::int64_t cap[block_faces];        // nonzero: an angle above 150°
+
+  // Face slot i takes the scaled positions of triangle t.
+  void load(std::size_t i, const std::vector<Vec3>& positions, const Triangle& t, double scale) {
+    for (int corner = 0; corner < 3; ++corner)
+      for (int axis = 0; axis < 3; ++axis)
+        position[corner][axis][i] = positions[t[corner]][axis] * scale;
+  }
 };
 
-// The face's terms from its scaled positions. Every corner takes the same cross product
-// u × v = edge[2] × edge[0] and the same reciprocal of its length, so the corners of one face
-// agree to the last bit on its plane and area.
-[[gnu::always_inline]] inline FaceTerms face_terms(const std::vector<Vec3>& positions,
-                                                   const Triangle& t, double scale) {
-  FaceTerms face;
-  // Written out in coordinates: kept in registers, where the compiler would store Eigen's
-  // three-element vectors in halves and reload them whole.
-  const Vec3& q0 = positions[t[0]];
-  const Vec3& q1 = positions[t[1]];
-  const Vec3& q2 = positions[t[2]];
-  const double p0[3] = {q0.x() * scale, q0.y() * scale, q0.z() * scale};
-  const double p1[3] = {q1.x() * scale, q1.y() * scale, q1.z() * scale};
-  const double p2[3] = {q2.x() * scale, q2.y() * scale, q2.z() * scale};
-  double edge[3][3];
-  for (int k = 0; k < 3; ++k) {
-    edge[0][k] = p1[k] - p0[k];
-    edge[1][k] = p2[k] - p1[k];
-    edge[2][k] = p0[k] - p2[k];
+// The terms of faces [i, i + lane_count) of the block. Every corner takes the same cross
+// product u × v = edge[2] × edge[0] and the same reciprocal of its length, so the corners of
+// one face agree to the last bit on its plane and area; no lane reads another, so a face's
+// terms are the same bits whichever block and lane compute them.
+[[gnu::always_inline]] inline void compute_face_lanes(FaceBlock& block, std::size_t i) {
+  Lanes edge[3][3];
+  for (int axis = 0; axis < 3; ++axis) {
+    const Lanes p0 = load_lanes(&block.position[0][axis][i]);
+    const Lanes p1 = load_lanes(&block.position[1][axis][i]);
+    const Lanes p2 = load_lanes(&block.position[2][axis][i]);
+    edge[0][axis] = p1 - p0;
+    edge[1][axis] = p2 - p1;
+    edge[2][axis] = p0 - p2;
   }
-  auto dot = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
-  const double length2[3] = {dot(edge[0], edge[0]), dot(edge[1], edge[1]), dot(edge[2], edge[2])};
-  face.shapeless = is_shapeless_triangle(length2[0], length2[1], length2[2]);
-  if (face.shapeless) return face;
-  const Vec3 cross(edge[2][1] * edge[0][2] - edge[2][2] * edge[0][1],
-                   edge[2][2] * edge[0][0] - edge[2][0] * edge[0][2],
-                   edge[2][0] * edge[0][1] - edge[2][1] * edge[0][0]);
-  const double double_area =
-      std::sqrt(cross.x() * cross.x() + cross.y() * cross.y() + cross.z() * cross.z());
-  face.double_area = double_area;
+  const Lanes length2[3] = {dot3(edge[0], edge[0]), dot3(edge[1], edge[1]), dot3(edge[2], edge[2])};
+  // is_shapeless_triangle, written for lanes.
+  const LaneMask shapeless = length2[0] == 0.0 || length2[1] == 0.0 || length2[2] == 0.0;
+  const Lanes cross[3] = {edge[2][1] * edge[0][2] - edge[2][2] * edge[0][1],
+                          edge[2][2] * edge[0][0] - edge[2][0] * edge[0][2],
+                          edge[2][0] * edge[0][1] - edge[2][1] * edge[0][0]};
+  const Lanes double_area = square_root(dot3(cross, cross));
   // At corner i, u = edge[i] and v = −edge[i + 2].
-  face.dot[0] = -dot(edge[0], edge[2]);
-  face.dot[1] = -dot(edge[1], edge[0]);
-  face.dot[2] = -dot(edge[2], edge[1]);
-  const double longest2 = std::max({length2[0], length2[1], length2[2]});
-  for (int i = 0; i < 3; ++i)
-    face.normal[i] = corner_normal_term(cross, double_area, face.dot[i], longest2);
-  face.mollification = double_area >= mollification_area_ratio * longest2
-                           ? 0.0
-                           : mollification_needed(length2[0], length2[2], length2[1]);
-  face.cap = std::min({face.dot[0], face.dot[1], face.dot[2]}) < cap_cotangent * double_area;
-  // Mixed Voronoi area (Meyer et al. 2002, Fig. 4), always the mesh's own.
-  const double inverse_area = 1.0 / double_area;
-  const double cot[3] = {face.dot[0] * inverse_area, face.dot[1] * inverse_area,
-                         face.dot[2] * inverse_area};
-  const bool obtuse = face.dot[0] < 0.0 || face.dot[1] < 0.0 || face.dot[2] < 0.0;
-  for (int i = 0; i < 3; ++i) {
-    const int next = i == 2 ? 0 : i + 1, last = i == 0 ? 2 : i - 1;
-    if (face.dot[i] < 0.0)
-      face.area[i] = 0.25 * double_area;
-    else if (obtuse)
-      face.area[i] = 0.125 * double_area;
-    else
-      face.area[i] = 0.125 * (length2[i] * cot[last] + length2[last] * cot[next]);
-    // Cotangent Laplacian: edge i → next is weighted by the cotangent at last, edge i → last
-    // by that at next.
-    face.laplacian[i] = Vec3(cot[next] * edge[last][0] - cot[last] * edge[i][0],
-                             cot[next] * edge[last][1] - cot[last] * edge[i][1],
-                             cot[next] * edge[last][2] - cot[last] * edge[i][2]);
+  const Lanes corner_dot[3] = {-dot3(edge[0], edge[2]), -dot3(edge[1], edge[0]), -dot3(edge[2], edge[1])};
+  const Lanes longest2 = maximum(maximum(length2[0], length2[1]), length2[2]);
+  const Lanes inverse_area = 1.0 / double_area;
+  // corner_normal_term (vertex_normals.hpp), written for lanes: zero for a degenerate face.
+  const LaneMask degenerate = !(double_area > degenerate_area_ratio * longest2);
+  for (int c = 0; c < 3; ++c) {
+    const Lanes weight = approximate_angle(double_area, corner_dot[c]) * inverse_area;
+    for (int axis = 0; axis < 3; ++axis)
+      store_lanes(&block.normal[c][axis][i], select(degenerate, Lanes{}, weight * cross[axis]));
   }
-  return face;
+  const Lanes smallest_dot = minimum(minimum(corner_dot[0], corner_dot[1]), corner_dot[2]);
+  const LaneMask cap = smallest_dot < cap_cotangent * double_area;
+  // Mixed Voronoi area (Meyer et al. 2002, Fig. 4), always the mesh's own.
+  const Lanes cot[3] = {corner_dot[0] * inverse_area, corner_dot[1] * inverse_area,
+                        corner_dot[2] * inverse_area};
+  const LaneMask obtuse = corner_dot[0] < 0.0 || corner_dot[1] < 0.0 || corner_dot[2] < 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const int next = c == 2 ? 0 : c + 1, last = c == 0 ? 2 : c - 1;
+    const Lanes voronoi = 0.125 * (length2[c] * cot[last] + length2[last] * cot[next]);
+    store_lanes(&block.area[c][i], select(corner_dot[c] < 0.0, 0.25 * double_area,
+                                          select(obtuse, 0.125 * double_area, voronoi)));
+    // Cotangent Laplacian: edge c → next is weighted by the cotangent at last, edge c → last
+    // by that at next.
+    for (int axis = 0; axis < 3; ++axis)
+      store_lanes(&block.laplacian[c][axis][i],
+                  cot[next] * edge[last][axis] - cot[last] * edge[c][axis]);
+    const Lanes turn_scale = power_of_two_below(maximum(absolute(corner_dot[c]), double_area));
+    store_lanes(&block.turn_re[c][i], corner_dot[c] * turn_scale);
+    store_lanes(&block.turn_im[c][i], double_area * turn_scale);
+    store_lanes(&block.length2[c][i], length2[c]);
+  }
+  store_lanes(&block.double_area[i], double_area);
+  store_lanes(&block.longest2[i], longest2);
+  store_mask(&block.shapeless[i], shapeless);
+  store_mask(&block.cap[i], cap);
+}
+
+// The terms of the block's first `count` faces (the slots past them hold copies of the first,
+// so that whole lanes are computed from finite positions).
+[[gnu::always_inline]] inline void compute_faces(FaceBlock& block, std::size_t count) {
+  const std::size_t padded = (count + lane_count - 1) / lane_count * lane_count;
+  for (std::size_t i = count; i < padded; ++i)
+    for (int corner = 0; corner < 3; ++corner)
+      for (int axis = 0; axis < 3; ++axis) block.position[corner][axis][i] = block.position[corner][axis][0];
+  for (std::size_t i = 0; i < padded; i += lane_count) compute_face_lanes(block, i);
+}
+
+bool is_shapeless(const FaceBlock& block, std::size_t i) { return block.shapeless[i] != 0; }
+
+// The δ that face i of the block needs (≤ 0: none).
+double block_mollification(const FaceBlock& block, std::size_t i) {
+  return block.double_area[i] >= mollification_area_ratio * block.longest2[i]
+             ? 0.0
+             : mollification_needed(block.length2[0][i], block.length2[2][i], block.length2[1][i]);
 }
 
 // What one vertex sums over its faces, but for its normal and area, which are summed in place
@@ -222,26 +268,38 @@ void start_ring(RingSums& sums, Vec3& normal, double& area) {
 // of a grid and a collinear face, which leave Im at ±0, count too (each θ ≤ π, so a step can
 // cross π at most once). The deficit of a nearly flat vertex is then the small argument itself,
 // not the difference of two numbers near 2π, and it costs one atan2 per vertex instead of one
-// per corner. The product is not normalised by |u||v| (a square root and a division per
-// corner) but brought back to a magnitude in [1, 2) after each step by a power of two, which is
-// exact: the argument is that of the unit product up to round-off.
-[[gnu::always_inline]] inline void add_corner(const FaceTerms& face, int corner, bool laplacian,
-                                              RingSums& sums, Vec3& normal, double& area) {
-  if (face.shapeless) {
+// per corner. The factors are not normalised by |u||v| (a square root and a division per
+// corner) but by a power of two that brings their larger part into [1, 2) (compute_face_lanes),
+// which is exact: the argument is that of the unit product up to round-off. So the product's
+// magnitude only grows, by less than 2√2 a corner; it is brought back by a power of two where
+// it passes 2^500 (a vertex of some 300 faces), so that it never overflows.
+constexpr double turn_renormalise_above = 0x1p500;
+
+[[gnu::always_inline]] inline void add_corner(const FaceBlock& block, std::size_t i, int corner,
+                                              bool laplacian, RingSums& sums, Vec3& normal,
+                                              double& area) {
+  if (is_shapeless(block, i)) {
     sums.at_shapeless = true;
     return;
   }
   // Written out: std::complex's operator* and abs guard against inf/NaN at several times the cost.
-  const double dot = face.dot[corner], double_area = face.double_area;
-  const double next_re = sums.turn_re * dot - sums.turn_im * double_area;
-  const double next_im = sums.turn_re * double_area + sums.turn_im * dot;
+  const double re = block.turn_re[corner][i], im = block.turn_im[corner][i];
+  double next_re = sums.turn_re * re - sums.turn_im * im;
+  double next_im = sums.turn_re * im + sums.turn_im * re;
   sums.turns += !in_lower_half(sums.turn_re, sums.turn_im) && in_lower_half(next_re, next_im);
-  const double normaliser = power_of_two_below(std::max(std::abs(next_re), std::abs(next_im)));
-  sums.turn_re = next_re * normaliser;
-  sums.turn_im = next_im * normaliser;
-  normal += face.normal[corner];
-  area += face.area[corner];
-  if (laplacian) sums.laplacian += face.laplacian[corner];
+  const double magnitude = std::max(std::abs(next_re), std::abs(next_im));
+  if (!(magnitude < turn_renormalise_above)) [[unlikely]] {
+    const double normaliser = power_of_two_below(magnitude);
+    next_re *= normaliser;
+    next_im *= normaliser;
+  }
+  sums.turn_re = next_re;
+  sums.turn_im = next_im;
+  normal += Vec3(block.normal[corner][0][i], block.normal[corner][1][i], block.normal[corner][2][i]);
+  area += block.area[corner][i];
+  if (laplacian)
+    sums.laplacian += Vec3(block.laplacian[corner][0][i], block.laplacian[corner][1][i],
+                           block.laplacian[corner][2][i]);
 }
 
 // The Laplacian terms of corner x of a face (x, a, b) with edge lengths |xa| = la, |xb| = lb,
@@ -290,36 +348,44 @@ bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t
   return true;
 }
 
-// The face pass over faces [begin, end): each face's terms are computed once and added to the
-// sums of those of its corners whose faces all lie in [begin, end). The first face of a vertex
-// starts its sums, so no array needs clearing beforehand. Forced inline so that each of the two
-// instantiations below compiles all of it for its own instruction set.
+// The face pass over faces [begin, end): each face's terms are computed once, a block at a
+// time, and added to the sums of those of its corners whose faces all lie in [begin, end). The
+// first face of a vertex starts its sums, so no array needs clearing beforehand. Forced inline
+// so that each of the two instantiations below compiles all of it for its own instruction set.
 [[gnu::always_inline]] inline void sum_faces(const GatherInput& in, std::size_t begin,
                                              std::size_t end, CurvatureField& field,
                                              GatherCounts& counts) {
   const VertexFaces& vf = in.topology.vertex_faces;
   const std::vector<Triangle>& triangles = in.mesh.triangles;
   const bool laplacian = in.intrinsic == nullptr;
-  for (std::size_t f = begin; f < end; ++f) {
-    const Triangle& t = triangles[f];
-    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;  // in no row (topology.hpp)
-    const FaceTerms face = face_terms(in.mesh.positions, t, in.scale);
-    if (face.shapeless) {
-      ++counts.shapeless;
-    } else {
-      if (face.mollification > 0.0) {
-        ++counts.mollified;
-        counts.mollification = std::max(counts.mollification, face.mollification);
+  FaceBlock block;
+  for (std::size_t block_begin = begin; block_begin < end; block_begin += block_faces) {
+    const std::size_t count = std::min(block_faces, end - block_begin);
+    for (std::size_t i = 0; i < count; ++i)
+      block.load(i, in.mesh.positions, triangles[block_begin + i], in.scale);
+    compute_faces(block, count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t f = block_begin + i;
+      const Triangle& t = triangles[f];
+      if (has_repeated_corner(t)) continue;  // in no row (topology.hpp)
+      if (is_shapeless(block, i)) {
+        ++counts.shapeless;
+      } else {
+        const double mollification = block_mollification(block, i);
+        if (mollification > 0.0) {
+          ++counts.mollified;
+          counts.mollification = std::max(counts.mollification, mollification);
+        }
+        counts.caps += block.cap[i] != 0;
       }
-      counts.caps += face.cap;
-    }
-    for (int corner = 0; corner < 3; ++corner) {
-      const std::int32_t v = t[corner];
-      const std::int32_t first = vf.face_indices[vf.offsets[v]];
-      const std::int32_t last = vf.face_indices[vf.offsets[v + 1] - 1];
-      if (static_cast<std::size_t>(first) < begin || static_cast<std::size_t>(last) >= end) continue;
-      if (static_cast<std::size_t>(first) == f) start_ring(in.sums[v], field.normal[v], field.area[v]);
-      add_corner(face, corner, laplacian, in.sums[v], field.normal[v], field.area[v]);
+      for (int corner = 0; corner < 3; ++corner) {
+        const std::int32_t v = t[corner];
+        const std::int32_t first = vf.face_indices[vf.offsets[v]];
+        const std::int32_t last = vf.face_indices[vf.offsets[v + 1] - 1];
+        if (static_cast<std::size_t>(first) < begin || static_cast<std::size_t>(last) >= end) continue;
+        if (static_cast<std::size_t>(first) == f) start_ring(in.sums[v], field.normal[v], field.area[v]);
+        add_corner(block, i, corner, laplacian, in.sums[v], field.normal[v], field.area[v]);
+      }
     }
   }
 }
@@ -330,6 +396,7 @@ bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t
                                                    std::size_t end, CurvatureField& field) {
   const VertexFaces& vf = in.topology.vertex_faces;
   const double scale = in.scale, scale2 = scale * scale;
+  FaceBlock block;
   for (std::size_t v = begin; v < end; ++v) {
     const auto vertex = static_cast<std::int32_t>(v);
     const std::span<const std::int32_t> row = vf.of(vertex);
@@ -337,11 +404,16 @@ bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t
     if (row.empty()) {
       start_ring(sums, field.normal[v], field.area[v]);
     } else if (!in_one_chunk(row, in.face_bounds)) {
+      // The same block code as the face pass, so the same bits for each face's terms.
       start_ring(sums, field.normal[v], field.area[v]);
-      for (std::int32_t f : row) {
-        const Triangle& t = in.mesh.triangles[f];
-        add_corner(face_terms(in.mesh.positions, t, scale), corner_of(t, vertex),
-                   in.intrinsic == nullptr, sums, field.normal[v], field.area[v]);
+      for (std::size_t piece = 0; piece < row.size(); piece += block_faces) {
+        const std::size_t count = std::min(block_faces, row.size() - piece);
+        for (std::size_t i = 0; i < count; ++i)
+          block.load(i, in.mesh.positions, in.mesh.triangles[row[piece + i]], scale);
+        compute_faces(block, count);
+        for (std::size_t i = 0; i < count; ++i)
+          add_corner(block, i, corner_of(in.mesh.triangles[row[piece + i]], vertex),
+                     in.intrinsic == nullptr, sums, field.normal[v], field.area[v]);
       }
     }
     if (in.intrinsic) {
@@ -371,10 +443,13 @@ bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t
       field.status[v] = CurvatureStatus::extrapolated;
       continue;
     }
-    // The argument in [−π, π), on the side of the branch cut that the turn count assumes.
-    const double argument = in_lower_half(sums.turn_re, sums.turn_im)
-                                ? -std::atan2(std::abs(sums.turn_im), sums.turn_re)
-                                : std::atan2(std::abs(sums.turn_im), sums.turn_re);
+    // The argument in [−π, π), on the side of the branch cut that the turn count assumes, of
+    // the product brought into [1, 2) (atan2 need not be exact under scaling).
+    const double normaliser =
+        power_of_two_below(std::max(std::abs(sums.turn_re), std::abs(sums.turn_im)));
+    const double turn_re = sums.turn_re * normaliser, turn_im = sums.turn_im * normaliser;
+    const double argument = in_lower_half(turn_re, turn_im) ? -std::atan2(std::abs(turn_im), turn_re)
+                                                            : std::atan2(std::abs(turn_im), turn_re);
     const double angle_deficit = -(argument + 2.0 * std::numbers::pi * (sums.turns - 1));
     // In scaled units, then back: K ∝ 1/s², H ∝ 1/s.
     const double gaussian = angle_deficit / ring_area * scale2;

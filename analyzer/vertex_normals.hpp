@@ -6,6 +6,7 @@
 #pragma once
 
 #include "analyzer/geometry_tolerances.hpp"
+#include "analyzer/lanes.hpp"
 #include "analyzer/mesh.hpp"
 #include "analyzer/topology.hpp"
 
@@ -18,16 +19,22 @@
 namespace toonwater {
 
 // atan2(y, x) for y >= 0 by a polynomial, absolute error below 1e-5 rad: plenty for a weight,
-// and several times cheaper than std::atan2.
-inline double approximate_angle(double y, double x) {
-  const double ax = std::abs(x);
-  const double ratio = std::min(ax, y) / std::max({ax, y, std::numeric_limits<double>::min()});
-  const double r2 = ratio * ratio;
-  double angle = ratio * (0.99997726 + r2 * (-0.33262347 + r2 * (0.19354346 +
-                          r2 * (-0.11643287 + r2 * (0.05265332 - r2 * 0.01172120)))));
-  if (y > ax) angle = std::numbers::pi / 2 - angle;
-  return x < 0.0 ? std::numbers::pi - angle : angle;
+// and several times cheaper than std::atan2. For a double or four lanes (lanes.hpp), with the
+// same bits in each lane as for a double.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // always inlined: no call passes the lanes (lanes.hpp)
+template <class Real>
+[[gnu::always_inline]] inline Real approximate_angle(Real y, Real x) {
+  const Real ax = absolute(x);
+  const Real ratio =
+      minimum(ax, y) / maximum(maximum(ax, y), splat<Real>(std::numeric_limits<double>::min()));
+  const Real r2 = ratio * ratio;
+  Real angle = ratio * (0.99997726 + r2 * (-0.33262347 + r2 * (0.19354346 +
+                        r2 * (-0.11643287 + r2 * (0.05265332 - r2 * 0.01172120)))));
+  angle = select(y > ax, std::numbers::pi / 2 - angle, angle);
+  return select(x < 0.0, std::numbers::pi - angle, angle);
 }
+#pragma GCC diagnostic pop
 
 // One face's term θ n_f at the corner x of face (x, a, b), given xa × xb, its length, xa · xb
 // and the face's longest squared edge (xa = a − x, xb = b − x): zero for a degenerate face
