@@ -223,4 +223,3 @@ BENCHMARK(AnalyzeCommand)->Arg(1000)->UseManualTime()->Iterations(3)->Unit(bench
 }  // namespace
 }  // namespace toonwater
 
-BENCHMARK_MAIN();

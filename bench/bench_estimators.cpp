@@ -71,4 +71,3 @@ BENCHMARK(Smoothing2)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 }  // namespace
 }  // namespace toonwater
 
-BENCHMARK_MAIN();

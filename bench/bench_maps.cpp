@@ -85,4 +85,3 @@ BENCHMARK(WriteMaps)->Arg(0)->Arg(1)->ArgName("replace")->Unit(benchmark::kMilli
 }  // namespace
 }  // namespace toonwater
 
-BENCHMARK_MAIN();

@@ -348,4 +348,3 @@ BENCHMARK(BM_PovrayShellCulling)->Arg(707)->Unit(benchmark::kSecond)->UseRealTim
 
 }  // namespace
 
-BENCHMARK_MAIN();

@@ -12,7 +12,6 @@
 #include "analyzer/stopwatch.hpp"
 #include "images/image_codec.hpp"
 
-#include <malloc.h>
 
 #include <chrono>
 #include <cstdio>
@@ -98,19 +97,8 @@ void check_outputs(const AnalyzeArgs& args) {
     throw InputError(args.maps + ": --maps names the input mesh");
 }
 
-// The analysis allocates and frees arrays of tens of megabytes in turn. By default glibc maps
-// each such array afresh and unmaps it when freed, so every one pays again for page faults and
-// for the kernel's zeroing of its pages (a quarter of a 1M-vertex analysis's CPU time). Kept in
-// the heap instead, a freed array's pages serve the next ones; the peak stays the same.
-void keep_large_arrays_in_the_heap() {
-  constexpr int largest_mapped_alone = 1 << 30;  // bytes; larger ones are still mapped
-  mallopt(M_MMAP_THRESHOLD, largest_mapped_alone);
-  mallopt(M_TRIM_THRESHOLD, largest_mapped_alone);
-}
-
 void run_analyze(const AnalyzeArgs& args) {
   check_outputs(args);
-  keep_large_arrays_in_the_heap();
   if (!args.maps.empty()) image_codec();  // a missing image module fails before any work
   // Temporaries that killed runs left where this one writes.
   for (const std::string& path : {args.csv, args.ply})

@@ -3,6 +3,7 @@
 #include "cli/exit_codes.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/large_arrays.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "images/image_codec.hpp"
 #include "povgen/config.hpp"
@@ -40,6 +41,7 @@ std::string subcommand_names(const CLI::App& app) {
 
 int main(int argc, char** argv) {
   toonwater::remove_temporaries_on_signals();  // an interrupted run leaves no temporary file
+  toonwater::keep_large_arrays_in_the_heap();     // analyze and every povgen frame reuse pages
   CLI::App app{"toonwater: cartoon water from fluid-simulation meshes, rendered with POV-Ray"};
   app.name("toonwater");
   app.require_subcommand(1);
