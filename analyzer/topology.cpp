@@ -79,11 +79,37 @@ std::int32_t find_root(std::vector<RingNeighbour>& ring, std::int32_t i) {
   return i;
 }
 
-std::int32_t ring_slot(std::vector<RingNeighbour>& ring, std::int32_t vertex) {
+// The slot of `vertex` in the ring, added if new. Scanning is fastest for the handful of
+// neighbours most vertices have; the ring of a vertex with more faces than this (a fan of
+// thousands, as degenerate or hostile input has) is listed sorted beforehand and searched, so
+// that classifying it costs O(k log k) instead of O(k²).
+constexpr std::size_t ring_scan_limit = 32;
+
+std::int32_t ring_slot(std::vector<RingNeighbour>& ring, std::int32_t vertex, bool sorted) {
+  if (sorted) {
+    const auto it = std::lower_bound(ring.begin(), ring.end(), vertex,
+                                     [](const RingNeighbour& r, std::int32_t w) { return r.vertex < w; });
+    return static_cast<std::int32_t>(it - ring.begin());
+  }
   for (std::size_t i = 0; i < ring.size(); ++i)
     if (ring[i].vertex == vertex) return static_cast<std::int32_t>(i);
   ring.push_back({vertex, 0, 0, static_cast<std::int32_t>(ring.size())});
   return static_cast<std::int32_t>(ring.size() - 1);
+}
+
+// Every neighbour of v in its slot, sorted by vertex.
+void list_ring_sorted(const TriangleMesh& mesh, std::span<const std::int32_t> faces, std::int32_t v,
+                      std::vector<RingNeighbour>& ring) {
+  for (std::int32_t f : faces) {
+    const auto [a, b] = other_corners(mesh.triangles[f], v);
+    ring.push_back({a, 0, 0, 0});
+    ring.push_back({b, 0, 0, 0});
+  }
+  std::sort(ring.begin(), ring.end(), [](const RingNeighbour& x, const RingNeighbour& y) { return x.vertex < y.vertex; });
+  ring.erase(std::unique(ring.begin(), ring.end(),
+                         [](const RingNeighbour& x, const RingNeighbour& y) { return x.vertex == y.vertex; }),
+             ring.end());
+  for (std::size_t i = 0; i < ring.size(); ++i) ring[i].root = static_cast<std::int32_t>(i);
 }
 
 struct VertexEdges {
@@ -98,11 +124,13 @@ VertexEdges classify_vertex(const TriangleMesh& mesh, const VertexFaces& vf, std
   const auto faces = vf.of(v);
   if (faces.empty()) return {VertexKind::isolated, 0, 0, 0};
   ring.clear();
+  const bool sorted = faces.size() > ring_scan_limit;
+  if (sorted) list_ring_sorted(mesh, faces, v, ring);
   for (std::int32_t f : faces) {
     // The face winds v → a → b → v: the edge to a leaves v, the edge to b enters it.
     const auto [a, b] = other_corners(mesh.triangles[f], v);
-    const std::int32_t sa = ring_slot(ring, a);
-    const std::int32_t sb = ring_slot(ring, b);
+    const std::int32_t sa = ring_slot(ring, a, sorted);
+    const std::int32_t sb = ring_slot(ring, b, sorted);
     ++ring[sa].face_count;
     ++ring[sa].outgoing;
     ++ring[sb].face_count;
