@@ -128,32 +128,31 @@ template <class Real>
   }
 }
 
-// Whether re + i·im lies in [π, 2π) (see add_corner). Without branches: which way they go
-// depends on the angles, and a turn is counted about once a vertex.
-bool in_lower_half(double re, double im) { return (im < 0.0) | ((im == 0.0) & (re < 0.0)); }
-
-// The terms of a block of faces, computed once for their three corners, one array a term so
-// that four faces are computed at once, one a lane (lanes.hpp). Corner i's neighbours are i + 1
-// and i + 2 (mod 3); edge[i] runs from corner i to corner i + 1. A block fits in the level-1
-// cache beside the vertex sums it is added to.
+// The terms of a block of faces, computed once for their three corners, four faces at once, one
+// a lane (lanes.hpp). Corner i's neighbours are i + 1 and i + 2 (mod 3); edge[i] runs from
+// corner i to corner i + 1. Each corner's terms are then laid out as the vertex sums take them
+// (RingSums), so that adding a corner is a few whole-vector additions. A block fits in the
+// level-1 cache beside the vertex sums it is added to.
 constexpr std::size_t block_faces = 64;
 static_assert(block_faces % lane_count == 0);
 
 struct FaceBlock {
   // Input: the faces' scaled corner positions, [corner][axis][face].
   alignas(32) double position[3][3][block_faces];
-  // Output.
-  alignas(32) double double_area[block_faces];      // |u × v|
-  // u · v + i|u × v| at each corner, times the power of two that brings the larger of the
-  // two magnitudes into [1, 2) (add_corner).
-  alignas(32) double turn_re[3][block_faces];
-  alignas(32) double turn_im[3][block_faces];
-  alignas(32) double normal[3][3][block_faces];     // θ n_face at each corner (vertex_normals.hpp)
-  alignas(32) double area[3][block_faces];          // the corner's share of the mixed Voronoi area
-  alignas(32) double laplacian[3][3][block_faces];  // the corner's Laplacian terms, from the positions
-  alignas(32) double length2[3][block_faces];       // squared edge lengths
+  // Output, per corner and face:
+  //   ring: the Laplacian terms from the positions (xyz) and the corner's approximate angle θ̃
+  //         (NaN at a face with a zero-length edge, which has no shape and no terms);
+  //   normal_area: θ n_face (vertex_normals.hpp) and the corner's share of the mixed Voronoi area;
+  //   turn: u·v + i|u×v| times the power of two that brings the larger of its parts into
+  //         [1, 2) (add_corner); 1 at a shapeless face.
+  alignas(32) double ring[3][block_faces][4];
+  alignas(32) double normal_area[3][block_faces][4];
+  alignas(32) double turn[3][block_faces][2];
+  // Per face, for the counts of the face pass.
+  alignas(32) double double_area[block_faces];  // |u × v|
+  alignas(32) double length2[3][block_faces];   // squared edge lengths
   alignas(32) double longest2[block_faces];
-  alignas(32) std::int64_t shapeless[block_faces];  // nonzero: a zero-length edge, no shape, no terms
+  alignas(32) std::int64_t shapeless[block_faces];  // nonzero: a zero-length edge
   alignas(32) std::int64_t cap[block_faces];        // nonzero: an angle above 150°
 
   // Face slot i takes the scaled positions of triangle t.
@@ -163,6 +162,13 @@ struct FaceBlock {
         position[corner][axis][i] = positions[t[corner]][axis] * scale;
   }
 };
+
+// Four per-face values of four faces, stored as four corner records of those faces.
+[[gnu::always_inline]] inline void store_records(double (*records)[4], const Lanes (&values)[4]) {
+  Lanes columns[4];
+  transpose(values, columns);
+  for (int face = 0; face < lane_count; ++face) store_lanes(records[face], columns[face]);
+}
 
 // The terms of faces [i, i + lane_count) of the block. Every corner takes the same cross
 // product u × v = edge[2] × edge[0] and the same reciprocal of its length, so the corners of
@@ -191,11 +197,6 @@ struct FaceBlock {
   const Lanes inverse_area = 1.0 / double_area;
   // corner_normal_term (vertex_normals.hpp), written for lanes: zero for a degenerate face.
   const LaneMask degenerate = !(double_area > degenerate_area_ratio * longest2);
-  for (int c = 0; c < 3; ++c) {
-    const Lanes weight = approximate_angle(double_area, corner_dot[c]) * inverse_area;
-    for (int axis = 0; axis < 3; ++axis)
-      store_lanes(&block.normal[c][axis][i], select(degenerate, Lanes{}, weight * cross[axis]));
-  }
   const Lanes smallest_dot = minimum(minimum(corner_dot[0], corner_dot[1]), corner_dot[2]);
   const LaneMask cap = smallest_dot < cap_cotangent * double_area;
   // Mixed Voronoi area (Meyer et al. 2002, Fig. 4), always the mesh's own.
@@ -204,17 +205,29 @@ struct FaceBlock {
   const LaneMask obtuse = corner_dot[0] < 0.0 || corner_dot[1] < 0.0 || corner_dot[2] < 0.0;
   for (int c = 0; c < 3; ++c) {
     const int next = c == 2 ? 0 : c + 1, last = c == 0 ? 2 : c - 1;
-    const Lanes voronoi = 0.125 * (length2[c] * cot[last] + length2[last] * cot[next]);
-    store_lanes(&block.area[c][i], select(corner_dot[c] < 0.0, 0.25 * double_area,
-                                          select(obtuse, 0.125 * double_area, voronoi)));
+    const Lanes angle = approximate_angle(double_area, corner_dot[c]);
     // Cotangent Laplacian: edge c → next is weighted by the cotangent at last, edge c → last
     // by that at next.
+    Lanes ring[4];
     for (int axis = 0; axis < 3; ++axis)
-      store_lanes(&block.laplacian[c][axis][i],
-                  cot[next] * edge[last][axis] - cot[last] * edge[c][axis]);
+      ring[axis] = select(shapeless, Lanes{}, cot[next] * edge[last][axis] - cot[last] * edge[c][axis]);
+    ring[3] = select(shapeless, splat<Lanes>(std::numeric_limits<double>::quiet_NaN()), angle);
+    store_records(block.ring[c] + i, ring);
+    Lanes normal_area[4];
+    const Lanes weight = angle * inverse_area;
+    for (int axis = 0; axis < 3; ++axis)
+      normal_area[axis] = select(degenerate, Lanes{}, weight * cross[axis]);
+    const Lanes voronoi = 0.125 * (length2[c] * cot[last] + length2[last] * cot[next]);
+    normal_area[3] = select(shapeless, Lanes{},
+                            select(corner_dot[c] < 0.0, 0.25 * double_area,
+                                   select(obtuse, 0.125 * double_area, voronoi)));
+    store_records(block.normal_area[c] + i, normal_area);
     const Lanes turn_scale = power_of_two_below(maximum(absolute(corner_dot[c]), double_area));
-    store_lanes(&block.turn_re[c][i], corner_dot[c] * turn_scale);
-    store_lanes(&block.turn_im[c][i], double_area * turn_scale);
+    Lanes low, high;
+    interleave(select(shapeless, splat<Lanes>(1.0), corner_dot[c] * turn_scale),
+               select(shapeless, Lanes{}, double_area * turn_scale), low, high);
+    store_lanes(block.turn[c][i], low);
+    store_lanes(block.turn[c][i + 2], high);
     store_lanes(&block.length2[c][i], length2[c]);
   }
   store_lanes(&block.double_area[i], double_area);
@@ -243,63 +256,68 @@ double block_mollification(const FaceBlock& block, std::size_t i) {
 }
 
 // What one vertex sums over its faces, but for its normal and area, which are summed in place
-// in the field's arrays.
-struct RingSums {
-  Vec3 laplacian;     // Σ (cot α + cot β)(xᵢ − xⱼ)
-  double turn_re;     // the running product of the corners' u·v + i|u×v|
-  double turn_im;
-  std::int32_t turns;
-  bool at_shapeless;  // a corner of a face with a zero-length edge
+// in the field's arrays: Σ (cot α + cot β)(xᵢ − xⱼ) and Σθ̃ (NaN once a corner of a shapeless
+// face was added) in one vector, and the running product of the turn factors.
+struct alignas(32) RingSums {
+  double value[4];
+};
+struct TurnProduct {
+  double re, im;
 };
 
-void start_ring(RingSums& sums, Vec3& normal, double& area) {
-  sums.laplacian = Vec3::Zero();
-  sums.turn_re = 1.0;
-  sums.turn_im = 0.0;
-  sums.turns = 0;
-  sums.at_shapeless = false;
+// atan2(im, re) of a vertex's turn product. Most vertices are nearly flat, their product close
+// to the positive real axis, where atan x = x − x³/3 + x⁵/5 − x⁷/7 + x⁹/9 for x = im/re
+// (|x| < 2^-7) leaves out less than x^11/11, 1e-22 of x: as accurate as std::atan2 for a few
+// multiply-adds, where std::atan2 costs about 125 instructions.
+double turn_argument(double re, double im) {
+  constexpr double series_limit = 0x1p-7;
+  if (re > 0.0 && std::abs(im) < series_limit * re) {
+    const double x = im / re, x2 = x * x;
+    return x + x * x2 * (-1.0 / 3 + x2 * (1.0 / 5 + x2 * (-1.0 / 7 + x2 * (1.0 / 9))));
+  }
+  return std::atan2(im, re);
+}
+
+void start_ring(RingSums& ring, TurnProduct& turn, Vec3& normal, double& area) {
+  store_lanes(ring.value, Lanes{});
+  turn = {1.0, 0.0};
   normal = Vec3::Zero();
   area = 0.0;
 }
 
-// The angle sum Σθ is accumulated as the argument of the product of the complex numbers
-// u·v + i|u×v| = |u||v| (cos θ + i sin θ), counting the turns as the product enters the
-// lower half-plane [π, 2π) — Im < 0, or Im = 0 with Re < 0, so that the exact angles of π/2 and π
-// of a grid and a collinear face, which leave Im at ±0, count too (each θ ≤ π, so a step can
-// cross π at most once). The deficit of a nearly flat vertex is then the small argument itself,
-// not the difference of two numbers near 2π, and it costs one atan2 per vertex instead of one
-// per corner. The factors are not normalised by |u||v| (a square root and a division per
-// corner) but by a power of two that brings their larger part into [1, 2) (compute_face_lanes),
-// which is exact: the argument is that of the unit product up to round-off. So the product's
-// magnitude only grows, by less than 2√2 a corner; it is brought back by a power of two where
-// it passes 2^500 (a vertex of some 300 faces), so that it never overflows.
+// The angle sum Σθ is the argument of the product of the complex numbers
+// u·v + i|u×v| = |u||v| (cos θ + i sin θ), plus the whole turns, which the sum of the corners'
+// approximate angles θ̃ tells (each within 1e-5 of θ: vertex_normals.hpp). The deficit of a
+// nearly flat vertex is then the small argument itself, not the difference of two numbers near
+// 2π, and it costs one atan2 per vertex instead of one per corner. The factors are not
+// normalised by |u||v| (a square root and a division per corner) but by a power of two that
+// brings their larger part into [1, 2) (compute_face_lanes), which is exact: the argument is that
+// of the unit product up to round-off. So the product's magnitude only grows, by less than 2√2 a
+// corner; it is brought back by a power of two where it passes 2^500 (a vertex of some 300
+// faces), so that it never overflows.
 constexpr double turn_renormalise_above = 0x1p500;
+// The turns are read off Σθ̃ while it is surely within π of Σθ; vertices of more faces than this
+// (no surface a simulation makes) are left to their neighbours (`extrapolated`).
+constexpr std::size_t largest_turn_counted_valence = 100000;
+static_assert(largest_turn_counted_valence * 1e-5 < std::numbers::pi);
 
 [[gnu::always_inline]] inline void add_corner(const FaceBlock& block, std::size_t i, int corner,
-                                              bool laplacian, RingSums& sums, Vec3& normal,
+                                              RingSums& ring, TurnProduct& turn, Vec3& normal,
                                               double& area) {
-  if (is_shapeless(block, i)) {
-    sums.at_shapeless = true;
-    return;
-  }
+  store_lanes(ring.value, load_lanes(ring.value) + load_lanes(block.ring[corner][i]));
+  const double* normal_area = block.normal_area[corner][i];
+  normal += Vec3(normal_area[0], normal_area[1], normal_area[2]);
+  area += normal_area[3];
   // Written out: std::complex's operator* and abs guard against inf/NaN at several times the cost.
-  const double re = block.turn_re[corner][i], im = block.turn_im[corner][i];
-  double next_re = sums.turn_re * re - sums.turn_im * im;
-  double next_im = sums.turn_re * im + sums.turn_im * re;
-  sums.turns += !in_lower_half(sums.turn_re, sums.turn_im) && in_lower_half(next_re, next_im);
+  const double re = block.turn[corner][i][0], im = block.turn[corner][i][1];
+  const double next_re = turn.re * re - turn.im * im;
+  const double next_im = turn.re * im + turn.im * re;
+  turn = {next_re, next_im};
   const double magnitude = std::max(std::abs(next_re), std::abs(next_im));
   if (!(magnitude < turn_renormalise_above)) [[unlikely]] {
     const double normaliser = power_of_two_below(magnitude);
-    next_re *= normaliser;
-    next_im *= normaliser;
+    turn = {next_re * normaliser, next_im * normaliser};
   }
-  sums.turn_re = next_re;
-  sums.turn_im = next_im;
-  normal += Vec3(block.normal[corner][0][i], block.normal[corner][1][i], block.normal[corner][2][i]);
-  area += block.area[corner][i];
-  if (laplacian)
-    sums.laplacian += Vec3(block.laplacian[corner][0][i], block.laplacian[corner][1][i],
-                           block.laplacian[corner][2][i]);
 }
 
 // The Laplacian terms of corner x of a face (x, a, b) with edge lengths |xa| = la, |xb| = lb,
@@ -327,9 +345,11 @@ struct GatherInput {
   // Without it, the Laplacian's cotangents come from the faces' positions; with it, from its
   // faces and lengths. Angles, normal and area always come from the mesh's own faces.
   const IntrinsicTriangulation* intrinsic;
-  // The face chunks of the face pass: chunk c is [face_bounds[c], face_bounds[c + 1]).
-  std::span<const std::size_t> face_bounds;
-  RingSums* sums;  // per vertex
+  // Per vertex: its first face where all its faces lie in one chunk of the face pass, which
+  // then sums it; otherwise −1, and the vertex pass sums it (first_faces_in_one_chunk).
+  const std::int32_t* first_face;
+  RingSums* rings;       // per vertex
+  TurnProduct* turns;    // per vertex
 };
 
 struct GatherCounts {
@@ -337,15 +357,25 @@ struct GatherCounts {
   double mollification = 0.0;
 };
 
-// Whether all of v's faces lie in one face chunk: the face pass then sums v's terms in the
-// order of its faces, which is the order of its row (build_vertex_faces fills each row in
-// ascending face order). Otherwise v is summed by the vertex pass, from its row, in that same
-// order: either way the same sums, whatever the number of chunks.
-bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t> face_bounds) {
-  const auto first = static_cast<std::size_t>(row.front()), last = static_cast<std::size_t>(row.back());
-  for (std::size_t c = 1; c + 1 < face_bounds.size(); ++c)
-    if (first < face_bounds[c] && face_bounds[c] <= last) return false;
-  return true;
+// GatherInput::first_face for the face chunks [face_bounds[c], face_bounds[c + 1]). A vertex
+// whose faces all lie in one chunk is summed there in the order of its faces, which is the order
+// of its row (build_vertex_faces fills each row in ascending face order); the others are summed
+// by the vertex pass from their rows, in that same order: either way the same sums, whatever
+// the number of chunks.
+std::unique_ptr<std::int32_t[]> first_faces_in_one_chunk(const VertexFaces& vf, std::size_t n,
+                                                         std::span<const std::size_t> face_bounds) {
+  auto first_face = std::make_unique_for_overwrite<std::int32_t[]>(n);
+  parallel_chunks(n, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      const std::span<const std::int32_t> row = vf.of(static_cast<std::int32_t>(v));
+      first_face[v] = row.empty() ? -1 : row.front();
+      if (row.empty()) continue;
+      const auto first = static_cast<std::size_t>(row.front()), last = static_cast<std::size_t>(row.back());
+      for (std::size_t c = 1; c + 1 < face_bounds.size(); ++c)
+        if (first < face_bounds[c] && face_bounds[c] <= last) first_face[v] = -1;
+    }
+  });
+  return first_face;
 }
 
 // The face pass over faces [begin, end): each face's terms are computed once, a block at a
@@ -355,9 +385,7 @@ bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t
 [[gnu::always_inline]] inline void sum_faces(const GatherInput& in, std::size_t begin,
                                              std::size_t end, CurvatureField& field,
                                              GatherCounts& counts) {
-  const VertexFaces& vf = in.topology.vertex_faces;
   const std::vector<Triangle>& triangles = in.mesh.triangles;
-  const bool laplacian = in.intrinsic == nullptr;
   FaceBlock block;
   for (std::size_t block_begin = begin; block_begin < end; block_begin += block_faces) {
     const std::size_t count = std::min(block_faces, end - block_begin);
@@ -380,11 +408,12 @@ bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t
       }
       for (int corner = 0; corner < 3; ++corner) {
         const std::int32_t v = t[corner];
-        const std::int32_t first = vf.face_indices[vf.offsets[v]];
-        const std::int32_t last = vf.face_indices[vf.offsets[v + 1] - 1];
-        if (static_cast<std::size_t>(first) < begin || static_cast<std::size_t>(last) >= end) continue;
-        if (static_cast<std::size_t>(first) == f) start_ring(in.sums[v], field.normal[v], field.area[v]);
-        add_corner(block, i, corner, laplacian, in.sums[v], field.normal[v], field.area[v]);
+        // Face f is one of v's, so v's faces lie in this chunk unless it is the vertex pass's.
+        const std::int64_t first = in.first_face[v];
+        if (first < 0) continue;
+        if (first == static_cast<std::int64_t>(f))
+          start_ring(in.rings[v], in.turns[v], field.normal[v], field.area[v]);
+        add_corner(block, i, corner, in.rings[v], in.turns[v], field.normal[v], field.area[v]);
       }
     }
   }
@@ -400,23 +429,27 @@ bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t
   for (std::size_t v = begin; v < end; ++v) {
     const auto vertex = static_cast<std::int32_t>(v);
     const std::span<const std::int32_t> row = vf.of(vertex);
-    RingSums& sums = in.sums[v];
-    if (row.empty()) {
-      start_ring(sums, field.normal[v], field.area[v]);
-    } else if (!in_one_chunk(row, in.face_bounds)) {
-      // The same block code as the face pass, so the same bits for each face's terms.
-      start_ring(sums, field.normal[v], field.area[v]);
+    RingSums& ring = in.rings[v];
+    TurnProduct& turn = in.turns[v];
+    if (in.first_face[v] < 0) {
+      // In no face, or with faces in two chunks: summed here, by the same block code as the face
+      // pass, so with the same bits for each face's terms.
+      start_ring(ring, turn, field.normal[v], field.area[v]);
       for (std::size_t piece = 0; piece < row.size(); piece += block_faces) {
         const std::size_t count = std::min(block_faces, row.size() - piece);
         for (std::size_t i = 0; i < count; ++i)
           block.load(i, in.mesh.positions, in.mesh.triangles[row[piece + i]], scale);
         compute_faces(block, count);
         for (std::size_t i = 0; i < count; ++i)
-          add_corner(block, i, corner_of(in.mesh.triangles[row[piece + i]], vertex),
-                     in.intrinsic == nullptr, sums, field.normal[v], field.area[v]);
+          add_corner(block, i, corner_of(in.mesh.triangles[row[piece + i]], vertex), ring, turn,
+                     field.normal[v], field.area[v]);
       }
     }
+    Vec3 laplacian(ring.value[0], ring.value[1], ring.value[2]);
+    const double approximate_angle_sum = ring.value[3];
     if (in.intrinsic) {
+      // The Laplacian from the intrinsic triangulation's faces instead of the mesh's.
+      laplacian = Vec3::Zero();
       const Vec3 x = in.mesh.positions[v] * scale;
       for (std::int32_t f : in.intrinsic->vertex_faces.of(vertex)) {
         const Triangle& t = in.intrinsic->faces[f];
@@ -425,7 +458,7 @@ bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t
         const int next = (corner + 1) % 3, last = (corner + 2) % 3;
         const Vec3 xa = in.mesh.positions[t[next]] * scale - x;
         const Vec3 xb = in.mesh.positions[t[last]] * scale - x;
-        add_laplacian_terms(sums.laplacian, l[corner], l[last], l[next], xa, xb);
+        add_laplacian_terms(laplacian, l[corner], l[last], l[next], xa, xb);
       }
     }
     const double ring_area = field.area[v];
@@ -439,22 +472,22 @@ bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t
       set_undefined(field, v);
       continue;
     }
-    if (kind != VertexKind::interior || sums.at_shapeless) {
+    // A NaN angle sum: a corner of a shapeless face.
+    if (kind != VertexKind::interior || std::isnan(approximate_angle_sum) ||
+        row.size() > largest_turn_counted_valence) {
       field.status[v] = CurvatureStatus::extrapolated;
       continue;
     }
-    // The argument in [−π, π), on the side of the branch cut that the turn count assumes, of
-    // the product brought into [1, 2) (atan2 need not be exact under scaling).
-    const double normaliser =
-        power_of_two_below(std::max(std::abs(sums.turn_re), std::abs(sums.turn_im)));
-    const double turn_re = sums.turn_re * normaliser, turn_im = sums.turn_im * normaliser;
-    const double argument = in_lower_half(turn_re, turn_im) ? -std::atan2(std::abs(turn_im), turn_re)
-                                                            : std::atan2(std::abs(turn_im), turn_re);
-    const double angle_deficit = -(argument + 2.0 * std::numbers::pi * (sums.turns - 1));
+    // Σθ = arg + 2π·turns, the argument that of the product brought into [1, 2) (atan2 need not
+    // be exact under scaling), the turns those that bring it nearest Σθ̃.
+    const double normaliser = power_of_two_below(std::max(std::abs(turn.re), std::abs(turn.im)));
+    const double argument = turn_argument(turn.re * normaliser, turn.im * normaliser);
+    const double turns = std::nearbyint((approximate_angle_sum - argument) / (2.0 * std::numbers::pi));
+    const double angle_deficit = -(argument + 2.0 * std::numbers::pi * (turns - 1.0));
     // In scaled units, then back: K ∝ 1/s², H ∝ 1/s.
     const double gaussian = angle_deficit / ring_area * scale2;
-    const double projected = sums.laplacian.dot(field.normal[v]);
-    const double length = sums.laplacian.norm();
+    const double projected = laplacian.dot(field.normal[v]);
+    const double length = laplacian.norm();
     const double laplacian_along_normal = length <= std::abs(projected) * normal_deviation_secant
                                               ? std::copysign(length, projected)
                                               : projected * normal_deviation_secant;
@@ -576,7 +609,9 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   const std::size_t m = mesh.triangles.size();
   std::vector<std::size_t> face_bounds(workers + 1);
   for (std::size_t c = 0; c <= workers; ++c) face_bounds[c] = m * c / workers;  // as parallel_chunks
-  const auto sums = std::make_unique_for_overwrite<RingSums[]>(n);
+  const auto first_face = first_faces_in_one_chunk(topology.vertex_faces, n, face_bounds);
+  const auto rings = std::make_unique_for_overwrite<RingSums[]>(n);
+  const auto turns = std::make_unique_for_overwrite<TurnProduct[]>(n);
   bool use_avx2_fma = false;
 #ifdef TOONWATER_CURVATURE_AVX2_FMA
   use_avx2_fma = kernel == CurvatureKernel::avx2_fma ||
@@ -584,7 +619,7 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
 #endif
   auto sum_all = [&](const IntrinsicTriangulation* intrinsic) {
     std::vector<GatherCounts> counts(workers);
-    const GatherInput input{mesh, topology, scale, intrinsic, face_bounds, sums.get()};
+    const GatherInput input{mesh, topology, scale, intrinsic, first_face.get(), rings.get(), turns.get()};
     parallel_chunks(m, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
 #ifdef TOONWATER_CURVATURE_AVX2_FMA
       if (use_avx2_fma) return sum_faces_avx2_fma(input, begin, end, field, counts[worker]);

@@ -76,6 +76,25 @@ template <class Real>
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+// The 4 × 4 transpose: lanes a, b, c, d become the first, second, third and fourth values of
+// the four results (results[k] = {a[k], b[k], c[k], d[k]}).
+[[gnu::always_inline]] inline void transpose(const Lanes (&rows)[4], Lanes (&columns)[4]) {
+  const Lanes ab_even = __builtin_shuffle(rows[0], rows[1], LaneMask{0, 4, 2, 6});
+  const Lanes ab_odd = __builtin_shuffle(rows[0], rows[1], LaneMask{1, 5, 3, 7});
+  const Lanes cd_even = __builtin_shuffle(rows[2], rows[3], LaneMask{0, 4, 2, 6});
+  const Lanes cd_odd = __builtin_shuffle(rows[2], rows[3], LaneMask{1, 5, 3, 7});
+  columns[0] = __builtin_shuffle(ab_even, cd_even, LaneMask{0, 1, 4, 5});
+  columns[1] = __builtin_shuffle(ab_odd, cd_odd, LaneMask{0, 1, 4, 5});
+  columns[2] = __builtin_shuffle(ab_even, cd_even, LaneMask{2, 3, 6, 7});
+  columns[3] = __builtin_shuffle(ab_odd, cd_odd, LaneMask{2, 3, 6, 7});
+}
+
+// a and b as four pairs {a[k], b[k]}: the first two in `low`, the last two in `high`.
+[[gnu::always_inline]] inline void interleave(Lanes a, Lanes b, Lanes& low, Lanes& high) {
+  low = __builtin_shuffle(a, b, LaneMask{0, 4, 1, 5});
+  high = __builtin_shuffle(a, b, LaneMask{2, 6, 3, 7});
+}
+
 // Four consecutive doubles, from and to memory that need not be aligned.
 [[gnu::always_inline]] inline Lanes load_lanes(const double* values) {
   Lanes lanes;
