@@ -4,10 +4,10 @@
 // - Positions are scaled by a power of two so that the largest coordinate is of order one. The
 //   scaling is exact, so K ∝ 1/s² and H ∝ 1/s hold to the last bit for power-of-two scales, and
 //   coordinates near 1e±300 neither overflow nor underflow in the squared lengths.
-// - Angles come from atan2(|u×v|, u·v), cotangents from (u·v)/|u×v| — never acos. An angle is
-//   well conditioned at any shape (atan2 of two accurate numbers), so every face gives its
-//   corner angles, and the angle deficits sum to 2πχ on a closed mesh (Gauss–Bonnet), exactly
-//   up to round-off.
+// - Angles are the arguments of u·v + i|u×v| (their product, add_corner), cotangents
+//   (u·v)/|u×v| — never acos. An angle is well conditioned at any shape (the argument of two
+//   accurate numbers), so every face gives its corner angles, and the angle deficits sum to 2πχ
+//   on a closed mesh (Gauss–Bonnet), exactly up to round-off.
 // - Thin faces are kept as they are. A UV sphere's pole fans (2.5° at 10k vertices) or a
 //   stretched quad are exact geometry, and their cotangents (u·v)/|u×v| are accurate: |u×v| has
 //   a relative round-off error of about ε/sin θ, 1e-14 at 0.06°.

@@ -11,12 +11,13 @@
 //   k1,2 = H ± sqrt(max(H² − K, 0))
 //   n̂  = angle-weighted vertex normal (Thürmer and Wüthrich 1998)
 //
-// Each vertex gathers its sums from its incident faces, read from compressed rows over the flat
-// position and triangle arrays (no halfedge circulators); the vertices split over the cores
-// with no shared writes. See curvature.cpp for how the angle sum is kept exact, how thin and
-// degenerate faces are handled (L from the intrinsic Delaunay triangulation of mollified edge
-// lengths where the mesh has caps or near-collinear faces), and boundaries and non-manifold
-// vertices.
+// One pass over the faces on every core computes each face's terms once, four faces at a time,
+// over the flat position and triangle arrays (no halfedge circulators), and adds them to its
+// corners' sums; a vertex whose faces span two cores' ranges is summed afterwards from its row,
+// in the same order, so the result does not depend on the core count. See curvature.cpp for how
+// the angle sum is kept exact, how thin and degenerate faces are handled (L from the intrinsic
+// Delaunay triangulation of mollified edge lengths where the mesh has caps or near-collinear
+// faces), and boundaries and non-manifold vertices.
 #pragma once
 
 #include "analyzer/mesh.hpp"
