@@ -345,9 +345,8 @@ struct GatherInput {
   // Without it, the Laplacian's cotangents come from the faces' positions; with it, from its
   // faces and lengths. Angles, normal and area always come from the mesh's own faces.
   const IntrinsicTriangulation* intrinsic;
-  // Per vertex: its first face where all its faces lie in one chunk of the face pass, which
-  // then sums it; otherwise −1, and the vertex pass sums it (first_faces_in_one_chunk).
-  const std::int32_t* first_face;
+  // The face chunks of the face pass: chunk c is [face_bounds[c], face_bounds[c + 1]).
+  std::span<const std::size_t> face_bounds;
   RingSums* rings;       // per vertex
   TurnProduct* turns;    // per vertex
 };
@@ -357,25 +356,15 @@ struct GatherCounts {
   double mollification = 0.0;
 };
 
-// GatherInput::first_face for the face chunks [face_bounds[c], face_bounds[c + 1]). A vertex
-// whose faces all lie in one chunk is summed there in the order of its faces, which is the order
-// of its row (build_vertex_faces fills each row in ascending face order); the others are summed
-// by the vertex pass from their rows, in that same order: either way the same sums, whatever
-// the number of chunks.
-std::unique_ptr<std::int32_t[]> first_faces_in_one_chunk(const VertexFaces& vf, std::size_t n,
-                                                         std::span<const std::size_t> face_bounds) {
-  auto first_face = std::make_unique_for_overwrite<std::int32_t[]>(n);
-  parallel_chunks(n, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      const std::span<const std::int32_t> row = vf.of(static_cast<std::int32_t>(v));
-      first_face[v] = row.empty() ? -1 : row.front();
-      if (row.empty()) continue;
-      const auto first = static_cast<std::size_t>(row.front()), last = static_cast<std::size_t>(row.back());
-      for (std::size_t c = 1; c + 1 < face_bounds.size(); ++c)
-        if (first < face_bounds[c] && face_bounds[c] <= last) first_face[v] = -1;
-    }
-  });
-  return first_face;
+// Whether all of v's faces lie in one face chunk: the face pass then sums v's terms in the
+// order of its faces, which is the order of its row (build_vertex_faces fills each row in
+// ascending face order). Otherwise v is summed by the vertex pass, from its row, in that same
+// order: either way the same sums, whatever the number of chunks.
+bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t> face_bounds) {
+  const auto first = static_cast<std::size_t>(row.front()), last = static_cast<std::size_t>(row.back());
+  for (std::size_t c = 1; c + 1 < face_bounds.size(); ++c)
+    if (first < face_bounds[c] && face_bounds[c] <= last) return false;
+  return true;
 }
 
 // The face pass over faces [begin, end): each face's terms are computed once, a block at a
@@ -385,6 +374,7 @@ std::unique_ptr<std::int32_t[]> first_faces_in_one_chunk(const VertexFaces& vf, 
 [[gnu::always_inline]] inline void sum_faces(const GatherInput& in, std::size_t begin,
                                              std::size_t end, CurvatureField& field,
                                              GatherCounts& counts) {
+  const VertexFaces& vf = in.topology.vertex_faces;
   const std::vector<Triangle>& triangles = in.mesh.triangles;
   FaceBlock block;
   for (std::size_t block_begin = begin; block_begin < end; block_begin += block_faces) {
@@ -408,10 +398,11 @@ std::unique_ptr<std::int32_t[]> first_faces_in_one_chunk(const VertexFaces& vf, 
       }
       for (int corner = 0; corner < 3; ++corner) {
         const std::int32_t v = t[corner];
-        // Face f is one of v's, so v's faces lie in this chunk unless it is the vertex pass's.
-        const std::int64_t first = in.first_face[v];
-        if (first < 0) continue;
-        if (first == static_cast<std::int64_t>(f))
+        // The chunk of v's first face sums v. If v's faces reach into the next chunk, the vertex
+        // pass sums it again from the start; this chunk's partial sums are never read.
+        const auto first = static_cast<std::size_t>(vf.face_indices[vf.offsets[v]]);
+        if (first < begin) continue;
+        if (first == f)
           start_ring(in.rings[v], in.turns[v], field.normal[v], field.area[v]);
         add_corner(block, i, corner, in.rings[v], in.turns[v], field.normal[v], field.area[v]);
       }
@@ -431,7 +422,7 @@ std::unique_ptr<std::int32_t[]> first_faces_in_one_chunk(const VertexFaces& vf, 
     const std::span<const std::int32_t> row = vf.of(vertex);
     RingSums& ring = in.rings[v];
     TurnProduct& turn = in.turns[v];
-    if (in.first_face[v] < 0) {
+    if (row.empty() || !in_one_chunk(row, in.face_bounds)) {
       // In no face, or with faces in two chunks: summed here, by the same block code as the face
       // pass, so with the same bits for each face's terms.
       start_ring(ring, turn, field.normal[v], field.area[v]);
@@ -609,7 +600,6 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   const std::size_t m = mesh.triangles.size();
   std::vector<std::size_t> face_bounds(workers + 1);
   for (std::size_t c = 0; c <= workers; ++c) face_bounds[c] = m * c / workers;  // as parallel_chunks
-  const auto first_face = first_faces_in_one_chunk(topology.vertex_faces, n, face_bounds);
   const auto rings = std::make_unique_for_overwrite<RingSums[]>(n);
   const auto turns = std::make_unique_for_overwrite<TurnProduct[]>(n);
   bool use_avx2_fma = false;
@@ -619,7 +609,7 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
 #endif
   auto sum_all = [&](const IntrinsicTriangulation* intrinsic) {
     std::vector<GatherCounts> counts(workers);
-    const GatherInput input{mesh, topology, scale, intrinsic, first_face.get(), rings.get(), turns.get()};
+    const GatherInput input{mesh, topology, scale, intrinsic, face_bounds, rings.get(), turns.get()};
     parallel_chunks(m, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
 #ifdef TOONWATER_CURVATURE_AVX2_FMA
       if (use_avx2_fma) return sum_faces_avx2_fma(input, begin, end, field, counts[worker]);
