@@ -3,7 +3,10 @@
 // Choices:
 // - Neighbourhood: the two-ring (about 19 points on a valence-6 mesh, twice the cubic's 10
 //   coefficients). It is not grown through non-manifold vertices, whose other sheets would be
-//   outliers of the fit. Too few points for the cubic (below 15, e.g. at a boundary corner):
+//   outliers of the fit, nor through a vertex of more than 256 faces: such a hub (a fan of
+//   thousands, as degenerate or hostile input has) would put its whole fan, far from the
+//   neighbour being fitted, into the fit of each of its neighbours, at a cost quadratic in its
+//   faces (a fan of 100,000 took over a minute; now milliseconds). Too few points for the cubic (below 15, e.g. at a boundary corner):
 //   a quadric (6 coefficients, O(h) error) if there are at least 9.
 // - Conditioning: coordinates relative to p, divided by the neighbourhood's radius ρ (its largest
 //   coordinate offset), so the monomials lie in [−1, 1] whatever the scene's scale and offset; no
@@ -33,6 +36,7 @@ namespace {
 constexpr std::size_t cubic_min_points = 15;
 constexpr std::size_t quadric_min_points = 9;
 constexpr double min_pivot_ratio = 1e-12;
+constexpr std::size_t largest_grown_valence = 256;
 
 struct SurfaceCurvature {
   double gaussian;
@@ -56,7 +60,9 @@ void gather_two_ring(const TriangleMesh& mesh, const MeshTopology& topology, std
   add_faces_of(v);
   const std::size_t one_ring = ring.size();
   for (std::size_t i = 0; i < one_ring; ++i)
-    if (topology.kind[ring[i]] != VertexKind::nonmanifold) add_faces_of(ring[i]);
+    if (topology.kind[ring[i]] != VertexKind::nonmanifold &&
+        topology.vertex_faces.of(ring[i]).size() <= largest_grown_valence)
+      add_faces_of(ring[i]);
 }
 
 template <int Coefficients>
