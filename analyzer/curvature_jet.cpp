@@ -6,8 +6,9 @@
 //   outliers of the fit, nor through a vertex of more than 256 faces: such a hub (a fan of
 //   thousands, as degenerate or hostile input has) would put its whole fan, far from the
 //   neighbour being fitted, into the fit of each of its neighbours, at a cost quadratic in its
-//   faces (a fan of 100,000 took over a minute; now milliseconds). Too few points for the cubic (below 15, e.g. at a boundary corner):
-//   a quadric (6 coefficients, O(h) error) if there are at least 9.
+//   faces (a fan of 100,000 took over a minute; now milliseconds). Too few points for the
+//   cubic (below 15, e.g. at a boundary corner): a quadric (6 coefficients, O(h) error) if
+//   there are at least 9.
 // - Conditioning: coordinates relative to p, divided by the neighbourhood's radius ρ (its largest
 //   coordinate offset), so the monomials lie in [−1, 1] whatever the scene's scale and offset; no
 //   squared length is formed before the division, so coordinates near 1e±150 neither overflow
