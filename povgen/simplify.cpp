@@ -27,6 +27,12 @@ constexpr double max_aspect_ratio = 10.0;
 // A boundary vertex is on a straight boundary when it lies this close to the line of its
 // neighbours, relative to the tolerance.
 constexpr double straight_boundary_fraction = 1e-3;
+// A vertex of more faces is neither removed nor collapsed into. Every test of a collapse walks
+// the faces of both ends, so a hub (the centre of a fan of 100,000 faces, as degenerate input
+// has) made the simplification quadratic: 18 s for that fan. The aspect-ratio limit already
+// refuses fans this dense (their faces' angles average below 6°), so no ordinary surface is
+// affected.
+constexpr int largest_collapsed_valence = 64;
 
 // OpenMesh holds the connectivity; positions never move, and everything else the collapses
 // read lives in flat arrays indexed like the mesh's handles.
@@ -185,11 +191,13 @@ class Decimation {
     return !(vl >= 0 && vr >= 0 && valence_three(vl) && valence_three(vr) && adjacent(vl, vr));
   }
 
-  bool valence_three(int v) const {
+  // The valence of v, counted up to `limit` + 1 (a hub's whole fan is never walked).
+  int valence_up_to(int v, int limit) const {
     int n = 0;
-    for (auto h = m_.cvoh_iter(VertexHandle(v)); h.is_valid() && n <= 3; ++h) ++n;
-    return n == 3;
+    for (auto h = m_.cvoh_iter(VertexHandle(v)); h.is_valid() && n <= limit; ++h) ++n;
+    return n;
   }
+  bool valence_three(int v) const { return valence_up_to(v, 3) == 3; }
 
   bool adjacent(int a, int b) const {
     for (auto w : m_.vv_range(VertexHandle(a)))
@@ -221,6 +229,10 @@ class Decimation {
     bool on_boundary = false;
     const HalfedgeHandle start = m_.halfedge_handle(v0h);
     if (!start.is_valid()) {  // in no face
+      settled_[v0] = 1;
+      return std::nullopt;
+    }
+    if (valence_up_to(v0, largest_collapsed_valence) > largest_collapsed_valence) {
       settled_[v0] = 1;
       return std::nullopt;
     }
@@ -261,6 +273,7 @@ class Decimation {
     candidates_.clear();
     for (const Spoke& s : spokes_) {
       if (on_boundary && !straight_boundary(v0, s.to)) continue;
+      if (valence_up_to(s.to, largest_collapsed_valence) > largest_collapsed_valence) continue;
       const Vec3& p1 = p_[s.to];
       Collapse c;
       c.halfedge = s.halfedge;
