@@ -185,8 +185,7 @@ struct FaceBlock {
     edge[2][axis] = p0 - p2;
   }
   const Lanes length2[3] = {dot3(edge[0], edge[0]), dot3(edge[1], edge[1]), dot3(edge[2], edge[2])};
-  // is_shapeless_triangle, written for lanes.
-  const LaneMask shapeless = length2[0] == 0.0 || length2[1] == 0.0 || length2[2] == 0.0;
+  const LaneMask shapeless = is_shapeless_triangle(length2[0], length2[1], length2[2]);
   const Lanes cross[3] = {edge[2][1] * edge[0][2] - edge[2][2] * edge[0][1],
                           edge[2][2] * edge[0][0] - edge[2][0] * edge[0][2],
                           edge[2][0] * edge[0][1] - edge[2][1] * edge[0][0]};
@@ -195,8 +194,6 @@ struct FaceBlock {
   const Lanes corner_dot[3] = {-dot3(edge[0], edge[2]), -dot3(edge[1], edge[0]), -dot3(edge[2], edge[1])};
   const Lanes longest2 = maximum(maximum(length2[0], length2[1]), length2[2]);
   const Lanes inverse_area = 1.0 / double_area;
-  // corner_normal_term (vertex_normals.hpp), written for lanes: zero for a degenerate face.
-  const LaneMask degenerate = !(double_area > degenerate_area_ratio * longest2);
   const Lanes smallest_dot = minimum(minimum(corner_dot[0], corner_dot[1]), corner_dot[2]);
   const LaneMask cap = smallest_dot < cap_cotangent * double_area;
   // Mixed Voronoi area (Meyer et al. 2002, Fig. 4), always the mesh's own.
@@ -213,15 +210,13 @@ struct FaceBlock {
       ring[axis] = select(shapeless, Lanes{}, cot[next] * edge[last][axis] - cot[last] * edge[c][axis]);
     ring[3] = select(shapeless, splat<Lanes>(std::numeric_limits<double>::quiet_NaN()), angle);
     store_records(block.ring[c] + i, ring);
-    Lanes normal_area[4];
-    const Lanes weight = angle * inverse_area;
-    for (int axis = 0; axis < 3; ++axis)
-      normal_area[axis] = select(degenerate, Lanes{}, weight * cross[axis]);
+    Lanes normal[3];
+    corner_normal_term(cross, double_area, corner_dot[c], longest2, normal);
     const Lanes voronoi = 0.125 * (length2[c] * cot[last] + length2[last] * cot[next]);
-    normal_area[3] = select(shapeless, Lanes{},
-                            select(corner_dot[c] < 0.0, 0.25 * double_area,
-                                   select(obtuse, 0.125 * double_area, voronoi)));
-    store_records(block.normal_area[c] + i, normal_area);
+    const Lanes area = select(shapeless, Lanes{},
+                              select(corner_dot[c] < 0.0, 0.25 * double_area,
+                                     select(obtuse, 0.125 * double_area, voronoi)));
+    store_records(block.normal_area[c] + i, {normal[0], normal[1], normal[2], area});
     const Lanes turn_scale = power_of_two_below(maximum(absolute(corner_dot[c]), double_area));
     Lanes low, high;
     interleave(select(shapeless, splat<Lanes>(1.0), corner_dot[c] * turn_scale),

@@ -21,8 +21,6 @@ namespace toonwater {
 // atan2(y, x) for y >= 0 by a polynomial, absolute error below 1e-5 rad: plenty for a weight,
 // and several times cheaper than std::atan2. For a double or four lanes (lanes.hpp), with the
 // same bits in each lane as for a double.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"  // always inlined: no call passes the lanes (lanes.hpp)
 template <class Real>
 [[gnu::always_inline]] inline Real approximate_angle(Real y, Real x) {
   const Real ax = absolute(x);
@@ -34,22 +32,27 @@ template <class Real>
   angle = select(y > ax, std::numbers::pi / 2 - angle, angle);
   return select(x < 0.0, std::numbers::pi - angle, angle);
 }
-#pragma GCC diagnostic pop
 
-// One face's term θ n_f at the corner x of face (x, a, b), given xa × xb, its length, xa · xb
-// and the face's longest squared edge (xa = a − x, xb = b − x): zero for a degenerate face
-// (geometry_tolerances.hpp), which has no usable normal.
-inline Vec3 corner_normal_term(const Vec3& cross, double double_area, double dot, double longest2) {
-  if (is_degenerate_triangle(double_area, longest2)) return Vec3::Zero();
-  // Times the reciprocal, which the curvature gather needs as well and computes once.
-  return approximate_angle(double_area, dot) * (1.0 / double_area) * cross;
+// One face's term θ n_f at the corner x of face (x, a, b), axis by axis, given xa × xb, its
+// length, xa · xb and the face's longest squared edge (xa = a − x, xb = b − x): zero for a
+// degenerate face (geometry_tolerances.hpp), which has no usable normal. For doubles, or four
+// faces in vector lanes (the curvature's face pass).
+template <class Real>
+[[gnu::always_inline]] inline void corner_normal_term(const Real (&cross)[3], Real double_area,
+                                                      Real dot, Real longest2, Real (&term)[3]) {
+  const auto degenerate = is_degenerate_triangle(double_area, longest2);
+  // Times the reciprocal, which the curvature's face pass needs as well and computes once.
+  const Real weight = approximate_angle(double_area, dot) * (1.0 / double_area);
+  for (int axis = 0; axis < 3; ++axis) term[axis] = select(degenerate, Real{}, weight * cross[axis]);
 }
 
 inline Vec3 corner_normal_term(const Vec3& xa, const Vec3& xb) {
-  const Vec3 cross = xa.cross(xb);
-  return corner_normal_term(
-      cross, cross.norm(), xa.dot(xb),
-      std::max({xa.squaredNorm(), xb.squaredNorm(), (xb - xa).squaredNorm()}));
+  const Vec3 c = xa.cross(xb);
+  const double cross[3] = {c.x(), c.y(), c.z()};
+  double term[3];
+  corner_normal_term(cross, c.norm(), xa.dot(xb),
+                     std::max({xa.squaredNorm(), xb.squaredNorm(), (xb - xa).squaredNorm()}), term);
+  return Vec3(term[0], term[1], term[2]);
 }
 
 // Unit normals per vertex; zero where no face has a usable normal.
