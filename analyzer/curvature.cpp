@@ -112,29 +112,23 @@ double mollification_needed(double xa2, double xb2, double ab2) {
 
 // 2^-e for the binary exponent e of m ≥ 0, from its exponent bits alone (a few integer
 // operations, where std::ilogb and std::ldexp are calls), so that m · 2^-e lies in [1, 2). Kept
-// finite at the ends: subnormals take e = −1023, and m ≥ 2^1023, inf and NaN take e = 1022. For
-// a double or four lanes (lanes.hpp).
+// finite at the ends: subnormals take e = −1023, and m ≥ 2^1022, inf and NaN take e = 1022. For
+// a double or lanes (lanes.hpp).
 template <class Real>
 [[gnu::always_inline]] inline Real power_of_two_below(Real m) {
-  constexpr std::int64_t largest_biased = 2045;
-  if constexpr (std::is_same_v<Real, double>) {
-    const std::int64_t biased =
-        std::min((std::bit_cast<std::int64_t>(m) >> 52) & 0x7ff, largest_biased);
-    return std::bit_cast<double>((2046 - biased) << 52);
-  } else {
-    LaneMask biased = (std::bit_cast<LaneMask>(m) >> 52) & 0x7ff;
-    biased = biased > largest_biased ? LaneMask{} + largest_biased : biased;
-    return std::bit_cast<Lanes>((2046 - biased) << 52);
-  }
+  using Bits = BitsOf<Real>;
+  const Real clamped = select(m < 0x1p1022, m, splat<Real>(0x1p1022));
+  const Bits biased = (std::bit_cast<Bits>(clamped) >> 52) & 0x7ff;
+  return std::bit_cast<Real>((2046 - biased) << 52);
 }
 
-// The terms of a block of faces, computed once for their three corners, four faces at once, one
-// a lane (lanes.hpp). Corner i's neighbours are i + 1 and i + 2 (mod 3); edge[i] runs from
+// The terms of a block of faces, computed once for their three corners, a lane's worth of faces
+// at once, one a lane (lanes.hpp: two with SSE2, four with AVX2). Corner i's neighbours are i + 1 and i + 2 (mod 3); edge[i] runs from
 // corner i to corner i + 1. Each corner's terms are then laid out as the vertex sums take them
 // (RingSums), so that adding a corner is a few whole-vector additions. A block fits in the
 // level-1 cache beside the vertex sums it is added to.
 constexpr std::size_t block_faces = 64;
-static_assert(block_faces % lane_count == 0);
+static_assert(block_faces % lanes_of<Lanes4> == 0);
 
 struct FaceBlock {
   // Input: the faces' scaled corner positions, [corner][axis][face].
@@ -163,23 +157,18 @@ struct FaceBlock {
   }
 };
 
-// Four per-face values of four faces, stored as four corner records of those faces.
-[[gnu::always_inline]] inline void store_records(double (*records)[4], const Lanes (&values)[4]) {
-  Lanes columns[4];
-  transpose(values, columns);
-  for (int face = 0; face < lane_count; ++face) store_lanes(records[face], columns[face]);
-}
-
-// The terms of faces [i, i + lane_count) of the block. Every corner takes the same cross
+// The terms of faces [i, i + lanes) of the block. Every corner takes the same cross
 // product u × v = edge[2] × edge[0] and the same reciprocal of its length, so the corners of
 // one face agree to the last bit on its plane and area; no lane reads another, so a face's
 // terms are the same bits whichever block and lane compute them.
+template <class Lanes>
 [[gnu::always_inline]] inline void compute_face_lanes(FaceBlock& block, std::size_t i) {
+  using LaneMask = MaskOf<Lanes>;
   Lanes edge[3][3];
   for (int axis = 0; axis < 3; ++axis) {
-    const Lanes p0 = load_lanes(&block.position[0][axis][i]);
-    const Lanes p1 = load_lanes(&block.position[1][axis][i]);
-    const Lanes p2 = load_lanes(&block.position[2][axis][i]);
+    const Lanes p0 = load_lanes<Lanes>(&block.position[0][axis][i]);
+    const Lanes p1 = load_lanes<Lanes>(&block.position[1][axis][i]);
+    const Lanes p2 = load_lanes<Lanes>(&block.position[2][axis][i]);
     edge[0][axis] = p1 - p0;
     edge[1][axis] = p2 - p1;
     edge[2][axis] = p0 - p2;
@@ -218,11 +207,8 @@ struct FaceBlock {
                                      select(obtuse, 0.125 * double_area, voronoi)));
     store_records(block.normal_area[c] + i, {normal[0], normal[1], normal[2], area});
     const Lanes turn_scale = power_of_two_below(maximum(absolute(corner_dot[c]), double_area));
-    Lanes low, high;
-    interleave(select(shapeless, splat<Lanes>(1.0), corner_dot[c] * turn_scale),
-               select(shapeless, Lanes{}, double_area * turn_scale), low, high);
-    store_lanes(block.turn[c][i], low);
-    store_lanes(block.turn[c][i + 2], high);
+    store_pairs(block.turn[c] + i, select(shapeless, splat<Lanes>(1.0), corner_dot[c] * turn_scale),
+                select(shapeless, Lanes{}, double_area * turn_scale));
     store_lanes(&block.length2[c][i], length2[c]);
   }
   store_lanes(&block.double_area[i], double_area);
@@ -233,12 +219,14 @@ struct FaceBlock {
 
 // The terms of the block's first `count` faces (the slots past them hold copies of the first,
 // so that whole lanes are computed from finite positions).
+template <class Lanes>
 [[gnu::always_inline]] inline void compute_faces(FaceBlock& block, std::size_t count) {
-  const std::size_t padded = (count + lane_count - 1) / lane_count * lane_count;
+  constexpr std::size_t lanes = lanes_of<Lanes>;
+  const std::size_t padded = (count + lanes - 1) / lanes * lanes;
   for (std::size_t i = count; i < padded; ++i)
     for (int corner = 0; corner < 3; ++corner)
       for (int axis = 0; axis < 3; ++axis) block.position[corner][axis][i] = block.position[corner][axis][0];
-  for (std::size_t i = 0; i < padded; i += lane_count) compute_face_lanes(block, i);
+  for (std::size_t i = 0; i < padded; i += lanes) compute_face_lanes<Lanes>(block, i);
 }
 
 bool is_shapeless(const FaceBlock& block, std::size_t i) { return block.shapeless[i] != 0; }
@@ -274,7 +262,7 @@ double turn_argument(double re, double im) {
 }
 
 void start_ring(RingSums& ring, TurnProduct& turn, Vec3& normal, double& area) {
-  store_lanes(ring.value, Lanes{});
+  store_lanes(ring.value, Lanes4{});
   turn = {1.0, 0.0};
   normal = Vec3::Zero();
   area = 0.0;
@@ -299,7 +287,7 @@ static_assert(largest_turn_counted_valence * 1e-5 < std::numbers::pi);
 [[gnu::always_inline]] inline void add_corner(const FaceBlock& block, std::size_t i, int corner,
                                               RingSums& ring, TurnProduct& turn, Vec3& normal,
                                               double& area) {
-  store_lanes(ring.value, load_lanes(ring.value) + load_lanes(block.ring[corner][i]));
+  store_lanes(ring.value, load_lanes<Lanes4>(ring.value) + load_lanes<Lanes4>(block.ring[corner][i]));
   const double* normal_area = block.normal_area[corner][i];
   normal += Vec3(normal_area[0], normal_area[1], normal_area[2]);
   area += normal_area[3];
@@ -366,6 +354,7 @@ bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t
 // time, and added to the sums of those of its corners whose faces all lie in [begin, end). The
 // first face of a vertex starts its sums, so no array needs clearing beforehand. Forced inline
 // so that each of the two instantiations below compiles all of it for its own instruction set.
+template <class Lanes>
 [[gnu::always_inline]] inline void sum_faces(const GatherInput& in, std::size_t begin,
                                              std::size_t end, CurvatureField& field,
                                              GatherCounts& counts) {
@@ -376,7 +365,7 @@ bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t
     const std::size_t count = std::min(block_faces, end - block_begin);
     for (std::size_t i = 0; i < count; ++i)
       block.load(i, in.mesh.positions, triangles[block_begin + i], in.scale);
-    compute_faces(block, count);
+    compute_faces<Lanes>(block, count);
     for (std::size_t i = 0; i < count; ++i) {
       const std::size_t f = block_begin + i;
       const Triangle& t = triangles[f];
@@ -407,6 +396,7 @@ bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t
 
 // The vertex pass over vertices [begin, end): sums the vertices the face pass left out, then
 // turns every vertex's sums into its fields.
+template <class Lanes>
 [[gnu::always_inline]] inline void finish_vertices(const GatherInput& in, std::size_t begin,
                                                    std::size_t end, CurvatureField& field) {
   const VertexFaces& vf = in.topology.vertex_faces;
@@ -425,7 +415,7 @@ bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t
         const std::size_t count = std::min(block_faces, row.size() - piece);
         for (std::size_t i = 0; i < count; ++i)
           block.load(i, in.mesh.positions, in.mesh.triangles[row[piece + i]], scale);
-        compute_faces(block, count);
+        compute_faces<Lanes>(block, count);
         for (std::size_t i = 0; i < count; ++i)
           add_corner(block, i, corner_of(in.mesh.triangles[row[piece + i]], vertex), ring, turn,
                      field.normal[v], field.area[v]);
@@ -487,19 +477,19 @@ bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t
   }
 }
 
-// The same code for any x86-64 (SSE2) and for processors with AVX2 and FMA, chosen at run time:
-// the portable build must not assume AVX2. This file is compiled with floating-point
+// The same code for any x86-64 (SSE2, two lanes) and for processors with AVX2 and FMA (four
+// lanes), chosen at run time: the portable build must not assume AVX2. This file is compiled with floating-point
 // contraction allowed (analyzer/CMakeLists.txt), which on x86-64 only the second can use: there
 // a·b + c becomes one fused multiply-add, rounded once. Its results differ from the portable
 // path's by round-off only (tested); multiplying by the power-of-two scale stays exact, so the
 // scale invariance holds in both. Elsewhere there is only the portable code.
 void sum_faces_portable(const GatherInput& in, std::size_t begin, std::size_t end,
                         CurvatureField& field, GatherCounts& counts) {
-  sum_faces(in, begin, end, field, counts);
+  sum_faces<Lanes2>(in, begin, end, field, counts);
 }
 void finish_vertices_portable(const GatherInput& in, std::size_t begin, std::size_t end,
                               CurvatureField& field) {
-  finish_vertices(in, begin, end, field);
+  finish_vertices<Lanes2>(in, begin, end, field);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -507,11 +497,11 @@ void finish_vertices_portable(const GatherInput& in, std::size_t begin, std::siz
 [[gnu::target("avx2,fma")]] void sum_faces_avx2_fma(const GatherInput& in, std::size_t begin,
                                                     std::size_t end, CurvatureField& field,
                                                     GatherCounts& counts) {
-  sum_faces(in, begin, end, field, counts);
+  sum_faces<Lanes4>(in, begin, end, field, counts);
 }
 [[gnu::target("avx2,fma")]] void finish_vertices_avx2_fma(const GatherInput& in, std::size_t begin,
                                                           std::size_t end, CurvatureField& field) {
-  finish_vertices(in, begin, end, field);
+  finish_vertices<Lanes4>(in, begin, end, field);
 }
 #endif
 

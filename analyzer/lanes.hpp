@@ -1,10 +1,12 @@
-// Four doubles a vector, one value a lane, through GCC's vector extensions, and the few
-// element-wise operations that formulas written once for a double and for four lanes need.
+// Doubles in vector lanes, one value a lane, through GCC's vector extensions: two lanes (128
+// bits, SSE2, any x86-64) or four (256 bits, AVX2), and the few element-wise operations that
+// formulas written once for a double and for lanes need.
 //
 // Why vector extensions and not intrinsics: the curvature face pass is compiled twice, for any
-// x86-64 and for AVX2 with fused multiply-adds (curvature.cpp). The same source becomes two
-// 128-bit operations a step in the first and one 256-bit operation in the second, and every lane
-// computes exactly what the scalar formula computes (no operation mixes lanes).
+// x86-64 with two lanes and for AVX2 with fused multiply-adds with four (curvature.cpp). The
+// same source becomes native vector instructions in both, and every lane computes exactly what
+// the scalar formula computes (no arithmetic mixes lanes; only the transposes below move values
+// between them).
 //
 // Each helper also takes plain doubles and then does what the standard library does
 // (std::min, std::max, std::abs, std::sqrt, `?:`), so a formula written as a template over the
@@ -24,23 +26,41 @@
 
 namespace toonwater {
 
-using Lanes = double __attribute__((vector_size(32)));
-using LaneMask = std::int64_t __attribute__((vector_size(32)));  // all ones where true
-inline constexpr int lane_count = 4;
+using Lanes2 = double __attribute__((vector_size(16)));
+using Lanes4 = double __attribute__((vector_size(32)));
+using LaneMask2 = std::int64_t __attribute__((vector_size(16)));  // all ones where true
+using LaneMask4 = std::int64_t __attribute__((vector_size(32)));
+
+// Lanes in a value type: 1 for a double.
+template <class Real>
+inline constexpr int lanes_of = static_cast<int>(sizeof(Real) / sizeof(double));
+
+// The mask type of comparisons of Real: bool, or an integer vector of Real's width.
+template <class Real>
+using MaskOf = decltype(Real{} < Real{});
+
+// Real's bits as unsigned integers of its width (shifts of them are logical).
+using LaneBits2 = std::uint64_t __attribute__((vector_size(16)));
+using LaneBits4 = std::uint64_t __attribute__((vector_size(32)));
+template <class Real>
+using BitsOf = std::conditional_t<
+    std::is_same_v<Real, double>, std::uint64_t,
+    std::conditional_t<std::is_same_v<Real, Lanes2>, LaneBits2, LaneBits4>>;
 
 // A value in every lane (for a double, the value).
 template <class Real>
-inline Real splat(double value) {
-  if constexpr (std::is_same_v<Real, double>)
+[[gnu::always_inline]] inline Real splat(double value) {
+  if constexpr (std::is_same_v<Real, double>) {
     return value;
-  else
-    return Real{value, value, value, value};
+  } else {
+    Real lanes;
+    for (int lane = 0; lane < lanes_of<Real>; ++lane) lanes[lane] = value;
+    return lanes;
+  }
 }
 
-inline double select(bool condition, double if_true, double if_false) {
-  return condition ? if_true : if_false;
-}
-[[gnu::always_inline]] inline Lanes select(LaneMask condition, Lanes if_true, Lanes if_false) {
+template <class Mask, class Real>
+[[gnu::always_inline]] inline Real select(Mask condition, Real if_true, Real if_false) {
   return condition ? if_true : if_false;
 }
 
@@ -55,19 +75,27 @@ template <class Real>
 }
 
 // |x| by clearing the sign bit, as std::abs does (−0 becomes +0, NaN stays NaN).
-inline double absolute(double x) { return std::abs(x); }
-[[gnu::always_inline]] inline Lanes absolute(Lanes x) {
-  const LaneMask magnitude_bits = std::bit_cast<LaneMask>(x) & 0x7fffffffffffffff;
-  return std::bit_cast<Lanes>(magnitude_bits);
+template <class Real>
+[[gnu::always_inline]] inline Real absolute(Real x) {
+  if constexpr (std::is_same_v<Real, double>) {
+    return std::abs(x);
+  } else {
+    const MaskOf<Real> magnitude_bits = std::bit_cast<MaskOf<Real>>(x) & 0x7fffffffffffffff;
+    return std::bit_cast<Real>(magnitude_bits);
+  }
 }
 
-// Correctly rounded in each lane (the compiler makes one vector square root of the four with
+// Correctly rounded in each lane (the compiler makes one vector square root of the lanes with
 // -fno-math-errno, which curvature.cpp is built with).
-inline double square_root(double x) { return std::sqrt(x); }
-[[gnu::always_inline]] inline Lanes square_root(Lanes x) {
-  Lanes root;
-  for (int lane = 0; lane < lane_count; ++lane) root[lane] = __builtin_sqrt(x[lane]);
-  return root;
+template <class Real>
+[[gnu::always_inline]] inline Real square_root(Real x) {
+  if constexpr (std::is_same_v<Real, double>) {
+    return std::sqrt(x);
+  } else {
+    Real root;
+    for (int lane = 0; lane < lanes_of<Real>; ++lane) root[lane] = __builtin_sqrt(x[lane]);
+    return root;
+  }
 }
 
 // a · b of two three-element vectors given by their coordinates.
@@ -76,36 +104,50 @@ template <class Real>
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-// The 4 × 4 transpose: lanes a, b, c, d become the first, second, third and fourth values of
-// the four results (results[k] = {a[k], b[k], c[k], d[k]}).
-[[gnu::always_inline]] inline void transpose(const Lanes (&rows)[4], Lanes (&columns)[4]) {
-  const Lanes ab_even = __builtin_shuffle(rows[0], rows[1], LaneMask{0, 4, 2, 6});
-  const Lanes ab_odd = __builtin_shuffle(rows[0], rows[1], LaneMask{1, 5, 3, 7});
-  const Lanes cd_even = __builtin_shuffle(rows[2], rows[3], LaneMask{0, 4, 2, 6});
-  const Lanes cd_odd = __builtin_shuffle(rows[2], rows[3], LaneMask{1, 5, 3, 7});
-  columns[0] = __builtin_shuffle(ab_even, cd_even, LaneMask{0, 1, 4, 5});
-  columns[1] = __builtin_shuffle(ab_odd, cd_odd, LaneMask{0, 1, 4, 5});
-  columns[2] = __builtin_shuffle(ab_even, cd_even, LaneMask{2, 3, 6, 7});
-  columns[3] = __builtin_shuffle(ab_odd, cd_odd, LaneMask{2, 3, 6, 7});
-}
-
-// a and b as four pairs {a[k], b[k]}: the first two in `low`, the last two in `high`.
-[[gnu::always_inline]] inline void interleave(Lanes a, Lanes b, Lanes& low, Lanes& high) {
-  low = __builtin_shuffle(a, b, LaneMask{0, 4, 1, 5});
-  high = __builtin_shuffle(a, b, LaneMask{2, 6, 3, 7});
-}
-
-// Four consecutive doubles, from and to memory that need not be aligned.
-[[gnu::always_inline]] inline Lanes load_lanes(const double* values) {
-  Lanes lanes;
+// Lanes from and to memory that need not be aligned.
+template <class Real>
+[[gnu::always_inline]] inline Real load_lanes(const double* values) {
+  Real lanes;
   std::memcpy(&lanes, values, sizeof lanes);
   return lanes;
 }
-[[gnu::always_inline]] inline void store_lanes(double* values, Lanes lanes) {
+template <class Real>
+[[gnu::always_inline]] inline void store_lanes(double* values, Real lanes) {
   std::memcpy(values, &lanes, sizeof lanes);
 }
-[[gnu::always_inline]] inline void store_mask(std::int64_t* values, LaneMask mask) {
+template <class Mask>
+[[gnu::always_inline]] inline void store_mask(std::int64_t* values, Mask mask) {
   std::memcpy(values, &mask, sizeof mask);
+}
+
+// Four quantities of a lane's worth of items (rows[q][item]) stored item by item as records of
+// four doubles (records[item][q]): a transpose.
+[[gnu::always_inline]] inline void store_records(double (*records)[4], const Lanes4 (&rows)[4]) {
+  const Lanes4 ab_even = __builtin_shuffle(rows[0], rows[1], LaneMask4{0, 4, 2, 6});
+  const Lanes4 ab_odd = __builtin_shuffle(rows[0], rows[1], LaneMask4{1, 5, 3, 7});
+  const Lanes4 cd_even = __builtin_shuffle(rows[2], rows[3], LaneMask4{0, 4, 2, 6});
+  const Lanes4 cd_odd = __builtin_shuffle(rows[2], rows[3], LaneMask4{1, 5, 3, 7});
+  store_lanes(records[0], __builtin_shuffle(ab_even, cd_even, LaneMask4{0, 1, 4, 5}));
+  store_lanes(records[1], __builtin_shuffle(ab_odd, cd_odd, LaneMask4{0, 1, 4, 5}));
+  store_lanes(records[2], __builtin_shuffle(ab_even, cd_even, LaneMask4{2, 3, 6, 7}));
+  store_lanes(records[3], __builtin_shuffle(ab_odd, cd_odd, LaneMask4{2, 3, 6, 7}));
+}
+[[gnu::always_inline]] inline void store_records(double (*records)[4], const Lanes2 (&rows)[4]) {
+  for (int item = 0; item < 2; ++item) {
+    const LaneMask2 pick{item, item + 2};
+    store_lanes(records[item], __builtin_shuffle(rows[0], rows[1], pick));
+    store_lanes(records[item] + 2, __builtin_shuffle(rows[2], rows[3], pick));
+  }
+}
+
+// Two quantities of a lane's worth of items stored as pairs {a[item], b[item]}.
+[[gnu::always_inline]] inline void store_pairs(double (*pairs)[2], Lanes4 a, Lanes4 b) {
+  store_lanes(pairs[0], __builtin_shuffle(a, b, LaneMask4{0, 4, 1, 5}));
+  store_lanes(pairs[2], __builtin_shuffle(a, b, LaneMask4{2, 6, 3, 7}));
+}
+[[gnu::always_inline]] inline void store_pairs(double (*pairs)[2], Lanes2 a, Lanes2 b) {
+  store_lanes(pairs[0], __builtin_shuffle(a, b, LaneMask2{0, 2}));
+  store_lanes(pairs[1], __builtin_shuffle(a, b, LaneMask2{1, 3}));
 }
 
 }  // namespace toonwater
