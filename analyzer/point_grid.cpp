@@ -5,13 +5,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <numeric>
 
 namespace toonwater {
 
 PointGrid::PointGrid(const std::vector<Vec3>& points, double radius)
     : radius_(radius > 0.0 && std::isfinite(radius) ? radius : 1.0) {
   if (points.empty()) return;
-  // The bounding box and, below, the points' cells on all cores; the counting sort on one.
+  // The bounding box on all cores.
   const std::size_t workers = worker_count(points.size());
   std::vector<Vec3> chunk_min(workers, points.front()), chunk_max(workers, points.front());
   parallel_chunks(points.size(), workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
@@ -42,25 +44,59 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, double radius)
   sort_into_cells(points, workers);
 }
 
-// A counting sort that keeps each cell's points in input order.
+// A counting sort on all cores that keeps each cell's points in input order: every chunk of
+// points counts its points per cell in an array of its own, the offsets are taken cell by
+// cell and within a cell chunk by chunk, and every chunk then places its points.
 void PointGrid::sort_into_cells(const std::vector<Vec3>& points, std::size_t workers) {
-  std::vector<std::int64_t> cell_of(points.size());
-  parallel_chunks(points.size(), workers, [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i)
-      cell_of[i] = cell_index(cells_from_origin(points[i][axis_a_], axis_a_), cells_a_) * cells_b_ +
-                   cell_index(cells_from_origin(points[i][axis_b_], axis_b_), cells_b_);
+  const std::size_t n = points.size(), cell_count = static_cast<std::size_t>(cells_a_ * cells_b_);
+  std::vector<std::int32_t> cell_of(n);
+  // Left uninitialised by new: each chunk zeroes its own counts.
+  std::unique_ptr<std::int32_t[]> counts(new std::int32_t[workers * cell_count]);
+  parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::int32_t* const count = counts.get() + chunk * cell_count;
+    std::fill(count, count + cell_count, 0);
+    for (std::size_t i = begin; i < end; ++i) {
+      cell_of[i] = static_cast<std::int32_t>(
+          cell_index(cells_from_origin(points[i][axis_a_], axis_a_), cells_a_) * cells_b_ +
+          cell_index(cells_from_origin(points[i][axis_b_], axis_b_), cells_b_));
+      ++count[cell_of[i]];
+    }
   });
-  cell_begin_.assign(static_cast<std::size_t>(cells_a_ * cells_b_ + 1), 0);
-  for (std::size_t i = 0; i < points.size(); ++i) ++cell_begin_[cell_of[i] + 1];
-  for (std::size_t c = 1; c < cell_begin_.size(); ++c) cell_begin_[c] += cell_begin_[c - 1];
-  std::vector<std::int32_t> fill(cell_begin_.begin(), cell_begin_.end() - 1);
-  sorted_points_.resize(points.size());
-  sorted_index_.resize(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const std::int32_t at = fill[cell_of[i]]++;
-    sorted_points_[at] = points[i];
-    sorted_index_[at] = static_cast<std::int32_t>(i);
-  }
+  // The offsets over ranges of cells: each range's total, then each range from the totals of
+  // those before it. A chunk's count becomes the place of its first point in the cell.
+  const std::size_t cell_workers = worker_count(cell_count);
+  std::vector<std::int32_t> range_begin(cell_workers + 1, 0);
+  parallel_chunks(cell_count, cell_workers, [&](std::size_t range, std::size_t begin, std::size_t end) {
+    std::int32_t total = 0;
+    for (std::size_t chunk = 0; chunk < workers; ++chunk)
+      for (std::size_t cell = begin; cell < end; ++cell) total += counts[chunk * cell_count + cell];
+    range_begin[range + 1] = total;
+  });
+  std::partial_sum(range_begin.begin(), range_begin.end(), range_begin.begin());
+  cell_begin_.resize(cell_count + 1);
+  parallel_chunks(cell_count, cell_workers, [&](std::size_t range, std::size_t begin, std::size_t end) {
+    std::int32_t next = range_begin[range];
+    for (std::size_t cell = begin; cell < end; ++cell) {
+      cell_begin_[cell] = next;
+      for (std::size_t chunk = 0; chunk < workers; ++chunk) {
+        std::int32_t& count = counts[chunk * cell_count + cell];
+        const std::int32_t points_here = count;
+        count = next;
+        next += points_here;
+      }
+    }
+  });
+  cell_begin_[cell_count] = static_cast<std::int32_t>(n);
+  sorted_points_.resize(n);
+  sorted_index_.resize(n);
+  parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::int32_t* const place = counts.get() + chunk * cell_count;
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::int32_t at = place[cell_of[i]]++;
+      sorted_points_[at] = points[i];
+      sorted_index_[at] = static_cast<std::int32_t>(i);
+    }
+  });
 }
 
 double PointGrid::cells_from_origin(double coordinate, int axis) const {

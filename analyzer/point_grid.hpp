@@ -16,7 +16,7 @@
 // input order). The 2 × 2 cells are read in that order and hold every tied point when they end
 // the search, so the answer is the one the scans alone would give.
 //
-// Building is a counting sort: linear in the points.
+// Building is a counting sort on all cores, linear in the points.
 #pragma once
 
 #include "analyzer/mesh.hpp"
