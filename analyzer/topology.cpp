@@ -17,10 +17,6 @@
 
 namespace toonwater {
 
-bool has_repeated_corner(const Triangle& t) {
-  return t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-}
-
 VertexFaces build_vertex_faces(std::size_t vertex_count, std::span<const Triangle> triangles) {
   // A counting sort of the face corners by vertex, on every core: each chunk of faces counts its
   // own corners per vertex, and a vertex's row then holds chunk 0's faces, then chunk 1's, and so

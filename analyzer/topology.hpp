@@ -42,7 +42,10 @@ struct MeshTopology {
 };
 
 // Faces with a repeated corner index are not faces of the surface; they are ignored here.
-bool has_repeated_corner(const Triangle& t);
+// Inline: the face passes of the flow stage test every face.
+inline bool has_repeated_corner(const Triangle& t) {
+  return t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+}
 
 VertexFaces build_vertex_faces(std::size_t vertex_count, std::span<const Triangle> triangles);
 
