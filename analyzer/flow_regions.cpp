@@ -26,34 +26,6 @@ FlowDefaults flow_defaults(FlowCriterion criterion) {
   return {30.0, 0, 0.0};
 }
 
-double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {
-  const std::size_t edge_count = 3 * mesh.triangles.size();
-  if (edge_count == 0) return 0.0;
-  const std::size_t stride = std::max<std::size_t>(1, edge_count / std::max<std::size_t>(1, max_samples));
-  const std::size_t samples = (edge_count + stride - 1) / stride;
-  // The sampled edges' lengths chunk by chunk (each a cache miss or two), then joined in order.
-  const std::size_t workers = worker_count(samples, 4096);
-  std::vector<std::vector<double>> chunk_lengths(workers);
-  parallel_chunks(samples, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    std::vector<double>& lengths = chunk_lengths[chunk];
-    lengths.reserve(end - begin);
-    for (std::size_t sample = begin; sample < end; ++sample) {
-      const std::size_t e = sample * stride;
-      const Triangle& t = mesh.triangles[e / 3];
-      const int c = static_cast<int>(e % 3);
-      const double length = (mesh.positions[t[(c + 1) % 3]] - mesh.positions[t[c]]).norm();
-      if (length > 0.0 && std::isfinite(length)) lengths.push_back(length);
-    }
-  });
-  std::vector<double> lengths = std::move(chunk_lengths[0]);
-  for (std::size_t w = 1; w < workers; ++w)
-    lengths.insert(lengths.end(), chunk_lengths[w].begin(), chunk_lengths[w].end());
-  if (lengths.empty()) return 0.0;
-  const auto middle = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
-  std::nth_element(lengths.begin(), middle, lengths.end());
-  return *middle;
-}
-
 namespace {
 
 // The sign of s as a region sees it: ±1 inside a region, 0 outside.
@@ -197,9 +169,8 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   const std::size_t n = mesh.positions.size();
   FlowRegions flow;
   flow.criterion = options.criterion;
-  flow.median_edge_length = median_edge_length(mesh);
-
-  FreeSurface surface = select_free_surface(mesh, flow.median_edge_length, options);
+  FreeSurface surface = select_free_surface(mesh, options);
+  flow.median_edge_length = surface.edge_length;
   flow.free_surface = std::move(surface.selected);
   flow.free_surface_vertices = surface.vertices;
   flow.free_surface_patches_dropped = surface.patches_dropped;
@@ -208,7 +179,7 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   // The vertices that carry the field: free surface, curvature defined, and not on the free
   // surface's border, where marching cubes rounds the water into a wall (a fillet one or two
   // cells wide, as curved as a crest but no flow line).
-  std::vector<std::uint8_t> member = one_ring_inside(mesh, flow.free_surface);
+  std::vector<std::uint8_t> member = std::move(surface.inside);
   const std::size_t workers = worker_count(n);
   double surface_area = 0.0;  // summed in vertex order, so it does not depend on the core count
   for (std::size_t v = 0; v < n; ++v)
