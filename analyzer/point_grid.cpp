@@ -148,18 +148,25 @@ std::int32_t PointGrid::closest(const Vec3& p) const {
   const std::int64_t ca = cell_index(ta, cells_a_), cb = cell_index(tb, cells_b_);
   Best best{radius_ * radius_};
   if (ca >= 0 && ca < cells_a_ && cb >= 0 && cb < cells_b_) {
-    // The 2 × 2 cells nearest the query: its own and those across its cell's nearer sides. They
-    // hold every point nearer than `reach`, the query's distance to the block's sides (at least
-    // half a cell), less a millionth of a cell for the round-off of the cells' floor((x − o)/w).
+    // First the query's own cell, then the 2 × 2 cells nearest it (its own and those across its
+    // cell's nearer sides). Each holds every point nearer than its `reach`, the query's distance
+    // to its sides (for the block at least half a cell), less a millionth of a cell for the
+    // round-off of the cells' floor((x − o) / w). A point found nearer than that is nearer than
+    // any outside, so the full scans below would end at it too: ties within the block go to the
+    // later point in both.
     const double fa = ta - static_cast<double>(ca), fb = tb - static_cast<double>(cb);
+    auto closer_than = [&](double reach) {
+      reach = (reach - 1e-6) * cell_size_;
+      return best.at >= 0 && best.distance2 < reach * reach;
+    };
+    scan_run(p, cell_begin_[ca * cells_b_ + cb], cell_begin_[ca * cells_b_ + cb + 1], best);
+    if (closer_than(std::min({fa, 1.0 - fa, fb, 1.0 - fb}))) return sorted_index_[best.at];
+    best = Best{radius_ * radius_};
     const std::int64_t a = fa < 0.5 ? ca - 1 : ca, b = fb < 0.5 ? cb - 1 : cb;
     for (std::int64_t row = std::max<std::int64_t>(a, 0); row <= std::min(a + 1, cells_a_ - 1); ++row)
       scan_run(p, cell_begin_[row * cells_b_ + std::max<std::int64_t>(b, 0)],
                cell_begin_[row * cells_b_ + std::min(b + 1, cells_b_ - 1) + 1], best);
-    const double reach = (std::min(std::max(fa, 1.0 - fa), std::max(fb, 1.0 - fb)) - 1e-6) * cell_size_;
-    // A closer point than any outside the block: the scans below would end at it too (ties
-    // within the block go to the later point in both).
-    if (best.at >= 0 && best.distance2 < reach * reach) return sorted_index_[best.at];
+    if (closer_than(std::min(std::max(fa, 1.0 - fa), std::max(fb, 1.0 - fb)))) return sorted_index_[best.at];
     best = Best{radius_ * radius_};
   }
   scan(p, ca, cb, 0, 1, best);

@@ -3,18 +3,19 @@
 // points of a column, whatever their height.
 //
 // Cells are half the radius wide (wider when the points are sparse, so that there are at most
-// about four cells a point). A query first reads the 2 × 2 cells nearest to it (its own and those
-// across its cell's two nearer sides), which hold every point nearer than the block's sides (at
-// least half a cell away); when the closest of them is nearer than that, it is the answer.
-// Otherwise the query scans the 3 × 3 cells around its own, which hold every point within one
-// cell width, and only when none is that close the ring out to 5 × 5, which holds every point
-// within the radius. Between two frames of mantaflow-wake 96 % of the free-surface vertices have
-// a predecessor within a quarter of an edge, so nearly every query ends after the 2 × 2 cells:
-// about four points read instead of nine or more.
+// about four cells a point). A query reads its own cell, then the 2 × 2 cells nearest to it (its
+// own and those across its cell's two nearer sides); each holds every point nearer than its
+// sides, and when the closest point read is nearer than that, it is the answer. Otherwise the
+// query scans the 3 × 3 cells around its own, which hold every point within one cell width, and
+// only when none is that close the ring out to 5 × 5, which holds every point within the radius.
+// Between two frames of mantaflow-wake 96 % of the free-surface vertices have a predecessor
+// within a quarter of an edge (10 % at the same place), so most queries end in their own cell
+// (one or two points) and nearly all after the 2 × 2 cells, instead of reading nine or more:
+// 13 ns a query instead of 32 there, single-threaded.
 //
 // Ties go to the point last in the order of the scans (cell rows in order, each cell's points in
-// input order). The 2 × 2 cells are read in that order and hold every tied point when they end
-// the search, so the answer is the one the scans alone would give.
+// input order). The cell and the 2 × 2 cells are read in that order and hold every tied point
+// when they end the search, so the answer is the one the scans alone would give.
 //
 // Building is a counting sort on all cores, linear in the points.
 #pragma once
