@@ -12,11 +12,11 @@ EdgeSample::EdgeSample(std::size_t face_count, std::size_t max_samples)
     : face_count_(face_count),
       stride_(std::max<std::size_t>(1, 3 * face_count / std::max<std::size_t>(1, max_samples))) {}
 
-double median_length(std::vector<double>& lengths) {
-  if (lengths.empty()) return 0.0;
-  const auto middle = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
-  std::nth_element(lengths.begin(), middle, lengths.end());
-  return *middle;
+double median_length(std::vector<double>& squared_lengths) {
+  if (squared_lengths.empty()) return 0.0;
+  const auto middle = squared_lengths.begin() + static_cast<std::ptrdiff_t>(squared_lengths.size() / 2);
+  std::nth_element(squared_lengths.begin(), middle, squared_lengths.end());
+  return std::sqrt(*middle);  // as Eigen's norm() takes it
 }
 
 double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {
@@ -28,8 +28,8 @@ double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {
     std::vector<double>& lengths = chunk_lengths[chunk];
     lengths.reserve(end - begin);
     for (std::size_t i = begin; i < end; ++i) {
-      const double length = EdgeSample::length(mesh, i * sample.stride());
-      if (EdgeSample::counts(length)) lengths.push_back(length);
+      const double squared_length = EdgeSample::squared_length(mesh, i * sample.stride());
+      if (EdgeSample::counts(squared_length)) lengths.push_back(squared_length);
     }
   });
   std::vector<double> lengths = std::move(chunk_lengths[0]);

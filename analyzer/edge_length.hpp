@@ -26,20 +26,24 @@ class EdgeSample {
   std::size_t stride() const { return stride_; }
   // The first sampled edge of the faces from `face` on.
   std::size_t first_from(std::size_t face) const { return (3 * face + stride_ - 1) / stride_ * stride_; }
-  // The length of edge e; zero or not finite ones are not counted.
-  static double length(const TriangleMesh& mesh, std::size_t e) {
+  // The squared length of edge e; zero or not finite ones are not counted. The median is taken
+  // among the squares, which order as the lengths do, and one square root taken of it.
+  static double squared_length(const TriangleMesh& mesh, std::size_t e) {
     const Triangle& t = mesh.triangles[e / 3];
     const int c = static_cast<int>(e % 3);
-    return (mesh.positions[t[(c + 1) % 3]] - mesh.positions[t[c]]).norm();
+    return (mesh.positions[t[(c + 1) % 3]] - mesh.positions[t[c]]).squaredNorm();
   }
-  static bool counts(double length) { return length > 0.0 && std::isfinite(length); }
+  static bool counts(double squared_length) {
+    return squared_length > 0.0 && std::isfinite(squared_length);
+  }
 
  private:
   std::size_t face_count_, stride_;
 };
 
-// The median (the middle element, nth_element's) of the sampled lengths; 0 if there are none.
-double median_length(std::vector<double>& lengths);
+// The median (the middle element, nth_element's) of the sampled lengths, given their squares;
+// 0 if there are none.
+double median_length(std::vector<double>& squared_lengths);
 
 double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples = edge_length_samples);
 

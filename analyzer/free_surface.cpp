@@ -44,6 +44,20 @@ struct Slopes {
   double edge_length = 0.0;
 };
 
+// Whether a face's normal n (the cross product of two edges) has n·up > c |n|, given n·up and
+// |n|², with the square root taken only where the squares cannot tell: the comparison of the
+// squares is exact where they differ by more than their round-off, and a face within a
+// billionth of the limit is decided as |n| = sqrt(|n|²) would decide it.
+bool faces_up(double up_component, double squared_length, double c) {
+  if (c >= 0.0 && up_component <= 0.0) return false;
+  if (c > 0.0) {
+    const double up2 = up_component * up_component, limit2 = c * c * squared_length;
+    if (up2 > limit2 * (1.0 + 1e-9)) return true;
+    if (up2 < limit2 * (1.0 - 1e-9)) return false;
+  }
+  return up_component > c * std::sqrt(squared_length);
+}
+
 Slopes mark_slopes(const TriangleMesh& mesh, int up, double min_up_component) {
   const std::size_t n = mesh.positions.size(), face_count = mesh.triangles.size();
   Slopes slopes{std::vector<std::uint8_t>(n, 0), std::vector<std::uint8_t>(n, 0)};
@@ -61,14 +75,15 @@ Slopes mark_slopes(const TriangleMesh& mesh, int up, double min_up_component) {
     for (std::size_t f = begin; f < end; ++f) {
       const Triangle& t = mesh.triangles[f];
       for (; next_sample < 3 * f + 3; next_sample += sample.stride()) {
-        lengths[counted] = EdgeSample::length(mesh, next_sample);
+        lengths[counted] = EdgeSample::squared_length(mesh, next_sample);
         counted += EdgeSample::counts(lengths[counted]);
       }
       const Vec3& a = mesh.positions[t[0]];
       const Vec3 cross = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);
-      const double length = cross.norm();
-      if (!(length > 0.0 && std::isfinite(length))) continue;
-      auto& flags = cross[up] > min_up_component * length ? slopes.has_up_face : slopes.has_other_face;
+      const double squared_length = cross.squaredNorm();  // of the normal
+      if (!(squared_length > 0.0 && std::isfinite(squared_length))) continue;
+      auto& flags = faces_up(cross[up], squared_length, min_up_component) ? slopes.has_up_face
+                                                                          : slopes.has_other_face;
       for (std::int32_t v : t) mark(flags, v);
     }
     sample_end[chunk] = counted;
