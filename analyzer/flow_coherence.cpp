@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <optional>
 #include <utility>
 
@@ -46,21 +45,21 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
       has_previous_ ? std::optional<PointGrid>(std::in_place, previous_.positions,
                                                options_.max_distance * flow.median_edge_length)
                     : std::nullopt;
-  // The free-surface vertices are numbered compactly in vertex order: counted chunk by chunk,
-  // then each chunk fills its part of the pending frame from its own offset.
+  // The free-surface vertices are numbered compactly in vertex order: counted chunk by chunk
+  // (a byte a vertex, quicker on one core than waking another), then each chunk fills its part
+  // of the pending frame from its own offset.
   const std::size_t workers = worker_count(n, 4096);
   std::vector<std::size_t> chunk_begin(workers + 1, 0);
-  parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+  for (std::size_t chunk = 0; chunk < workers && any_surface; ++chunk) {
     std::size_t count = 0;
-    for (std::size_t v = begin; v < end && any_surface; ++v) count += flow.free_surface[v];
-    chunk_begin[chunk + 1] = count;
-  });
-  std::partial_sum(chunk_begin.begin(), chunk_begin.end(), chunk_begin.begin());
+    for (std::size_t v = n * chunk / workers; v < n * (chunk + 1) / workers; ++v) count += flow.free_surface[v];
+    chunk_begin[chunk + 1] = chunk_begin[chunk] + count;
+  }
   // The buffers of the frame before last are reused: no new pages each frame.
   pending_.edge_length = flow.median_edge_length;
   pending_.positions.resize(chunk_begin.back());
   pending_.field.resize(chunk_begin.back());
-  pending_.label.clear();
+  pending_.label.resize(chunk_begin.back());
   predecessor_.resize(n);
   parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     std::size_t next = chunk_begin[chunk];
@@ -86,14 +85,17 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
 }
 
 void FlowCoherence::remember(const CurvatureField& curvature, const FlowRegions& flow) {
+  // On one core, the areas summed in vertex order, so that the flicker does not depend on the
+  // number of cores.
   double changed = 0.0, total = 0.0;
+  std::size_t next = 0;
   for (std::size_t v = 0; v < predecessor_.size(); ++v) {
     if (flow.free_surface.size() != predecessor_.size() || !flow.free_surface[v]) continue;
     const std::int32_t p = predecessor_[v];
     const std::int8_t before = p >= 0 ? previous_.label[p] : std::int8_t{FlowLabel::none};
     total += curvature.area[v];
     if (flow.label[v] != before) changed += curvature.area[v];
-    pending_.label.push_back(flow.label[v]);
+    pending_.label[next++] = flow.label[v];
   }
   last_flicker_ = has_previous_ && total > 0.0 ? changed / total : 0.0;
   std::swap(previous_, pending_);
