@@ -62,9 +62,11 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   const std::size_t workers = worker_count(n);
 
   // The vertices in regions, numbered compactly in vertex order: regions are a small part of
-  // the surface. Counted chunk by chunk, then numbered from each chunk's offset.
-  std::vector<std::int32_t> member_index(n);
-  std::vector<std::int8_t> sign(n);
+  // the surface. Counted chunk by chunk, then numbered from each chunk's offset. (The arrays are
+  // left uninitialised by new: every slot read is written first; member_index only at the
+  // members, the only slots the joins read.)
+  std::unique_ptr<std::int32_t[]> member_index(new std::int32_t[n]);
+  std::unique_ptr<std::int8_t[]> sign(new std::int8_t[n]);
   std::vector<std::int32_t> chunk_begin(workers + 1, 0);
   parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     std::int32_t count = 0;
@@ -76,12 +78,13 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   });
   std::partial_sum(chunk_begin.begin(), chunk_begin.end(), chunk_begin.begin());
   const std::size_t m = static_cast<std::size_t>(chunk_begin.back());
-  std::vector<std::int32_t> members(m);
+  std::unique_ptr<std::int32_t[]> members(new std::int32_t[m]);
   parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     std::int32_t next = chunk_begin[chunk];
     for (std::size_t v = begin; v < end; ++v) {
-      member_index[v] = sign[v] != FlowLabel::none ? next : -1;
-      if (sign[v] != FlowLabel::none) members[next++] = static_cast<std::int32_t>(v);
+      if (sign[v] == FlowLabel::none) continue;
+      member_index[v] = next;
+      members[next++] = static_cast<std::int32_t>(v);
     }
   });
   // Regions: vertices of one sign joined along the edges between them. The signs are a byte a
@@ -90,8 +93,8 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   const std::size_t face_chunks = m > 0 ? worker_count(mesh.triangles.size()) : 1;
   std::vector<std::int32_t> range_begin = vertex_ranges(mesh.triangles, n, face_chunks);
   for (std::int32_t& begin : range_begin)  // vertex ranges to member ranges
-    begin = static_cast<std::int32_t>(std::lower_bound(members.begin(), members.end(), begin) -
-                                      members.begin());
+    begin = static_cast<std::int32_t>(std::lower_bound(members.get(), members.get() + m, begin) -
+                                      members.get());
   join_in_parallel(sets, mesh.triangles.size(), range_begin, [&](std::size_t f, auto& join) {
     const Triangle& t = mesh.triangles[f];
     const std::int8_t s0 = sign[t[0]], s1 = sign[t[1]], s2 = sign[t[2]];
@@ -107,7 +110,7 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
     double area, peak, factor;
   };
   std::unique_ptr<Region[]> region(new Region[m]);
-  std::vector<std::int32_t> region_of(m);
+  std::unique_ptr<std::int32_t[]> region_of(new std::int32_t[m]);
   parallel_chunks(m, worker_count(m), [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       region_of[i] = sets.root_of(static_cast<std::int32_t>(i));
