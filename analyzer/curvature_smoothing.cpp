@@ -67,13 +67,17 @@ void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_fac
     parallel_chunks(face_count, face_chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
       const std::int32_t low = range_begin[chunk];
       const auto size = static_cast<std::uint32_t>(range_begin[chunk + 1] - low);
+      // The arrays by plain pointers: through the unique_ptrs the compiler loaded the address
+      // again for every corner.
+      const Terms* const term = terms.get();
+      Terms* const sum_of = sums.get();
       for (std::size_t f = begin; f < end; ++f) {
         const Triangle& t = mesh.triangles[f];
         if (has_repeated_corner(t)) continue;  // not among the vertices' faces
-        const Terms sum = face_sum(terms[t[0]], terms[t[1]], terms[t[2]]);
+        const Terms sum = face_sum(term[t[0]], term[t[1]], term[t[2]]);
         for (const std::int32_t v : t) {
           if (static_cast<std::uint32_t>(v - low) < size) {  // in the chunk's range
-            sums[v] += sum;
+            sum_of[v] += sum;
           } else if (step == 0) {
             std::atomic_ref<std::uint8_t> shared(is_shared[v]);
             if (shared.load(std::memory_order_relaxed)) continue;

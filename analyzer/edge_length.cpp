@@ -28,7 +28,7 @@ double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {
     std::vector<double>& lengths = chunk_lengths[chunk];
     lengths.reserve(end - begin);
     for (std::size_t i = begin; i < end; ++i) {
-      const double squared_length = EdgeSample::squared_length(mesh, i * sample.stride());
+      const double squared_length = EdgeSample::squared_length(mesh.positions, mesh.triangles, i * sample.stride());
       if (EdgeSample::counts(squared_length)) lengths.push_back(squared_length);
     }
   });

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <span>
 #include <vector>
 
 namespace toonwater {
@@ -28,10 +29,11 @@ class EdgeSample {
   std::size_t first_from(std::size_t face) const { return (3 * face + stride_ - 1) / stride_ * stride_; }
   // The squared length of edge e; zero or not finite ones are not counted. The median is taken
   // among the squares, which order as the lengths do, and one square root taken of it.
-  static double squared_length(const TriangleMesh& mesh, std::size_t e) {
-    const Triangle& t = mesh.triangles[e / 3];
+  static double squared_length(std::span<const Vec3> positions, std::span<const Triangle> triangles,
+                               std::size_t e) {
+    const Triangle& t = triangles[e / 3];
     const int c = static_cast<int>(e % 3);
-    return (mesh.positions[t[(c + 1) % 3]] - mesh.positions[t[c]]).squaredNorm();
+    return (positions[t[(c + 1) % 3]] - positions[t[c]]).squaredNorm();
   }
   static bool counts(double squared_length) {
     return squared_length > 0.0 && std::isfinite(squared_length);

@@ -24,13 +24,17 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
+#include <span>
 
 namespace toonwater {
 namespace {
 
 // Sets flags[v] from a pass over faces on several threads: two faces of one vertex may set its
-// flag at once, which std::atomic_ref makes well defined for the cost of a plain store.
-void mark(std::vector<std::uint8_t>& flags, std::int32_t v) {
+// flag at once, which std::atomic_ref makes well defined for the cost of a plain store. The
+// passes that mark hold the arrays they read by plain pointers or spans: a byte store may alias
+// anything, so through the vectors the compiler would load their addresses again after every
+// mark.
+void mark(std::uint8_t* flags, std::int32_t v) {
   std::atomic_ref<std::uint8_t>(flags[v]).store(1, std::memory_order_relaxed);
 }
 
@@ -71,19 +75,24 @@ Slopes mark_slopes(const TriangleMesh& mesh, int up, double min_up_component) {
   std::vector<double> lengths(sample_begin[workers]);
   std::vector<std::size_t> sample_end(workers);
   parallel_chunks(face_count, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    const std::span<const Vec3> positions = mesh.positions;
+    const std::span<const Triangle> triangles = mesh.triangles;
+    std::uint8_t* const has_up_face = slopes.has_up_face.data();
+    std::uint8_t* const has_other_face = slopes.has_other_face.data();
+    double* const squared_lengths = lengths.data();
     std::size_t next_sample = sample.first_from(begin), counted = sample_begin[chunk];
     for (std::size_t f = begin; f < end; ++f) {
-      const Triangle& t = mesh.triangles[f];
+      const Triangle& t = triangles[f];
       for (; next_sample < 3 * f + 3; next_sample += sample.stride()) {
-        lengths[counted] = EdgeSample::squared_length(mesh, next_sample);
-        counted += EdgeSample::counts(lengths[counted]);
+        squared_lengths[counted] = EdgeSample::squared_length(positions, triangles, next_sample);
+        counted += EdgeSample::counts(squared_lengths[counted]);
       }
-      const Vec3& a = mesh.positions[t[0]];
-      const Vec3 cross = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);
+      const Vec3& a = positions[t[0]];
+      const Vec3 cross = (positions[t[1]] - a).cross(positions[t[2]] - a);
       const double squared_length = cross.squaredNorm();  // of the normal
       if (!(squared_length > 0.0 && std::isfinite(squared_length))) continue;
-      auto& flags = faces_up(cross[up], squared_length, min_up_component) ? slopes.has_up_face
-                                                                          : slopes.has_other_face;
+      std::uint8_t* const flags =
+          faces_up(cross[up], squared_length, min_up_component) ? has_up_face : has_other_face;
       for (std::int32_t v : t) mark(flags, v);
     }
     sample_end[chunk] = counted;
@@ -105,10 +114,13 @@ std::vector<std::uint8_t> one_ring_inside(const TriangleMesh& mesh,
   std::vector<std::uint8_t> near_unselected(n, 0);  // a corner of one of its faces is not selected
   parallel_chunks(face_count, worker_count(face_count),
                   [&](std::size_t, std::size_t begin, std::size_t end) {
+    const std::span<const Triangle> triangles = mesh.triangles;
+    const std::uint8_t* const in = selected.data();
+    std::uint8_t* const near = near_unselected.data();
     for (std::size_t f = begin; f < end; ++f) {
-      const Triangle& t = mesh.triangles[f];
-      if (has_repeated_corner(t) || (selected[t[0]] && selected[t[1]] && selected[t[2]])) continue;
-      for (std::int32_t v : t) mark(near_unselected, v);
+      const Triangle& t = triangles[f];
+      if (has_repeated_corner(t) || (in[t[0]] && in[t[1]] && in[t[2]])) continue;
+      for (std::int32_t v : t) mark(near, v);
     }
   });
   parallel_chunks(n, worker_count(n, bytes_per_worker), [&](std::size_t, std::size_t begin, std::size_t end) {
@@ -159,7 +171,7 @@ Patches find_patches(const TriangleMesh& mesh, const std::vector<std::uint8_t>& 
                      if (up1 && up2) join(t[1], t[2]);
                      if (up2 && up0) join(t[2], t[0]);
                      if (!has_repeated_corner(t))
-                       for (std::int32_t v : t) mark(patches.near_unselected, v);
+                       for (std::int32_t v : t) mark(patches.near_unselected.data(), v);
                    });
   // Each vertex's root, and the roots, chunk by chunk; the roots are numbered in order.
   const std::size_t workers = worker_count(n);
