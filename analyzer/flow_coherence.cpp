@@ -88,14 +88,23 @@ void FlowCoherence::remember(const CurvatureField& curvature, const FlowRegions&
   // On one core, the areas summed in vertex order, so that the flicker does not depend on the
   // number of cores.
   double changed = 0.0, total = 0.0;
-  std::size_t next = 0;
-  for (std::size_t v = 0; v < predecessor_.size(); ++v) {
-    if (flow.free_surface.size() != predecessor_.size() || !flow.free_surface[v]) continue;
-    const std::int32_t p = predecessor_[v];
-    const std::int8_t before = p >= 0 ? previous_.label[p] : std::int8_t{FlowLabel::none};
-    total += curvature.area[v];
-    if (flow.label[v] != before) changed += curvature.area[v];
-    pending_.label[next++] = flow.label[v];
+  if (flow.free_surface.size() == predecessor_.size()) {
+    // By plain pointers: after the labels' byte stores the compiler would load every vector's
+    // address again.
+    const std::uint8_t* const on_surface = flow.free_surface.data();
+    const std::int8_t *const label = flow.label.data(), *const label_before = previous_.label.data();
+    const std::int32_t* const predecessor = predecessor_.data();
+    const double* const area = curvature.area.data();
+    std::int8_t* const next_label = pending_.label.data();
+    std::size_t next = 0;
+    for (std::size_t v = 0; v < predecessor_.size(); ++v) {
+      if (!on_surface[v]) continue;
+      const std::int32_t p = predecessor[v];
+      const std::int8_t before = p >= 0 ? label_before[p] : std::int8_t{FlowLabel::none};
+      total += area[v];
+      if (label[v] != before) changed += area[v];
+      next_label[next++] = label[v];
+    }
   }
   last_flicker_ = has_previous_ && total > 0.0 ? changed / total : 0.0;
   std::swap(previous_, pending_);

@@ -69,10 +69,13 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   std::unique_ptr<std::int8_t[]> sign(new std::int8_t[n]);
   std::vector<std::int32_t> chunk_begin(workers + 1, 0);
   parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    // By plain pointers: after a byte store the compiler would load a vector's address again.
+    const double* const s = field.data();
+    std::int8_t* const sign_of = sign.get();
     std::int32_t count = 0;
     for (std::size_t v = begin; v < end; ++v) {
-      sign[v] = region_sign(field[v]);
-      count += sign[v] != FlowLabel::none;
+      sign_of[v] = region_sign(s[v]);
+      count += sign_of[v] != FlowLabel::none;
     }
     chunk_begin[chunk + 1] = count;
   });
@@ -142,16 +145,19 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   std::vector<Tally> tallies(member_workers);
   parallel_chunks(m, member_workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     Tally& tally = tallies[chunk];
+    double* const s = field.data();  // plain pointers again: the labels are byte stores
+    std::int8_t* const label_of = flow.label.data();
+    const Vec3* const positions = mesh.positions.data();
     for (std::size_t i = begin; i < end; ++i) {
       const std::int32_t v = members[i];
-      field[v] *= region[region_of[i]].factor;
-      const std::int8_t label = region_sign(field[v]);
-      flow.label[v] = label;
+      s[v] *= region[region_of[i]].factor;
+      const std::int8_t label = region_sign(s[v]);
+      label_of[v] = label;
       if (label == FlowLabel::none) continue;
       tally.ridges += label == FlowLabel::ridge;
       tally.valleys += label == FlowLabel::valley;
-      tally.box.min = tally.box.min.cwiseMin(mesh.positions[v]);
-      tally.box.max = tally.box.max.cwiseMax(mesh.positions[v]);
+      tally.box.min = tally.box.min.cwiseMin(positions[v]);
+      tally.box.max = tally.box.max.cwiseMax(positions[v]);
     }
   });
   Box3& box = flow.region_of_interest;
@@ -200,17 +206,22 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   std::vector<double> field(n, 0.0);
   if (flow.threshold > 0.0 && std::isfinite(flow.threshold)) {
     parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
+      std::uint8_t* const carries = member.data();  // plain pointers: it is a byte store
+      const CurvatureStatus* const status = curvature.status.data();
+      const double *const mean_of = curvature.mean.data(), *const gaussian_of = curvature.gaussian.data();
+      double* const s = field.data();
+      const bool paper = options.criterion == FlowCriterion::paper;
+      const double threshold = flow.threshold;
       for (std::size_t v = begin; v < end; ++v) {
         // Where the curvature is undefined there is no field, and no weight in the smoothing.
-        member[v] = member[v] && curvature.status[v] != CurvatureStatus::undefined;
-        if (!member[v]) continue;
-        const double mean = curvature.mean[v];
-        const double s = options.criterion == FlowCriterion::mean
-                             ? mean / flow.threshold
-                             : std::copysign(std::abs(curvature.gaussian[v]), mean) / flow.threshold;
+        carries[v] = carries[v] && status[v] != CurvatureStatus::undefined;
+        if (!carries[v]) continue;
+        const double mean = mean_of[v];
+        const double value = paper ? std::copysign(std::abs(gaussian_of[v]), mean) / threshold
+                                   : mean / threshold;
         // Only H = 0 exactly (or −0) gives the paper's field the sign of zero: it is not a region.
-        field[v] = options.criterion == FlowCriterion::paper && mean == 0.0 ? 0.0 : s;
-        if (!std::isfinite(field[v])) field[v] = 0.0;
+        s[v] = paper && mean == 0.0 ? 0.0 : value;
+        if (!std::isfinite(s[v])) s[v] = 0.0;
       }
     });
     smooth_vertex_field(mesh, vertex_faces, curvature.area, member, field,

@@ -292,9 +292,12 @@ FreeSurface select_free_surface(const TriangleMesh& mesh, const FreeSurfaceOptio
   surface.patches_dropped = count - surface.patches_kept;
   surface.inside = std::move(patches.near_unselected);
   parallel_chunks(n, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
+    std::uint8_t *const selected = surface.selected.data(), *const inside = surface.inside.data();
+    const std::int32_t* const patch = patches.of_vertex.data();
+    const std::uint8_t* const kept = keep.data();
     for (std::size_t v = begin; v < end; ++v) {
-      surface.selected[v] = patches.of_vertex[v] >= 0 && keep[patches.of_vertex[v]];
-      surface.inside[v] = surface.selected[v] && !surface.inside[v];
+      selected[v] = patch[v] >= 0 && kept[patch[v]];
+      inside[v] = selected[v] && !inside[v];
     }
   });
   return surface;
