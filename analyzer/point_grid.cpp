@@ -145,15 +145,15 @@ void PointGrid::scan(const Vec3& p, std::int64_t ca, std::int64_t cb, int inner,
 std::int32_t PointGrid::closest(const Vec3& p) const {
   if (sorted_points_.empty()) return -1;
   const double ta = cells_from_origin(p[axis_a_], axis_a_), tb = cells_from_origin(p[axis_b_], axis_b_);
-  const std::int64_t ca = cell_index(ta, cells_a_), cb = cell_index(tb, cells_b_);
   Best best{radius_ * radius_};
-  if (ca >= 0 && ca < cells_a_ && cb >= 0 && cb < cells_b_) {
-    // First the query's own cell, then the 2 × 2 cells nearest it (its own and those across its
-    // cell's nearer sides). Each holds every point nearer than its `reach`, the query's distance
-    // to its sides (for the block at least half a cell), less a millionth of a cell for the
-    // round-off of the cells' floor((x − o) / w). A point found nearer than that is nearer than
-    // any outside, so the full scans below would end at it too: ties within the block go to the
-    // later point in both.
+  if (ta >= 0.0 && ta < static_cast<double>(cells_a_) && tb >= 0.0 && tb < static_cast<double>(cells_b_)) {
+    // Inside the grid, where truncation is cell_index's floor. First the query's own cell, then
+    // the 2 × 2 cells nearest it (its own and those across its cell's nearer sides). Each holds
+    // every point nearer than its `reach`, the query's distance to its sides (for the block at
+    // least half a cell), less a millionth of a cell for the round-off of the cells'
+    // floor((x − o) / w). A point found nearer than that is nearer than any outside, so the
+    // full scans below would end at it too: ties within the block go to the later point in both.
+    const auto ca = static_cast<std::int64_t>(ta), cb = static_cast<std::int64_t>(tb);
     const double fa = ta - static_cast<double>(ca), fb = tb - static_cast<double>(cb);
     auto closer_than = [&](double reach) {
       reach = (reach - 1e-6) * cell_size_;
@@ -169,6 +169,7 @@ std::int32_t PointGrid::closest(const Vec3& p) const {
     if (closer_than(std::min(std::max(fa, 1.0 - fa), std::max(fb, 1.0 - fb)))) return sorted_index_[best.at];
     best = Best{radius_ * radius_};
   }
+  const std::int64_t ca = cell_index(ta, cells_a_), cb = cell_index(tb, cells_b_);
   scan(p, ca, cb, 0, 1, best);
   // The ring out to two cells holds every point within 2 cell widths >= the radius.
   if (best.at < 0 || best.distance2 > cell_size_ * cell_size_) scan(p, ca, cb, 2, 2, best);
