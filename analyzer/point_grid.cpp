@@ -55,10 +55,11 @@ void PointGrid::sort_into_cells(const std::vector<Vec3>& points, std::size_t wor
   parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     std::int32_t* const count = counts.get() + chunk * cell_count;
     std::fill(count, count + cell_count, 0);
+    // The points lie inside the grid, where truncation is cell_index's floor.
     for (std::size_t i = begin; i < end; ++i) {
       cell_of[i] = static_cast<std::int32_t>(
-          cell_index(cells_from_origin(points[i][axis_a_], axis_a_), cells_a_) * cells_b_ +
-          cell_index(cells_from_origin(points[i][axis_b_], axis_b_), cells_b_));
+          static_cast<std::int64_t>(cells_from_origin(points[i][axis_a_], axis_a_)) * cells_b_ +
+          static_cast<std::int64_t>(cells_from_origin(points[i][axis_b_], axis_b_)));
       ++count[cell_of[i]];
     }
   });
