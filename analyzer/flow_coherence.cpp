@@ -62,23 +62,38 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
   pending_.label.resize(chunk_begin.back());
   predecessor_.resize(n);
   parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    if (!any_surface) {
+      std::fill(predecessor_.begin() + static_cast<std::ptrdiff_t>(begin),
+                predecessor_.begin() + static_cast<std::ptrdiff_t>(end), -1);
+      return;
+    }
+    // By plain pointers and values: the search is a call, after which the compiler would load
+    // every member array's address again.
+    const std::uint8_t* const on_surface = flow.free_surface.data();
+    const Vec3* const position = surface.positions.data();
+    const double* const field_before = previous_.field.data();
+    double* const s = field.data();
+    std::int32_t* const predecessor = predecessor_.data();
+    Vec3* const next_position = pending_.positions.data();
+    double* const next_field = pending_.field.data();
+    const PointGrid* const previous_surface = grid ? &*grid : nullptr;
+    const double blend = options_.blend, rise_blend = options_.rise_blend;
     std::size_t next = chunk_begin[chunk];
     for (std::size_t v = begin; v < end; ++v) {
-      predecessor_[v] = -1;
-      if (!any_surface || !flow.free_surface[v]) continue;
-      const std::int32_t p = grid ? grid->closest(surface.positions[v]) : -1;
-      predecessor_[v] = p;
+      predecessor[v] = -1;
+      if (!on_surface[v]) continue;
+      const std::int32_t p = previous_surface ? previous_surface->closest(position[v]) : -1;
+      predecessor[v] = p;
       if (p >= 0) {
-        const double s = field[v], before = previous_.field[p];
+        const double now = s[v], before = field_before[p];
         // A field that grows (same sign, larger) is followed faster than one that fades, so a
         // crest that moves a cell or more a frame is not averaged away with the calm water it
         // has left.
-        const double b = before * s > 0 && std::abs(s) > std::abs(before) ? options_.rise_blend
-                                                                           : options_.blend;
-        field[v] = (1 - b) * s + b * before;
+        const double b = before * now > 0 && std::abs(now) > std::abs(before) ? rise_blend : blend;
+        s[v] = (1 - b) * now + b * before;
       }
-      pending_.positions[next] = surface.positions[v];
-      pending_.field[next] = field[v];
+      next_position[next] = position[v];
+      next_field[next] = s[v];
       ++next;
     }
   });
