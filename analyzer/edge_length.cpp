@@ -1,6 +1,7 @@
 // Median edge length from a deterministic sample of edges; stated in edge_length.hpp.
 #include "analyzer/edge_length.hpp"
 
+#include "common/order_statistic.hpp"
 #include "common/parallel.hpp"
 
 #include <algorithm>
@@ -14,9 +15,8 @@ EdgeSample::EdgeSample(std::size_t face_count, std::size_t max_samples)
 
 double median_length(std::vector<double>& squared_lengths) {
   if (squared_lengths.empty()) return 0.0;
-  const auto middle = squared_lengths.begin() + static_cast<std::ptrdiff_t>(squared_lengths.size() / 2);
-  std::nth_element(squared_lengths.begin(), middle, squared_lengths.end());
-  return std::sqrt(*middle);  // as Eigen's norm() takes it
+  // The square root of the middle square, as Eigen's norm() takes it.
+  return std::sqrt(kth_smallest(squared_lengths, squared_lengths.size() / 2));
 }
 
 double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {

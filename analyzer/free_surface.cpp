@@ -18,6 +18,7 @@
 #include "analyzer/disjoint_sets.hpp"
 #include "analyzer/edge_length.hpp"
 #include "analyzer/topology.hpp"
+#include "common/order_statistic.hpp"
 #include "common/parallel.hpp"
 
 #include <algorithm>
@@ -250,11 +251,8 @@ std::vector<double> median_heights(const TriangleMesh& mesh, int up, const Patch
   });
   std::vector<double> median(count);
   for (std::size_t p = 0; p < count; ++p) {
-    const auto first = heights.begin() + static_cast<std::ptrdiff_t>(sample_begin[p]);
-    const auto last = heights.begin() + static_cast<std::ptrdiff_t>(sample_begin[p + 1]);
-    const auto middle = first + (last - first) / 2;
-    std::nth_element(first, middle, last);
-    median[p] = *middle;
+    const std::span<double> samples(heights.data() + sample_begin[p], heights.data() + sample_begin[p + 1]);
+    median[p] = kth_smallest(samples, samples.size() / 2);
   }
   return median;
 }
