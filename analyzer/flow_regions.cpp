@@ -144,7 +144,7 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   const std::size_t member_workers = worker_count(m);
   std::vector<Tally> tallies(member_workers);
   parallel_chunks(m, member_workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    Tally& tally = tallies[chunk];
+    Tally tally;  // in a local: in the vector, each update would wait for the last one's store
     double* const s = field.data();  // plain pointers again: the labels are byte stores
     std::int8_t* const label_of = flow.label.data();
     const Vec3* const positions = mesh.positions.data();
@@ -159,6 +159,7 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
       tally.box.min = tally.box.min.cwiseMin(positions[v]);
       tally.box.max = tally.box.max.cwiseMax(positions[v]);
     }
+    tallies[chunk] = tally;
   });
   Box3& box = flow.region_of_interest;
   box = Tally{}.box;

@@ -17,10 +17,14 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, double radius)
   const std::size_t workers = worker_count(points.size());
   std::vector<Vec3> chunk_min(workers, points.front()), chunk_max(workers, points.front());
   parallel_chunks(points.size(), workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    // In locals: kept in the vectors, each point's update waited for the last one's store.
+    Vec3 low = points[begin], high = points[begin];
     for (std::size_t i = begin; i < end; ++i) {
-      chunk_min[chunk] = chunk_min[chunk].cwiseMin(points[i]);
-      chunk_max[chunk] = chunk_max[chunk].cwiseMax(points[i]);
+      low = low.cwiseMin(points[i]);
+      high = high.cwiseMax(points[i]);
     }
+    chunk_min[chunk] = low;
+    chunk_max[chunk] = high;
   });
   Vec3 min = chunk_min[0], max = chunk_max[0];
   for (std::size_t w = 1; w < workers; ++w) {
