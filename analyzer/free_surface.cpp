@@ -198,12 +198,22 @@ Patches find_patches(const TriangleMesh& mesh, const std::vector<std::uint8_t>& 
     std::vector<std::int32_t>& first = chunk_first[chunk];
     size.assign(patch_count, 0);
     first.assign(patch_count, -1);
+    // Counted by runs of one patch in a local: counted in the vector, each vertex's count would
+    // wait for the last one's store (most of a frame's vertices are in one patch).
+    std::int32_t run_patch = -1, run_length = 0;
     for (std::size_t v = begin; v < end; ++v) {
       std::int32_t& patch = patches.of_vertex[v];
       if (patch < 0) continue;
       patch = patch_of_root[patch];
-      if (size[patch]++ == 0) first[patch] = static_cast<std::int32_t>(v);
+      if (patch != run_patch) {
+        if (run_patch >= 0) size[run_patch] += run_length;
+        if (first[patch] < 0) first[patch] = static_cast<std::int32_t>(v);
+        run_patch = patch;
+        run_length = 0;
+      }
+      ++run_length;
     }
+    if (run_patch >= 0) size[run_patch] += run_length;
   });
   patches.size.assign(patch_count, 0);
   patches.first_vertex.assign(patch_count, -1);
@@ -242,11 +252,25 @@ std::vector<double> median_heights(const TriangleMesh& mesh, int up, const Patch
       next_sample[p] = sample_begin[p] + static_cast<std::size_t>(sampled_before);
       until_sample[p] = sampled_before * stride[p] - rank;
     }
+    // The current patch's place in locals, for runs of vertices of one patch (see find_patches).
+    std::int32_t run_patch = -1, until = 0, run_stride = 1;
+    std::size_t next = 0;
     for (std::size_t v = begin; v < end; ++v) {
       const std::int32_t p = patches.of_vertex[v];
-      if (p < 0 || until_sample[p]-- > 0) continue;
-      heights[next_sample[p]++] = mesh.positions[v][up];
-      until_sample[p] = stride[p] - 1;
+      if (p < 0) continue;
+      if (p != run_patch) {
+        if (run_patch >= 0) {
+          until_sample[run_patch] = until;
+          next_sample[run_patch] = next;
+        }
+        run_patch = p;
+        until = until_sample[p];
+        next = next_sample[p];
+        run_stride = stride[p];
+      }
+      if (until-- > 0) continue;
+      heights[next++] = mesh.positions[v][up];
+      until = run_stride - 1;
     }
   });
   std::vector<double> median(count);
