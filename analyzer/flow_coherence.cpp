@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <optional>
 #include <utility>
 
@@ -46,54 +45,81 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
       has_previous_ ? std::optional<PointGrid>(std::in_place, previous_.positions,
                                                options_.max_distance * flow.median_edge_length)
                     : std::nullopt;
-  // The free-surface vertices are numbered compactly in vertex order: counted chunk by chunk,
-  // then each chunk fills its part of the pending frame from its own offset.
+  // The free-surface vertices are numbered compactly in vertex order: counted chunk by chunk
+  // (a byte a vertex, quicker on one core than waking another), then each chunk fills its part
+  // of the pending frame from its own offset.
   const std::size_t workers = worker_count(n, 4096);
   std::vector<std::size_t> chunk_begin(workers + 1, 0);
-  parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+  for (std::size_t chunk = 0; chunk < workers && any_surface; ++chunk) {
     std::size_t count = 0;
-    for (std::size_t v = begin; v < end && any_surface; ++v) count += flow.free_surface[v];
-    chunk_begin[chunk + 1] = count;
-  });
-  std::partial_sum(chunk_begin.begin(), chunk_begin.end(), chunk_begin.begin());
+    for (std::size_t v = n * chunk / workers; v < n * (chunk + 1) / workers; ++v) count += flow.free_surface[v];
+    chunk_begin[chunk + 1] = chunk_begin[chunk] + count;
+  }
   // The buffers of the frame before last are reused: no new pages each frame.
   pending_.edge_length = flow.median_edge_length;
   pending_.positions.resize(chunk_begin.back());
   pending_.field.resize(chunk_begin.back());
-  pending_.label.clear();
+  pending_.label.resize(chunk_begin.back());
   predecessor_.resize(n);
   parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    if (!any_surface) {
+      std::fill(predecessor_.begin() + static_cast<std::ptrdiff_t>(begin),
+                predecessor_.begin() + static_cast<std::ptrdiff_t>(end), -1);
+      return;
+    }
+    // By plain pointers and values: the search is a call, after which the compiler would load
+    // every member array's address again.
+    const std::uint8_t* const on_surface = flow.free_surface.data();
+    const Vec3* const position = surface.positions.data();
+    const double* const field_before = previous_.field.data();
+    double* const s = field.data();
+    std::int32_t* const predecessor = predecessor_.data();
+    Vec3* const next_position = pending_.positions.data();
+    double* const next_field = pending_.field.data();
+    const PointGrid* const previous_surface = grid ? &*grid : nullptr;
+    const double blend = options_.blend, rise_blend = options_.rise_blend;
     std::size_t next = chunk_begin[chunk];
     for (std::size_t v = begin; v < end; ++v) {
-      predecessor_[v] = -1;
-      if (!any_surface || !flow.free_surface[v]) continue;
-      const std::int32_t p = grid ? grid->closest(surface.positions[v]) : -1;
-      predecessor_[v] = p;
+      predecessor[v] = -1;
+      if (!on_surface[v]) continue;
+      const std::int32_t p = previous_surface ? previous_surface->closest(position[v]) : -1;
+      predecessor[v] = p;
       if (p >= 0) {
-        const double s = field[v], before = previous_.field[p];
+        const double now = s[v], before = field_before[p];
         // A field that grows (same sign, larger) is followed faster than one that fades, so a
         // crest that moves a cell or more a frame is not averaged away with the calm water it
         // has left.
-        const double b = before * s > 0 && std::abs(s) > std::abs(before) ? options_.rise_blend
-                                                                           : options_.blend;
-        field[v] = (1 - b) * s + b * before;
+        const double b = before * now > 0 && std::abs(now) > std::abs(before) ? rise_blend : blend;
+        s[v] = (1 - b) * now + b * before;
       }
-      pending_.positions[next] = surface.positions[v];
-      pending_.field[next] = field[v];
+      next_position[next] = position[v];
+      next_field[next] = s[v];
       ++next;
     }
   });
 }
 
 void FlowCoherence::remember(const CurvatureField& curvature, const FlowRegions& flow) {
+  // On one core, the areas summed in vertex order, so that the flicker does not depend on the
+  // number of cores.
   double changed = 0.0, total = 0.0;
-  for (std::size_t v = 0; v < predecessor_.size(); ++v) {
-    if (flow.free_surface.size() != predecessor_.size() || !flow.free_surface[v]) continue;
-    const std::int32_t p = predecessor_[v];
-    const std::int8_t before = p >= 0 ? previous_.label[p] : std::int8_t{FlowLabel::none};
-    total += curvature.area[v];
-    if (flow.label[v] != before) changed += curvature.area[v];
-    pending_.label.push_back(flow.label[v]);
+  if (flow.free_surface.size() == predecessor_.size()) {
+    // By plain pointers: after the labels' byte stores the compiler would load every vector's
+    // address again.
+    const std::uint8_t* const on_surface = flow.free_surface.data();
+    const std::int8_t *const label = flow.label.data(), *const label_before = previous_.label.data();
+    const std::int32_t* const predecessor = predecessor_.data();
+    const double* const area = curvature.area.data();
+    std::int8_t* const next_label = pending_.label.data();
+    std::size_t next = 0;
+    for (std::size_t v = 0; v < predecessor_.size(); ++v) {
+      if (!on_surface[v]) continue;
+      const std::int32_t p = predecessor[v];
+      const std::int8_t before = p >= 0 ? label_before[p] : std::int8_t{FlowLabel::none};
+      total += area[v];
+      if (label[v] != before) changed += area[v];
+      next_label[next++] = label[v];
+    }
   }
   last_flicker_ = has_previous_ && total > 0.0 ? changed / total : 0.0;
   std::swap(previous_, pending_);

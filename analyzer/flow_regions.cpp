@@ -26,34 +26,6 @@ FlowDefaults flow_defaults(FlowCriterion criterion) {
   return {30.0, 0, 0.0};
 }
 
-double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {
-  const std::size_t edge_count = 3 * mesh.triangles.size();
-  if (edge_count == 0) return 0.0;
-  const std::size_t stride = std::max<std::size_t>(1, edge_count / std::max<std::size_t>(1, max_samples));
-  const std::size_t samples = (edge_count + stride - 1) / stride;
-  // The sampled edges' lengths chunk by chunk (each a cache miss or two), then joined in order.
-  const std::size_t workers = worker_count(samples, 4096);
-  std::vector<std::vector<double>> chunk_lengths(workers);
-  parallel_chunks(samples, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    std::vector<double>& lengths = chunk_lengths[chunk];
-    lengths.reserve(end - begin);
-    for (std::size_t sample = begin; sample < end; ++sample) {
-      const std::size_t e = sample * stride;
-      const Triangle& t = mesh.triangles[e / 3];
-      const int c = static_cast<int>(e % 3);
-      const double length = (mesh.positions[t[(c + 1) % 3]] - mesh.positions[t[c]]).norm();
-      if (length > 0.0 && std::isfinite(length)) lengths.push_back(length);
-    }
-  });
-  std::vector<double> lengths = std::move(chunk_lengths[0]);
-  for (std::size_t w = 1; w < workers; ++w)
-    lengths.insert(lengths.end(), chunk_lengths[w].begin(), chunk_lengths[w].end());
-  if (lengths.empty()) return 0.0;
-  const auto middle = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
-  std::nth_element(lengths.begin(), middle, lengths.end());
-  return *middle;
-}
-
 namespace {
 
 // The sign of s as a region sees it: ±1 inside a region, 0 outside.
@@ -90,26 +62,32 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   const std::size_t workers = worker_count(n);
 
   // The vertices in regions, numbered compactly in vertex order: regions are a small part of
-  // the surface. Counted chunk by chunk, then numbered from each chunk's offset.
-  std::vector<std::int32_t> member_index(n);
-  std::vector<std::int8_t> sign(n);
+  // the surface. Counted chunk by chunk, then numbered from each chunk's offset. (The arrays are
+  // left uninitialised by new: every slot read is written first; member_index only at the
+  // members, the only slots the joins read.)
+  std::unique_ptr<std::int32_t[]> member_index(new std::int32_t[n]);
+  std::unique_ptr<std::int8_t[]> sign(new std::int8_t[n]);
   std::vector<std::int32_t> chunk_begin(workers + 1, 0);
   parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    // By plain pointers: after a byte store the compiler would load a vector's address again.
+    const double* const s = field.data();
+    std::int8_t* const sign_of = sign.get();
     std::int32_t count = 0;
     for (std::size_t v = begin; v < end; ++v) {
-      sign[v] = region_sign(field[v]);
-      count += sign[v] != FlowLabel::none;
+      sign_of[v] = region_sign(s[v]);
+      count += sign_of[v] != FlowLabel::none;
     }
     chunk_begin[chunk + 1] = count;
   });
   std::partial_sum(chunk_begin.begin(), chunk_begin.end(), chunk_begin.begin());
   const std::size_t m = static_cast<std::size_t>(chunk_begin.back());
-  std::vector<std::int32_t> members(m);
+  std::unique_ptr<std::int32_t[]> members(new std::int32_t[m]);
   parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     std::int32_t next = chunk_begin[chunk];
     for (std::size_t v = begin; v < end; ++v) {
-      member_index[v] = sign[v] != FlowLabel::none ? next : -1;
-      if (sign[v] != FlowLabel::none) members[next++] = static_cast<std::int32_t>(v);
+      if (sign[v] == FlowLabel::none) continue;
+      member_index[v] = next;
+      members[next++] = static_cast<std::int32_t>(v);
     }
   });
   // Regions: vertices of one sign joined along the edges between them. The signs are a byte a
@@ -118,8 +96,8 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   const std::size_t face_chunks = m > 0 ? worker_count(mesh.triangles.size()) : 1;
   std::vector<std::int32_t> range_begin = vertex_ranges(mesh.triangles, n, face_chunks);
   for (std::int32_t& begin : range_begin)  // vertex ranges to member ranges
-    begin = static_cast<std::int32_t>(std::lower_bound(members.begin(), members.end(), begin) -
-                                      members.begin());
+    begin = static_cast<std::int32_t>(std::lower_bound(members.get(), members.get() + m, begin) -
+                                      members.get());
   join_in_parallel(sets, mesh.triangles.size(), range_begin, [&](std::size_t f, auto& join) {
     const Triangle& t = mesh.triangles[f];
     const std::int8_t s0 = sign[t[0]], s1 = sign[t[1]], s2 = sign[t[2]];
@@ -135,7 +113,7 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
     double area, peak, factor;
   };
   std::unique_ptr<Region[]> region(new Region[m]);
-  std::vector<std::int32_t> region_of(m);
+  std::unique_ptr<std::int32_t[]> region_of(new std::int32_t[m]);
   parallel_chunks(m, worker_count(m), [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       region_of[i] = sets.root_of(static_cast<std::int32_t>(i));
@@ -166,18 +144,22 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   const std::size_t member_workers = worker_count(m);
   std::vector<Tally> tallies(member_workers);
   parallel_chunks(m, member_workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    Tally& tally = tallies[chunk];
+    Tally tally;  // in a local: in the vector, each update would wait for the last one's store
+    double* const s = field.data();  // plain pointers again: the labels are byte stores
+    std::int8_t* const label_of = flow.label.data();
+    const Vec3* const positions = mesh.positions.data();
     for (std::size_t i = begin; i < end; ++i) {
       const std::int32_t v = members[i];
-      field[v] *= region[region_of[i]].factor;
-      const std::int8_t label = region_sign(field[v]);
-      flow.label[v] = label;
+      s[v] *= region[region_of[i]].factor;
+      const std::int8_t label = region_sign(s[v]);
+      label_of[v] = label;
       if (label == FlowLabel::none) continue;
       tally.ridges += label == FlowLabel::ridge;
       tally.valleys += label == FlowLabel::valley;
-      tally.box.min = tally.box.min.cwiseMin(mesh.positions[v]);
-      tally.box.max = tally.box.max.cwiseMax(mesh.positions[v]);
+      tally.box.min = tally.box.min.cwiseMin(positions[v]);
+      tally.box.max = tally.box.max.cwiseMax(positions[v]);
     }
+    tallies[chunk] = tally;
   });
   Box3& box = flow.region_of_interest;
   box = Tally{}.box;
@@ -197,9 +179,8 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   const std::size_t n = mesh.positions.size();
   FlowRegions flow;
   flow.criterion = options.criterion;
-  flow.median_edge_length = median_edge_length(mesh);
-
-  FreeSurface surface = select_free_surface(mesh, flow.median_edge_length, options);
+  FreeSurface surface = select_free_surface(mesh, options);
+  flow.median_edge_length = surface.edge_length;
   flow.free_surface = std::move(surface.selected);
   flow.free_surface_vertices = surface.vertices;
   flow.free_surface_patches_dropped = surface.patches_dropped;
@@ -208,7 +189,7 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   // The vertices that carry the field: free surface, curvature defined, and not on the free
   // surface's border, where marching cubes rounds the water into a wall (a fillet one or two
   // cells wide, as curved as a crest but no flow line).
-  std::vector<std::uint8_t> member = one_ring_inside(mesh, flow.free_surface);
+  std::vector<std::uint8_t> member = std::move(surface.inside);
   const std::size_t workers = worker_count(n);
   double surface_area = 0.0;  // summed in vertex order, so it does not depend on the core count
   for (std::size_t v = 0; v < n; ++v)
@@ -226,17 +207,22 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   std::vector<double> field(n, 0.0);
   if (flow.threshold > 0.0 && std::isfinite(flow.threshold)) {
     parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
+      std::uint8_t* const carries = member.data();  // plain pointers: it is a byte store
+      const CurvatureStatus* const status = curvature.status.data();
+      const double *const mean_of = curvature.mean.data(), *const gaussian_of = curvature.gaussian.data();
+      double* const s = field.data();
+      const bool paper = options.criterion == FlowCriterion::paper;
+      const double threshold = flow.threshold;
       for (std::size_t v = begin; v < end; ++v) {
         // Where the curvature is undefined there is no field, and no weight in the smoothing.
-        member[v] = member[v] && curvature.status[v] != CurvatureStatus::undefined;
-        if (!member[v]) continue;
-        const double mean = curvature.mean[v];
-        const double s = options.criterion == FlowCriterion::mean
-                             ? mean / flow.threshold
-                             : std::copysign(std::abs(curvature.gaussian[v]), mean) / flow.threshold;
+        carries[v] = carries[v] && status[v] != CurvatureStatus::undefined;
+        if (!carries[v]) continue;
+        const double mean = mean_of[v];
+        const double value = paper ? std::copysign(std::abs(gaussian_of[v]), mean) / threshold
+                                   : mean / threshold;
         // Only H = 0 exactly (or −0) gives the paper's field the sign of zero: it is not a region.
-        field[v] = options.criterion == FlowCriterion::paper && mean == 0.0 ? 0.0 : s;
-        if (!std::isfinite(field[v])) field[v] = 0.0;
+        s[v] = paper && mean == 0.0 ? 0.0 : value;
+        if (!std::isfinite(s[v])) s[v] = 0.0;
       }
     });
     smooth_vertex_field(mesh, vertex_faces, curvature.area, member, field,

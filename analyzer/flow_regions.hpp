@@ -39,6 +39,7 @@
 #pragma once
 
 #include "analyzer/curvature.hpp"
+#include "analyzer/edge_length.hpp"
 #include "analyzer/free_surface.hpp"
 #include "analyzer/mesh.hpp"
 #include "analyzer/topology.hpp"
@@ -104,9 +105,6 @@ struct FlowRegions {
   std::size_t regions = 0;         // drawn regions (connected, one sign)
   std::size_t specks_faded = 0;    // regions faded in part or whole
 };
-
-// Median edge length, from a deterministic sample of at most `max_samples` edges.
-double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples = 100000);
 
 class FlowCoherence;
 

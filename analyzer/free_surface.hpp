@@ -42,19 +42,16 @@ struct FreeSurfaceOptions {
 
 struct FreeSurface {
   std::vector<std::uint8_t> selected;  // per vertex: 1 on the free surface
+  // Per vertex: 1 where selected and off the free surface's border ring: no face of the vertex
+  // (faces with a repeated corner are none, topology.hpp) has a corner off the free surface.
+  std::vector<std::uint8_t> inside;
   std::size_t vertices = 0;            // selected vertices
   std::size_t patches_kept = 0;
   std::size_t patches_dropped = 0;     // too deep or too small
   double rest_height = 0.0;
+  double edge_length = 0.0;            // the median edge length (edge_length.hpp), max_depth's unit
 };
 
-// `selected` one ring in: the selected vertices all of whose faces' corners are selected. A
-// vertex in no face (faces with a repeated corner are none, topology.hpp) stays selected.
-std::vector<std::uint8_t> one_ring_inside(const TriangleMesh& mesh,
-                                          const std::vector<std::uint8_t>& selected);
-
-// `edge_length`: the median edge length, the unit of max_depth.
-FreeSurface select_free_surface(const TriangleMesh& mesh, double edge_length,
-                                const FreeSurfaceOptions& options);
+FreeSurface select_free_surface(const TriangleMesh& mesh, const FreeSurfaceOptions& options);
 
 }  // namespace toonwater

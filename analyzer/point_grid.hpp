@@ -3,16 +3,26 @@
 // points of a column, whatever their height.
 //
 // Cells are half the radius wide (wider when the points are sparse, so that there are at most
-// about four cells a point). A query first scans the 3 × 3 cells around its own, which hold
-// every point within one cell width; only when none is that close does it scan the ring out to
-// 5 × 5, which holds every point within the radius. Between two frames of a simulation nearly
-// every vertex has a predecessor within half an edge or so, so nearly every query ends after
-// the first block, reading a few neighbouring rows of one array. Building is a counting sort:
-// linear in the points.
+// about four cells a point). A query reads its own cell, then the 2 × 2 cells nearest to it (its
+// own and those across its cell's two nearer sides); each holds every point nearer than its
+// sides, and when the closest point read is nearer than that, it is the answer. Otherwise the
+// query scans the 3 × 3 cells around its own, which hold every point within one cell width, and
+// only when none is that close the ring out to 5 × 5, which holds every point within the radius.
+// Between two frames of mantaflow-wake 96 % of the free-surface vertices have a predecessor
+// within a quarter of an edge (10 % at the same place), so most queries end in their own cell
+// (one or two points) and nearly all after the 2 × 2 cells, instead of reading nine or more:
+// about 10 ns a query instead of 32 there, single-threaded.
+//
+// Ties go to the point last in the order of the scans (cell rows in order, each cell's points in
+// input order). The cell and the 2 × 2 cells are read in that order and hold every tied point
+// when they end the search, so the answer is the one the scans alone would give.
+//
+// Building is a counting sort on all cores, linear in the points.
 #pragma once
 
 #include "analyzer/mesh.hpp"
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -25,10 +35,20 @@ class PointGrid {
   std::int32_t closest(const Vec3& p) const;
 
  private:
-  // Scans the cells (ca + da, cb + db) with max(|da|, |db|) in [inner, outer].
+  // The closest point scanned so far: its squared distance and its place in the sorted arrays.
+  struct Best {
+    double distance2;
+    std::int32_t at = -1;
+  };
+  // Scans the cells (ca + da, cb + db) with max(|da|, |db|) in [inner, outer], row by row.
   void scan(const Vec3& p, std::int64_t ca, std::int64_t cb, int inner, int outer,
-            std::int32_t& best, double& best_distance2) const;
-  std::int64_t cell_along(double coordinate, int axis) const;
+            Best& best) const;
+  void scan_run(const Vec3& p, std::int32_t begin, std::int32_t end, Best& best) const;
+  void sort_into_cells(const std::vector<Vec3>& points, std::size_t workers);
+  // A coordinate along `axis` in cell widths from the origin, and the cell that holds it
+  // (−1 or `cells` beyond the grid).
+  double cells_from_origin(double coordinate, int axis) const;
+  static std::int64_t cell_index(double cells_from_origin, std::int64_t cells);
 
   double radius_ = 1.0, cell_size_ = 1.0;
   int axis_a_ = 0, axis_b_ = 1;

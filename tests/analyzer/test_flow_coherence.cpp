@@ -60,6 +60,31 @@ TEST(PointGrid, FindsTheClosestPointAcrossCellBordersForNearQueries) {
   }
 }
 
+// Enough points to be sorted into cells on several cores, queries at every distance from them
+// up to beyond the radius, and some outside the points' bounding box.
+TEST(PointGrid, FindsTheClosestPointAmongPointsSortedOnSeveralCores) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> points(100000);
+  for (Vec3& p : points) p = Vec3(u(rng), 0.05 * u(rng), 0.5 * u(rng));
+  const double radius = 0.02;
+  const PointGrid grid(points, radius);
+  std::exponential_distribution<double> distance(1.0 / radius);
+  for (int trial = 0; trial < 1000; ++trial) {
+    const Vec3 direction = Vec3(u(rng), u(rng), u(rng)).normalized();
+    const Vec3 q = trial % 10 == 0 ? Vec3(1.2 * u(rng), 0.1 * u(rng), 0.6 * u(rng))
+                                   : points[rng() % points.size()] + distance(rng) * direction;
+    std::int32_t expected = -1;
+    double best = radius * radius;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if ((points[i] - q).squaredNorm() <= best) {
+        best = (points[i] - q).squaredNorm();
+        expected = static_cast<std::int32_t>(i);
+      }
+    EXPECT_EQ(grid.closest(q), expected) << q.transpose();
+  }
+}
+
 Analysis analyze_frame(const TriangleMesh& mesh) {
   AnalyzeOptions options;
   options.flow.up = Axis::z;
