@@ -1,6 +1,6 @@
-// Doubles in vector lanes, one value a lane, through GCC's vector extensions: two lanes (128
-// bits, SSE2, any x86-64) or four (256 bits, AVX2), and the few element-wise operations that
-// formulas written once for a double and for lanes need.
+// Doubles in vector lanes, one value a lane, through the vector extensions GCC and Clang share:
+// two lanes (128 bits, SSE2, any x86-64) or four (256 bits, AVX2), and the few element-wise
+// operations that formulas written once for a double and for lanes need.
 //
 // Why vector extensions and not intrinsics: the curvature face pass is compiled twice, for any
 // x86-64 with two lanes and for AVX2 with fused multiply-adds with four (curvature.cpp). The
@@ -123,31 +123,30 @@ template <class Mask>
 // Four quantities of a lane's worth of items (rows[q][item]) stored item by item as records of
 // four doubles (records[item][q]): a transpose.
 [[gnu::always_inline]] inline void store_records(double (*records)[4], const Lanes4 (&rows)[4]) {
-  const Lanes4 ab_even = __builtin_shuffle(rows[0], rows[1], LaneMask4{0, 4, 2, 6});
-  const Lanes4 ab_odd = __builtin_shuffle(rows[0], rows[1], LaneMask4{1, 5, 3, 7});
-  const Lanes4 cd_even = __builtin_shuffle(rows[2], rows[3], LaneMask4{0, 4, 2, 6});
-  const Lanes4 cd_odd = __builtin_shuffle(rows[2], rows[3], LaneMask4{1, 5, 3, 7});
-  store_lanes(records[0], __builtin_shuffle(ab_even, cd_even, LaneMask4{0, 1, 4, 5}));
-  store_lanes(records[1], __builtin_shuffle(ab_odd, cd_odd, LaneMask4{0, 1, 4, 5}));
-  store_lanes(records[2], __builtin_shuffle(ab_even, cd_even, LaneMask4{2, 3, 6, 7}));
-  store_lanes(records[3], __builtin_shuffle(ab_odd, cd_odd, LaneMask4{2, 3, 6, 7}));
+  const Lanes4 ab_even = __builtin_shufflevector(rows[0], rows[1], 0, 4, 2, 6);
+  const Lanes4 ab_odd = __builtin_shufflevector(rows[0], rows[1], 1, 5, 3, 7);
+  const Lanes4 cd_even = __builtin_shufflevector(rows[2], rows[3], 0, 4, 2, 6);
+  const Lanes4 cd_odd = __builtin_shufflevector(rows[2], rows[3], 1, 5, 3, 7);
+  store_lanes(records[0], __builtin_shufflevector(ab_even, cd_even, 0, 1, 4, 5));
+  store_lanes(records[1], __builtin_shufflevector(ab_odd, cd_odd, 0, 1, 4, 5));
+  store_lanes(records[2], __builtin_shufflevector(ab_even, cd_even, 2, 3, 6, 7));
+  store_lanes(records[3], __builtin_shufflevector(ab_odd, cd_odd, 2, 3, 6, 7));
 }
 [[gnu::always_inline]] inline void store_records(double (*records)[4], const Lanes2 (&rows)[4]) {
-  for (int item = 0; item < 2; ++item) {
-    const LaneMask2 pick{item, item + 2};
-    store_lanes(records[item], __builtin_shuffle(rows[0], rows[1], pick));
-    store_lanes(records[item] + 2, __builtin_shuffle(rows[2], rows[3], pick));
-  }
+  store_lanes(records[0], __builtin_shufflevector(rows[0], rows[1], 0, 2));
+  store_lanes(records[0] + 2, __builtin_shufflevector(rows[2], rows[3], 0, 2));
+  store_lanes(records[1], __builtin_shufflevector(rows[0], rows[1], 1, 3));
+  store_lanes(records[1] + 2, __builtin_shufflevector(rows[2], rows[3], 1, 3));
 }
 
 // Two quantities of a lane's worth of items stored as pairs {a[item], b[item]}.
 [[gnu::always_inline]] inline void store_pairs(double (*pairs)[2], Lanes4 a, Lanes4 b) {
-  store_lanes(pairs[0], __builtin_shuffle(a, b, LaneMask4{0, 4, 1, 5}));
-  store_lanes(pairs[2], __builtin_shuffle(a, b, LaneMask4{2, 6, 3, 7}));
+  store_lanes(pairs[0], __builtin_shufflevector(a, b, 0, 4, 1, 5));
+  store_lanes(pairs[2], __builtin_shufflevector(a, b, 2, 6, 3, 7));
 }
 [[gnu::always_inline]] inline void store_pairs(double (*pairs)[2], Lanes2 a, Lanes2 b) {
-  store_lanes(pairs[0], __builtin_shuffle(a, b, LaneMask2{0, 2}));
-  store_lanes(pairs[1], __builtin_shuffle(a, b, LaneMask2{1, 3}));
+  store_lanes(pairs[0], __builtin_shufflevector(a, b, 0, 2));
+  store_lanes(pairs[1], __builtin_shufflevector(a, b, 1, 3));
 }
 
 }  // namespace toonwater
