@@ -123,10 +123,10 @@ template <class Real>
 }
 
 // The terms of a block of faces, computed once for their three corners, a lane's worth of faces
-// at once, one a lane (lanes.hpp: two with SSE2, four with AVX2). Corner i's neighbours are i + 1 and i + 2 (mod 3); edge[i] runs from
-// corner i to corner i + 1. Each corner's terms are then laid out as the vertex sums take them
-// (RingSums), so that adding a corner is a few whole-vector additions. A block fits in the
-// level-1 cache beside the vertex sums it is added to.
+// at once, one a lane (lanes.hpp: two with SSE2, four with AVX2). Corner i's neighbours are
+// i + 1 and i + 2 (mod 3); edge[i] runs from corner i to corner i + 1. Each corner's terms are
+// then laid out as the vertex sums take them (RingSums), so that adding a corner is a few
+// whole-vector additions. A block fits in the level-1 cache beside the vertex sums it is added to.
 constexpr std::size_t block_faces = 64;
 static_assert(block_faces % lanes_of<Lanes4> == 0);
 
@@ -478,11 +478,11 @@ template <class Lanes>
 }
 
 // The same code for any x86-64 (SSE2, two lanes) and for processors with AVX2 and FMA (four
-// lanes), chosen at run time: the portable build must not assume AVX2. This file is compiled with floating-point
-// contraction allowed (analyzer/CMakeLists.txt), which on x86-64 only the second can use: there
-// a·b + c becomes one fused multiply-add, rounded once. Its results differ from the portable
-// path's by round-off only (tested); multiplying by the power-of-two scale stays exact, so the
-// scale invariance holds in both. Elsewhere there is only the portable code.
+// lanes), chosen at run time: the portable build must not assume AVX2. This file is compiled
+// with floating-point contraction allowed (analyzer/CMakeLists.txt), which on x86-64 only the
+// second can use: there a·b + c becomes one fused multiply-add, rounded once. Its results differ
+// from the portable path's by round-off only (tested); multiplying by the power-of-two scale
+// stays exact, so the scale invariance holds in both. Elsewhere there is only the portable code.
 void sum_faces_portable(const GatherInput& in, std::size_t begin, std::size_t end,
                         CurvatureField& field, GatherCounts& counts) {
   sum_faces<Lanes2>(in, begin, end, field, counts);
