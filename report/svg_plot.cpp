@@ -56,8 +56,11 @@ std::string render_svg(const LogLogPlot& plot) {
         y_hi = std::max(y_hi, std::log10(p.second));
       }
   if (x_lo > x_hi) x_lo = x_hi = y_lo = y_hi = 0.0;  // nothing drawable: an empty decade
-  const auto [x_first, x_last] = decades(x_lo, x_hi);
-  const auto [y_first, y_last] = decades(y_lo, y_hi);
+  // Named pairs rather than structured bindings: Clang before 16 cannot capture those in lambdas.
+  const std::pair<int, int> x_decades = decades(x_lo, x_hi);
+  const std::pair<int, int> y_decades = decades(y_lo, y_hi);
+  const int x_first = x_decades.first, x_last = x_decades.second;
+  const int y_first = y_decades.first, y_last = y_decades.second;
   auto sx = [&](double x) {
     return left + (std::log10(x) - x_first) / (x_last - x_first) * (right - left);
   };
