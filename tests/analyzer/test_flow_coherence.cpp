@@ -163,7 +163,9 @@ TEST(FlowCoherence, TravellingWaveRegionsFollowTheWave) {
     ASSERT_GT(a.flow.ridge_vertices, 0u);
     const double coherent = ridge_centroid_x(a);
     EXPECT_NEAR(coherent, raw, 2.0 * edge) << "frame " << frame;
-    if (frame > 0) EXPECT_GT(coherent, last + 0.05 * edge) << "frozen at frame " << frame;
+    if (frame > 0) {
+      EXPECT_GT(coherent, last + 0.05 * edge) << "frozen at frame " << frame;
+    }
     last = coherent;
   }
 }

@@ -143,8 +143,9 @@ TEST(FlowRegions, SpecksFadeOutAndGrowingRegionsFadeIn) {
       EXPECT_DOUBLE_EQ(drawn, above_one_before_fading) << width;
       seen_drawn = true;
     }
-    if (above_one_before_fading < 2 * options.min_region_area.value())
+    if (above_one_before_fading < 2 * options.min_region_area.value()) {
       EXPECT_GE(drawn, last_area - 1e-12) << width;  // fading in as it grows
+    }
     EXPECT_LE(drawn - last_area, 0.5 * options.min_region_area.value()) << "jump at width " << width;
     last_area = drawn;
   }

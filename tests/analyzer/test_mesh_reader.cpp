@@ -396,10 +396,10 @@ TEST_F(MeshReader, BinaryPlyScalarRecordsAroundTheLists) {
     const std::int16_t ys[4] = {0, -3, 7, 300};
     for (int v = 0; v < 4; ++v) b.put(std::uint8_t{9}).put(zs[v]).put(xs[v]).put(ys[v]);
     b.put(std::int16_t{-1}).put(std::int32_t{3});
-    for (std::uint16_t i : {0, 1, 2}) b.put(i);
+    for (int i : {0, 1, 2}) b.put(static_cast<std::uint16_t>(i));
     b.put(0.5);
     b.put(std::int16_t{7}).put(std::int32_t{4});
-    for (std::uint16_t i : {3, 2, 1, 0}) b.put(i);
+    for (int i : {3, 2, 1, 0}) b.put(static_cast<std::uint16_t>(i));
     b.put(-0.5);
     const InputMesh input = read_mesh(write("scalar.ply", b.data()));
     EXPECT_EQ(input.mesh.positions,

@@ -117,8 +117,11 @@ TEST(FlowStudy, MantaflowWakeFromAbove) {
   std::printf("mantaflow-wake from above: %zu/%zu frames with regions, specks %.4f, boundary %.3f\n",
               mean.frames_with_regions, mean.frames, mean.speck_share, mean.boundary_ratio);
   ASSERT_EQ(mean.frames, 30u);
-  for (const auto& [frame, pixels] : mean.flow_pixels_by_frame)
-    if (frame > 1) EXPECT_GT(pixels, 0u) << "no regions in frame " << frame;
+  for (const auto& [frame, pixels] : mean.flow_pixels_by_frame) {
+    if (frame > 1) {
+      EXPECT_GT(pixels, 0u) << "no regions in frame " << frame;
+    }
+  }
   EXPECT_LE(mean.speck_share, 0.03);
   EXPECT_LE(mean.boundary_ratio, 1.15);
 }
