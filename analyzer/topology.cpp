@@ -106,9 +106,12 @@ void list_ring_sorted(const TriangleMesh& mesh, std::span<const std::int32_t> fa
     ring.push_back({a, 0, 0, 0});
     ring.push_back({b, 0, 0, 0});
   }
-  std::sort(ring.begin(), ring.end(), [](const RingNeighbour& x, const RingNeighbour& y) { return x.vertex < y.vertex; });
+  std::sort(ring.begin(), ring.end(),
+            [](const RingNeighbour& x, const RingNeighbour& y) { return x.vertex < y.vertex; });
   ring.erase(std::unique(ring.begin(), ring.end(),
-                         [](const RingNeighbour& x, const RingNeighbour& y) { return x.vertex == y.vertex; }),
+                         [](const RingNeighbour& x, const RingNeighbour& y) {
+                           return x.vertex == y.vertex;
+                         }),
              ring.end());
   for (std::size_t i = 0; i < ring.size(); ++i) ring[i].root = static_cast<std::int32_t>(i);
 }

@@ -198,6 +198,10 @@ class Decimation {
     return n;
   }
   bool valence_three(int v) const { return valence_up_to(v, 3) == 3; }
+  // Too many faces to be removed or collapsed into (largest_collapsed_valence).
+  bool is_hub(int v) const {
+    return valence_up_to(v, largest_collapsed_valence) > largest_collapsed_valence;
+  }
 
   bool adjacent(int a, int b) const {
     for (auto w : m_.vv_range(VertexHandle(a)))
@@ -232,7 +236,7 @@ class Decimation {
       settled_[v0] = 1;
       return std::nullopt;
     }
-    if (valence_up_to(v0, largest_collapsed_valence) > largest_collapsed_valence) {
+    if (is_hub(v0)) {
       settled_[v0] = 1;
       return std::nullopt;
     }
@@ -273,7 +277,7 @@ class Decimation {
     candidates_.clear();
     for (const Spoke& s : spokes_) {
       if (on_boundary && !straight_boundary(v0, s.to)) continue;
-      if (valence_up_to(s.to, largest_collapsed_valence) > largest_collapsed_valence) continue;
+      if (is_hub(s.to)) continue;
       const Vec3& p1 = p_[s.to];
       Collapse c;
       c.halfedge = s.halfedge;
