@@ -11,7 +11,7 @@
 //   k1,2 = H ± sqrt(max(H² − K, 0))
 //   n̂  = angle-weighted vertex normal (Thürmer and Wüthrich 1998)
 //
-// One pass over the faces on every core computes each face's terms once, four faces at a time,
+// One pass over the faces on every core computes each face's terms once, two or four at a time,
 // over the flat position and triangle arrays (no halfedge circulators), and adds them to its
 // corners' sums; a vertex whose faces span two cores' ranges is summed afterwards from its row,
 // in the same order, so the result does not depend on the core count. See curvature.cpp for how

@@ -19,7 +19,7 @@
 namespace toonwater {
 
 // atan2(y, x) for y >= 0 by a polynomial, absolute error below 1e-5 rad: plenty for a weight,
-// and several times cheaper than std::atan2. For a double or four lanes (lanes.hpp), with the
+// and several times cheaper than std::atan2. For a double or vector lanes (lanes.hpp), with the
 // same bits in each lane as for a double.
 template <class Real>
 [[gnu::always_inline]] inline Real approximate_angle(Real y, Real x) {
@@ -35,8 +35,8 @@ template <class Real>
 
 // One face's term θ n_f at the corner x of face (x, a, b), axis by axis, given xa × xb, its
 // length, xa · xb and the face's longest squared edge (xa = a − x, xb = b − x): zero for a
-// degenerate face (geometry_tolerances.hpp), which has no usable normal. For doubles, or four
-// faces in vector lanes (the curvature's face pass).
+// degenerate face (geometry_tolerances.hpp), which has no usable normal. For doubles, or two or
+// four faces in vector lanes (the curvature's face pass).
 template <class Real>
 [[gnu::always_inline]] inline void corner_normal_term(const Real (&cross)[3], Real double_area,
                                                       Real dot, Real longest2, Real (&term)[3]) {
