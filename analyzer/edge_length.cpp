@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace toonwater {
 
@@ -25,12 +26,15 @@ double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {
   const std::size_t workers = worker_count(sample.count(), 4096);
   std::vector<std::vector<double>> chunk_lengths(workers);
   parallel_chunks(sample.count(), workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    std::vector<double>& lengths = chunk_lengths[chunk];
+    // Filled in a local and moved once: the chunks' vectors share a cache line, which every
+    // push_back would otherwise write.
+    std::vector<double> lengths;
     lengths.reserve(end - begin);
     for (std::size_t i = begin; i < end; ++i) {
       const double squared_length = EdgeSample::squared_length(mesh.positions, mesh.triangles, i * sample.stride());
       if (EdgeSample::counts(squared_length)) lengths.push_back(squared_length);
     }
+    chunk_lengths[chunk] = std::move(lengths);
   });
   std::vector<double> lengths = std::move(chunk_lengths[0]);
   for (std::size_t w = 1; w < workers; ++w)

@@ -197,7 +197,7 @@ MeshTopology analyze_topology(const TriangleMesh& mesh) {
   std::vector<Counts> counts(workers);
   parallel_chunks(n, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
     std::vector<RingNeighbour> ring;
-    Counts& c = counts[worker];
+    Counts c;  // stored once: the workers' counts share a cache line
     for (std::size_t v = begin; v < end; ++v) {
       const VertexEdges e =
           classify_vertex(mesh, topo.vertex_faces, static_cast<std::int32_t>(v), ring);
@@ -209,6 +209,7 @@ MeshTopology analyze_topology(const TriangleMesh& mesh) {
       c.nonmanifold += e.kind == VertexKind::nonmanifold;
       c.isolated += e.kind == VertexKind::isolated;
     }
+    counts[worker] = c;
   });
   std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0, misoriented_edge_ends = 0;
   for (const Counts& c : counts) {
@@ -243,10 +244,12 @@ std::size_t count_components(const TriangleMesh& mesh, const MeshTopology& topol
   const std::size_t chunks = worker_count(n);
   std::vector<std::size_t> roots(chunks, 0);
   parallel_chunks(n, chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::size_t count = 0;  // stored once: the chunks' counts share a cache line
     for (std::size_t v = begin; v < end; ++v) {
       const auto i = static_cast<std::int32_t>(v);
-      roots[chunk] += kind[v] != VertexKind::isolated && sets.root_of(i) == i;
+      count += kind[v] != VertexKind::isolated && sets.root_of(i) == i;
     }
+    roots[chunk] = count;
   });
   return std::accumulate(roots.begin(), roots.end(), std::size_t{0});
 }
