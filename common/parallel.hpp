@@ -25,6 +25,7 @@
 #include <exception>
 #include <mutex>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include <unistd.h>
@@ -55,8 +56,9 @@ class ThreadPool {
   }
 
   // Runs task(context, c) for c in [1, chunks) on the pool and task(context, 0) on the calling
-  // thread; false (and nothing run) when the pool cannot take the call.
-  bool run(std::size_t chunks, Task task, void* context) {
+  // thread; false (and nothing run) when the pool cannot take the call. Not inlined either, so
+  // that its wait, too, writes only frames below the caller's (ChunkedCall::run_chunk).
+  [[gnu::noinline]] bool run(std::size_t chunks, Task task, void* context) {
     if (chunks - 1 > threads_.size() || ::getpid() != owner_) return false;
     std::unique_lock busy(busy_, std::try_to_lock);
     if (!busy.owns_lock()) return false;
@@ -151,20 +153,34 @@ class ThreadPool {
   std::atomic<bool> stopping_{false};
 };
 
+// A call's function and chunks, as every thread of the call reads them.
+template <class Fn>
+struct ChunkedCall {
+  Fn& fn;
+  std::size_t n, workers;
+
+  // One chunk, in a frame of its own, on any thread. Never inlined into the caller: the other
+  // threads read the caller's frame (the function object and the locals it captures by
+  // reference) all through the call, and the calling thread's chunk, inlined there, spilled
+  // its registers into that frame at every step, so that each read on another core had to
+  // fetch the line back: the free surface's slope pass took twice as long, in about half of
+  // the runs (as the stack happened to lie).
+  [[gnu::noinline]] static void run_chunk(void* context, std::size_t chunk) {
+    const ChunkedCall& c = *static_cast<const ChunkedCall*>(context);
+    c.fn(chunk, c.n * chunk / c.workers, c.n * (chunk + 1) / c.workers);
+  }
+};
+
 template <class Fn>
 void parallel_chunks(std::size_t n, std::size_t workers, Fn&& fn) {
   if (workers <= 1) {
     fn(std::size_t{0}, std::size_t{0}, n);
     return;
   }
-  struct Call {
-    Fn& fn;
-    std::size_t n, workers;
-  } call{fn, n, workers};
-  const ThreadPool::Task task = [](void* context, std::size_t chunk) {
-    const Call& c = *static_cast<Call*>(context);
-    c.fn(chunk, c.n * chunk / c.workers, c.n * (chunk + 1) / c.workers);
-  };
+  using Call = ChunkedCall<std::remove_reference_t<Fn>>;
+  // A line of its own: written once, then only read.
+  alignas(64) Call call{fn, n, workers};
+  const ThreadPool::Task task = &Call::run_chunk;
   if (ThreadPool::shared().run(workers, task, &call)) return;
   std::vector<std::jthread> threads;
   threads.reserve(workers - 1);
