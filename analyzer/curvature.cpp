@@ -59,6 +59,7 @@
 #include "analyzer/vertex_normals.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -521,29 +522,54 @@ void set_curvature(CurvatureField& field, std::size_t v, double gaussian, double
 
 void extrapolate_from_neighbours(const TriangleMesh& mesh, const VertexFaces& vf,
                                  CurvatureField& field) {
-  for (std::size_t v = 0; v < field.status.size(); ++v) {
-    if (field.status[v] != CurvatureStatus::extrapolated) continue;
-    double gaussian = 0.0, mean = 0.0;
-    int count = 0;
-    for (std::int32_t f : vf.of(static_cast<std::int32_t>(v))) {
-      for (std::int32_t w : mesh.triangles[f]) {
-        // Neighbours appear in two faces each; counting them twice keeps the mean unchanged.
-        if (static_cast<std::size_t>(w) == v || field.status[w] != CurvatureStatus::computed)
-          continue;
-        gaussian += field.gaussian[w];
-        mean += field.mean[w];
-        ++count;
+  // On all cores, each chunk counting its own. A vertex reads only its `computed` neighbours,
+  // which no chunk changes, so the result does not depend on the order. The status of an
+  // extrapolated vertex that turns undefined may be read meanwhile by a neighbour's chunk (which
+  // skips it either way): both go through atomic_ref, so the byte is never torn or raced on.
+  const std::size_t n = field.status.size();
+  const std::size_t workers = worker_count(n);
+  struct Counts {
+    std::size_t undefined = 0, extrapolated = 0;
+  };
+  std::vector<Counts> counts(workers);
+  parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    CurvatureStatus* const status = field.status.data();
+    auto status_of = [status](std::size_t v) {
+      return std::atomic_ref<CurvatureStatus>(status[v]).load(std::memory_order_relaxed);
+    };
+    Counts c;  // stored once: the chunks' counts share a cache line
+    for (std::size_t v = begin; v < end; ++v) {
+      const CurvatureStatus own = status_of(v);
+      c.undefined += own == CurvatureStatus::undefined;
+      if (own != CurvatureStatus::extrapolated) continue;
+      double gaussian = 0.0, mean = 0.0;
+      int count = 0;
+      for (std::int32_t f : vf.of(static_cast<std::int32_t>(v))) {
+        for (std::int32_t w : mesh.triangles[f]) {
+          // Neighbours appear in two faces each; counting them twice keeps the mean unchanged.
+          if (static_cast<std::size_t>(w) == v || status_of(w) != CurvatureStatus::computed) continue;
+          gaussian += field.gaussian[w];
+          mean += field.mean[w];
+          ++count;
+        }
+      }
+      if (count == 0) {
+        set_curvature(field, v, 0.0, 0.0);
+        std::atomic_ref<CurvatureStatus>(status[v]).store(CurvatureStatus::undefined,
+                                                          std::memory_order_relaxed);
+        ++c.undefined;
+      } else {
+        set_curvature(field, v, gaussian / count, mean / count);
+        ++c.extrapolated;
       }
     }
-    if (count == 0)
-      set_undefined(field, v);
-    else
-      set_curvature(field, v, gaussian / count, mean / count);
+    counts[chunk] = c;
+  });
+  field.undefined_vertices = field.extrapolated_vertices = 0;
+  for (const Counts& c : counts) {
+    field.undefined_vertices += c.undefined;
+    field.extrapolated_vertices += c.extrapolated;
   }
-  field.undefined_vertices = static_cast<std::size_t>(
-      std::count(field.status.begin(), field.status.end(), CurvatureStatus::undefined));
-  field.extrapolated_vertices = static_cast<std::size_t>(
-      std::count(field.status.begin(), field.status.end(), CurvatureStatus::extrapolated));
 }
 
 bool avx2_fma_supported() {
