@@ -89,7 +89,8 @@ class ThreadPool {
       std::unique_lock lock(mutex_);
       done_.wait(lock, finished);
     }
-    caller_watches_ = last_chunk_done_at_.load(std::memory_order_relaxed) - waiting_since < spin_time_ns;
+    caller_watches_ =
+        last_chunk_done_at_.load(std::memory_order_relaxed) - waiting_since < spin_time_ns;
     if (failure) std::rethrow_exception(failure);
     return true;
   }
@@ -161,7 +162,7 @@ class ThreadPool {
   const pid_t owner_;
   std::vector<std::thread> threads_;
   std::mutex busy_;   // held by the call the pool is running
-  std::mutex mutex_;  // guards the fields below; the atomics are written under it too
+  std::mutex mutex_;  // guards the call's fields below; generation_ and stopping_ change under it
   std::condition_variable wake_, done_;
   Task task_ = nullptr;
   void* context_ = nullptr;
@@ -175,9 +176,10 @@ class ThreadPool {
   bool caller_watches_ = true;  // only the thread holding busy_ uses it
 };
 
-// A call's function and chunks, as every thread of the call reads them.
+// A call's function and chunks, as every thread of the call reads them: a cache line of its
+// own, written once before the call and then only read.
 template <class Fn>
-struct ChunkedCall {
+struct alignas(64) ChunkedCall {
   Fn& fn;
   std::size_t n, workers;
 
@@ -200,8 +202,7 @@ void parallel_chunks(std::size_t n, std::size_t workers, Fn&& fn) {
     return;
   }
   using Call = ChunkedCall<std::remove_reference_t<Fn>>;
-  // A line of its own: written once, then only read.
-  alignas(64) Call call{fn, n, workers};
+  Call call{fn, n, workers};
   const ThreadPool::Task task = &Call::run_chunk;
   if (ThreadPool::shared().run(workers, task, &call)) return;
   std::vector<std::jthread> threads;
