@@ -1,4 +1,5 @@
-// parallel_chunks: every index once, nested and concurrent calls, a throwing chunk, a forked child.
+// parallel_chunks: every index once, nested and concurrent calls, calls at any pace, a throwing
+// chunk, a forked child.
 #include "common/parallel.hpp"
 
 #include <gtest/gtest.h>
@@ -6,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <stdexcept>
+#include <thread>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -73,6 +75,29 @@ TEST(ParallelChunks, ExceptionOfTheCallersChunkWaitsForTheOthers) {
     EXPECT_TRUE(other_finished.load());
   }
   EXPECT_EQ(visits(100, 2), std::vector<int>(100, 1));
+}
+
+// The pool's thread and the caller watch for each other briefly before they sleep, and stop
+// watching after a wait that outlasted the watch: calls that come at once, after pauses longer
+// than the watch, or whose other chunk ends long after the caller's, all run every chunk and
+// return only once it has finished.
+TEST(ParallelChunks, CallsAtAnyPaceWaitForEveryChunk) {
+  using std::chrono::microseconds;
+  const microseconds pauses[] = {microseconds(0), microseconds(20), microseconds(300),
+                                 microseconds(2000)};
+  for (int round = 0; round < 3; ++round)
+    for (const microseconds pause : pauses)
+      for (const microseconds slower : {microseconds(0), microseconds(300)}) {
+        std::this_thread::sleep_for(pause);
+        std::atomic<int> finished{0};
+        parallel_chunks(2, 2, [&](std::size_t chunk, std::size_t, std::size_t) {
+          if (chunk == 1) std::this_thread::sleep_for(slower);
+          finished.fetch_add(1);
+        });
+        EXPECT_EQ(finished.load(), 2) << "pause " << pause.count() << " µs, other chunk "
+                                      << slower.count() << " µs slower";
+      }
+  EXPECT_EQ(visits(1000, 2), std::vector<int>(1000, 1));
 }
 
 TEST(ParallelChunks, WorksInAForkedChild) {
