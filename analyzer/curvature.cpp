@@ -547,7 +547,8 @@ void extrapolate_from_neighbours(const TriangleMesh& mesh, const VertexFaces& vf
       for (std::int32_t f : vf.of(static_cast<std::int32_t>(v))) {
         for (std::int32_t w : mesh.triangles[f]) {
           // Neighbours appear in two faces each; counting them twice keeps the mean unchanged.
-          if (static_cast<std::size_t>(w) == v || status_of(w) != CurvatureStatus::computed) continue;
+          if (static_cast<std::size_t>(w) == v || status_of(w) != CurvatureStatus::computed)
+            continue;
           gaussian += field.gaussian[w];
           mean += field.mean[w];
           ++count;
