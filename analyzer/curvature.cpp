@@ -317,9 +317,12 @@ void add_laplacian_terms(Vec3& laplacian, double la, double lb, double lab, cons
 
 int corner_of(const Triangle& t, std::int32_t v) { return t[0] == v ? 0 : t[1] == v ? 1 : 2; }
 
+// All zero, status `undefined`. The status byte is stored through atomic_ref: in
+// extrapolate_from_neighbours another chunk may read it meanwhile.
 void set_undefined(CurvatureField& field, std::size_t v) {
   set_curvature(field, v, 0.0, 0.0);
-  field.status[v] = CurvatureStatus::undefined;
+  std::atomic_ref<CurvatureStatus>(field.status[v]).store(CurvatureStatus::undefined,
+                                                          std::memory_order_relaxed);
 }
 
 struct GatherInput {
@@ -555,9 +558,7 @@ void extrapolate_from_neighbours(const TriangleMesh& mesh, const VertexFaces& vf
         }
       }
       if (count == 0) {
-        set_curvature(field, v, 0.0, 0.0);
-        std::atomic_ref<CurvatureStatus>(status[v]).store(CurvatureStatus::undefined,
-                                                          std::memory_order_relaxed);
+        set_undefined(field, v);
         ++c.undefined;
       } else {
         set_curvature(field, v, gaussian / count, mean / count);
