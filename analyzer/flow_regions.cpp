@@ -5,9 +5,11 @@
 #include "analyzer/disjoint_sets.hpp"
 #include "analyzer/flow_coherence.hpp"
 #include "analyzer/free_surface.hpp"
+#include "common/ordered_sum.hpp"
 #include "common/parallel.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -191,10 +193,11 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   // cells wide, as curved as a crest but no flow line).
   std::vector<std::uint8_t> member = std::move(surface.inside);
   const std::size_t workers = worker_count(n);
-  double surface_area = 0.0;  // summed in vertex order, so it does not depend on the core count
-  for (std::size_t v = 0; v < n; ++v)
-    if (flow.free_surface[v] && curvature.status[v] != CurvatureStatus::undefined)
-      surface_area += curvature.area[v];
+  const double surface_area =
+      ordered_sums<1>(n, [on_surface = flow.free_surface.data(), status = curvature.status.data(),
+                          area = curvature.area.data()](std::size_t v, std::array<double, 1>& sum) {
+        if (on_surface[v] && status[v] != CurvatureStatus::undefined) sum[0] += area[v];
+      })[0];
   flow.scale_length = std::sqrt(surface_area);
   const double length = flow.scale_length;
   const FlowDefaults defaults = flow_defaults(options.criterion);

@@ -1,0 +1,44 @@
+// Sums over [0, n) on all cores whose bits do not depend on the number of cores.
+//
+// Floating-point addition is not associative, so a sum split by core (one partial sum a
+// chunk) changes in its last bits with the machine, and a threshold taken from it could label
+// a vertex differently on a laptop and on a farm. Here the range is cut into blocks of a size
+// fixed in this file; each block is summed in index order, on whichever core takes it, and the
+// blocks' sums are then added in block order: the same operations, in the same order, on any
+// number of cores. A serial loop is one chain of dependent additions: over a 1M-vertex frame's
+// areas it took 3.9 ms, as long as the pass that reads the curvature into the flow field.
+#pragma once
+
+#include "common/parallel.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace toonwater {
+
+// Indices a block. A multiple of the 4 KiB page in doubles, and large enough that the blocks'
+// sums are few (122 at 1M) and one core's run of blocks streams through memory.
+constexpr std::size_t ordered_sum_block = 8192;
+
+// K sums over [0, n): add(i, sums) adds index i's terms to sums, a std::array<double, K>.
+template <std::size_t K, class Add>
+std::array<double, K> ordered_sums(std::size_t n, Add&& add) {
+  const std::size_t blocks = (n + ordered_sum_block - 1) / ordered_sum_block;
+  std::vector<std::array<double, K>> block_sums(blocks);
+  parallel_chunks(blocks, worker_count(n), [&](std::size_t, std::size_t first, std::size_t last) {
+    for (std::size_t block = first; block < last; ++block) {
+      std::array<double, K> sums{};  // in a local: in the vector, each add would wait for a store
+      const std::size_t end = std::min(n, (block + 1) * ordered_sum_block);
+      for (std::size_t i = block * ordered_sum_block; i < end; ++i) add(i, sums);
+      block_sums[block] = sums;
+    }
+  });
+  std::array<double, K> total{};
+  for (const std::array<double, K>& sums : block_sums)
+    for (std::size_t k = 0; k < K; ++k) total[k] += sums[k];
+  return total;
+}
+
+}  // namespace toonwater
