@@ -1,7 +1,9 @@
 // Jacobi smoothing of vertex fields; formula in curvature_smoothing.hpp.
 //
-// A step is a pass over the faces that adds each face's sum of its corners' terms (area and area
-// times value) to its corners' sums, then a pass over the vertices that divides. Each vertex thus
+// A step is a pass over the faces that adds each face's sum of its corners' terms (area times
+// value) to its corners' sums, then a pass over the vertices that divides by the sums of the
+// areas. Those are the same every step, so the first step sums them and the others read only
+// the terms: a step after the first moves half the bytes of the first. Each vertex thus
 // sums its faces in ascending order, as VertexFaces lists them (build_vertex_faces), and the
 // result is the gather over its faces, bit for bit, read in a third of the loads: every face's
 // corners once instead of once from each corner. The faces split over the cores, each chunk
@@ -17,23 +19,48 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
-#include <utility>
+#include <span>
 
 namespace toonwater {
 namespace {
 
-// A vertex's two terms, or their sums over faces; zero off the members.
-struct Terms {
-  double weight, weighted;
-  Terms& operator+=(const Terms& other) {
-    weight += other.weight;
-    weighted += other.weighted;
-    return *this;
-  }
+// The arrays of a smoothing, by plain pointers: through the unique_ptrs the compiler loaded the
+// addresses again for every corner. A vertex's weight is its area where it is a member and 0
+// elsewhere; its term, that weight times its value.
+struct SmoothingArrays {
+  const Triangle* triangles;
+  const double* area;
+  const std::uint8_t* member;
+  const double* term;   // the values the faces read, weighted
+  double* term_sum;     // Σ over v's faces of their corners' terms
+  double* weight_sum;   // Σ over v's faces of their corners' weights: the same every step
+  double weight(std::int32_t v) const { return member[v] ? area[v] : 0.0; }
 };
 
-Terms face_sum(const Terms& a, const Terms& b, const Terms& c) {
-  return {a.weight + b.weight + c.weight, a.weighted + b.weighted + c.weighted};
+// One face's corners' terms (and, in the first step, weights) added to those of its corners in
+// [low, low + size); the others are listed in `shared` (first step) or left to the gather.
+template <bool with_weights>
+void add_faces(const SmoothingArrays& a, std::size_t begin, std::size_t end, std::int32_t low,
+               std::uint32_t size, std::span<std::uint8_t> is_shared,
+               std::vector<std::int32_t>& shared) {
+  for (std::size_t f = begin; f < end; ++f) {
+    const Triangle& t = a.triangles[f];
+    if (has_repeated_corner(t)) continue;  // not among the vertices' faces
+    const double term = a.term[t[0]] + a.term[t[1]] + a.term[t[2]];
+    double weight = 0.0;
+    if constexpr (with_weights) weight = a.weight(t[0]) + a.weight(t[1]) + a.weight(t[2]);
+    for (const std::int32_t v : t) {
+      if (static_cast<std::uint32_t>(v - low) < size) {  // in the chunk's range
+        a.term_sum[v] += term;
+        if constexpr (with_weights) a.weight_sum[v] += weight;
+      } else if constexpr (with_weights) {
+        std::atomic_ref<std::uint8_t> listed(is_shared[static_cast<std::size_t>(v)]);
+        if (listed.load(std::memory_order_relaxed)) continue;
+        listed.store(1, std::memory_order_relaxed);  // another chunk may list it too
+        shared.push_back(v);
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -43,18 +70,15 @@ void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_fac
                          std::vector<double>& values, int steps) {
   if (steps <= 0) return;
   const std::size_t n = values.size(), face_count = mesh.triangles.size();
-  auto terms_of = [&](std::size_t v, double value) {
-    return member[v] ? Terms{vertex_area[v], vertex_area[v] * value} : Terms{0.0, 0.0};
-  };
-  // Two buffers that trade roles every step: the terms the faces read, and their sums, which
-  // the pass over the vertices turns into the next step's terms once it has read them. (Left
-  // uninitialised by new: the threads that use them first fill them.)
-  std::unique_ptr<Terms[]> terms(new Terms[n]), sums(new Terms[n]);
+  // Left uninitialised by new: the threads that use them first fill them.
+  std::unique_ptr<double[]> term(new double[n]), term_sum(new double[n]), weight_sum(new double[n]);
+  const SmoothingArrays a{mesh.triangles.data(), vertex_area.data(), member.data(),
+                          term.get(), term_sum.get(), weight_sum.get()};
   const std::size_t workers = worker_count(n);
   parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
-      terms[v] = terms_of(v, values[v]);
-      sums[v] = Terms{0.0, 0.0};
+      term[v] = member[v] ? vertex_area[v] * values[v] : 0.0;
+      term_sum[v] = weight_sum[v] = 0.0;
     }
   });
   const std::size_t face_chunks = worker_count(face_count);
@@ -67,25 +91,10 @@ void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_fac
     parallel_chunks(face_count, face_chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
       const std::int32_t low = range_begin[chunk];
       const auto size = static_cast<std::uint32_t>(range_begin[chunk + 1] - low);
-      // The arrays by plain pointers: through the unique_ptrs the compiler loaded the address
-      // again for every corner.
-      const Terms* const term = terms.get();
-      Terms* const sum_of = sums.get();
-      for (std::size_t f = begin; f < end; ++f) {
-        const Triangle& t = mesh.triangles[f];
-        if (has_repeated_corner(t)) continue;  // not among the vertices' faces
-        const Terms sum = face_sum(term[t[0]], term[t[1]], term[t[2]]);
-        for (const std::int32_t v : t) {
-          if (static_cast<std::uint32_t>(v - low) < size) {  // in the chunk's range
-            sum_of[v] += sum;
-          } else if (step == 0) {
-            std::atomic_ref<std::uint8_t> shared(is_shared[v]);
-            if (shared.load(std::memory_order_relaxed)) continue;
-            shared.store(1, std::memory_order_relaxed);  // another chunk may list it too
-            chunk_shared[chunk].push_back(v);
-          }
-        }
-      }
+      if (step == 0)
+        add_faces<true>(a, begin, end, low, size, is_shared, chunk_shared[chunk]);
+      else
+        add_faces<false>(a, begin, end, low, size, is_shared, chunk_shared[chunk]);
     });
     if (step == 0)
       for (std::size_t chunk = 1; chunk < face_chunks; ++chunk)
@@ -93,24 +102,25 @@ void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_fac
     const std::vector<std::int32_t>& shared = chunk_shared[0];
     parallel_chunks(shared.size(), worker_count(shared.size()), [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i) {
-        Terms sum{0.0, 0.0};
+        double term_total = 0.0, weight_total = 0.0;
         for (const std::int32_t f : vertex_faces.of(shared[i])) {
           const Triangle& t = mesh.triangles[f];
-          sum += face_sum(terms[t[0]], terms[t[1]], terms[t[2]]);
+          term_total += a.term[t[0]] + a.term[t[1]] + a.term[t[2]];
+          if (step == 0) weight_total += a.weight(t[0]) + a.weight(t[1]) + a.weight(t[2]);
         }
-        sums[shared[i]] = sum;
+        term_sum[shared[i]] = term_total;
+        if (step == 0) weight_sum[shared[i]] = weight_total;
       }
     });
     const bool last = step + 1 == steps;
     parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
-        if (member[v] && sums[v].weight > 0.0) values[v] = sums[v].weighted / sums[v].weight;
+        if (member[v] && weight_sum[v] > 0.0) values[v] = term_sum[v] / weight_sum[v];
         if (last) continue;
-        sums[v] = terms_of(v, values[v]);
-        terms[v] = Terms{0.0, 0.0};
+        term[v] = member[v] ? vertex_area[v] * values[v] : 0.0;
+        term_sum[v] = 0.0;
       }
     });
-    std::swap(terms, sums);
   }
 }
 
