@@ -332,8 +332,9 @@ struct GatherInput {
   // Without it, the Laplacian's cotangents come from the faces' positions; with it, from its
   // faces and lengths. Angles, normal and area always come from the mesh's own faces.
   const IntrinsicTriangulation* intrinsic;
-  // The face chunks of the face pass: chunk c is [face_bounds[c], face_bounds[c + 1]).
-  std::span<const std::size_t> face_bounds;
+  // The vertices whose faces lie in more than one chunk of the face pass, in ascending order
+  // and once each (empty in the face pass itself, which finds them).
+  std::span<const std::int32_t> spanning;
   RingSums* rings;       // per vertex
   TurnProduct* turns;    // per vertex
 };
@@ -343,27 +344,29 @@ struct GatherCounts {
   double mollification = 0.0;
 };
 
-// Whether all of v's faces lie in one face chunk: the face pass then sums v's terms in the
-// order of its faces, which is the order of its row (build_vertex_faces fills each row in
-// ascending face order). Otherwise v is summed by the vertex pass, from its row, in that same
-// order: either way the same sums, whatever the number of chunks.
-bool in_one_chunk(std::span<const std::int32_t> row, std::span<const std::size_t> face_bounds) {
-  const auto first = static_cast<std::size_t>(row.front()), last = static_cast<std::size_t>(row.back());
-  for (std::size_t c = 1; c + 1 < face_bounds.size(); ++c)
-    if (first < face_bounds[c] && face_bounds[c] <= last) return false;
-  return true;
+// A chunk's list of the corners of its faces whose first face lies in an earlier chunk (a
+// corner once for each such face). Out of line: a vertex on a chunk's border is rare, and the
+// push inlined into the face pass cost it registers.
+[[gnu::noinline, gnu::cold]] void list_spanning(std::vector<std::int32_t>& spanning, std::int32_t v) {
+  spanning.push_back(v);
 }
 
 // The face pass over faces [begin, end): each face's terms are computed once, a block at a
-// time, and added to the sums of those of its corners whose faces all lie in [begin, end). The
-// first face of a vertex starts its sums, so no array needs clearing beforehand. Forced inline
-// so that each of the two instantiations below compiles all of it for its own instruction set.
+// time, and added to the sums of those of its corners whose first face lies in [begin, end).
+// The first face of a vertex starts its sums, so no array needs clearing beforehand. A vertex
+// whose faces all lie in one chunk is thus summed in the order of its faces, which is the
+// order of its row (build_vertex_faces fills each row in ascending face order). A vertex with
+// faces in two chunks is listed by the later chunk, and the vertex pass sums it again from its
+// row, in that same order: either way the same sums, whatever the number of chunks. Forced
+// inline so that each of the two instantiations below compiles all of it for its own
+// instruction set.
 // The counts are kept on the stack and stored once: the workers' counts share a cache line,
 // and adding to them in place made the two cores take that line from each other at every face.
 template <class Lanes>
 [[gnu::always_inline]] inline void sum_faces(const GatherInput& in, std::size_t begin,
                                              std::size_t end, CurvatureField& field,
-                                             GatherCounts& counts_out) {
+                                             GatherCounts& counts_out,
+                                             std::vector<std::int32_t>& spanning) {
   GatherCounts counts;
   const VertexFaces& vf = in.topology.vertex_faces;
   const std::vector<Triangle>& triangles = in.mesh.triangles;
@@ -389,10 +392,14 @@ template <class Lanes>
       }
       for (int corner = 0; corner < 3; ++corner) {
         const std::int32_t v = t[corner];
-        // The chunk of v's first face sums v. If v's faces reach into the next chunk, the vertex
-        // pass sums it again from the start; this chunk's partial sums are never read.
+        // The chunk of v's first face sums v. If v's faces reach into a later chunk, that chunk
+        // lists v and the vertex pass sums it again from the start; the first chunk's partial
+        // sums are never read.
         const auto first = static_cast<std::size_t>(vf.face_indices[vf.offsets[v]]);
-        if (first < begin) continue;
+        if (first < begin) {
+          list_spanning(spanning, v);
+          continue;
+        }
         if (first == f)
           start_ring(in.rings[v], in.turns[v], field.normal[v], field.area[v]);
         add_corner(block, i, corner, in.rings[v], in.turns[v], field.normal[v], field.area[v]);
@@ -402,33 +409,43 @@ template <class Lanes>
   counts_out = counts;
 }
 
-// The vertex pass over vertices [begin, end): sums the vertices the face pass left out, then
-// turns every vertex's sums into its fields.
+// The sums of vertex v from its row, by the same block code as the face pass, so with the
+// same bits for each face's terms.
+template <class Lanes>
+[[gnu::always_inline]] inline void sum_row(const GatherInput& in, std::int32_t vertex,
+                                           FaceBlock& block, CurvatureField& field) {
+  const std::span<const std::int32_t> row = in.topology.vertex_faces.of(vertex);
+  const auto v = static_cast<std::size_t>(vertex);
+  start_ring(in.rings[v], in.turns[v], field.normal[v], field.area[v]);
+  for (std::size_t piece = 0; piece < row.size(); piece += block_faces) {
+    const std::size_t count = std::min(block_faces, row.size() - piece);
+    for (std::size_t i = 0; i < count; ++i)
+      block.load(i, in.mesh.positions, in.mesh.triangles[row[piece + i]], in.scale);
+    compute_faces<Lanes>(block, count);
+    for (std::size_t i = 0; i < count; ++i)
+      add_corner(block, i, corner_of(in.mesh.triangles[row[piece + i]], vertex), in.rings[v],
+                 in.turns[v], field.normal[v], field.area[v]);
+  }
+}
+
+// The vertex pass over vertices [begin, end): sums again the vertices with faces in two chunks,
+// starts those in no face (which the face pass never saw) with empty sums, then turns every
+// vertex's sums into its fields.
 template <class Lanes>
 [[gnu::always_inline]] inline void finish_vertices(const GatherInput& in, std::size_t begin,
                                                    std::size_t end, CurvatureField& field) {
   const VertexFaces& vf = in.topology.vertex_faces;
   const double scale = in.scale, scale2 = scale * scale;
   FaceBlock block;
+  for (auto it = std::lower_bound(in.spanning.begin(), in.spanning.end(), static_cast<std::int32_t>(begin));
+       it != in.spanning.end() && static_cast<std::size_t>(*it) < end; ++it)
+    sum_row<Lanes>(in, *it, block, field);
   for (std::size_t v = begin; v < end; ++v) {
     const auto vertex = static_cast<std::int32_t>(v);
-    const std::span<const std::int32_t> row = vf.of(vertex);
+    const auto valence = static_cast<std::size_t>(vf.offsets[v + 1] - vf.offsets[v]);
     RingSums& ring = in.rings[v];
     TurnProduct& turn = in.turns[v];
-    if (row.empty() || !in_one_chunk(row, in.face_bounds)) {
-      // In no face, or with faces in two chunks: summed here, by the same block code as the face
-      // pass, so with the same bits for each face's terms.
-      start_ring(ring, turn, field.normal[v], field.area[v]);
-      for (std::size_t piece = 0; piece < row.size(); piece += block_faces) {
-        const std::size_t count = std::min(block_faces, row.size() - piece);
-        for (std::size_t i = 0; i < count; ++i)
-          block.load(i, in.mesh.positions, in.mesh.triangles[row[piece + i]], scale);
-        compute_faces<Lanes>(block, count);
-        for (std::size_t i = 0; i < count; ++i)
-          add_corner(block, i, corner_of(in.mesh.triangles[row[piece + i]], vertex), ring, turn,
-                     field.normal[v], field.area[v]);
-      }
-    }
+    if (valence == 0) start_ring(ring, turn, field.normal[v], field.area[v]);
     Vec3 laplacian(ring.value[0], ring.value[1], ring.value[2]);
     const double approximate_angle_sum = ring.value[3];
     if (in.intrinsic) {
@@ -458,7 +475,7 @@ template <class Lanes>
     }
     // A NaN angle sum: a corner of a shapeless face.
     if (kind != VertexKind::interior || std::isnan(approximate_angle_sum) ||
-        row.size() > largest_turn_counted_valence) {
+        valence > largest_turn_counted_valence) {
       field.status[v] = CurvatureStatus::extrapolated;
       continue;
     }
@@ -492,8 +509,9 @@ template <class Lanes>
 // from the portable path's by round-off only (tested); multiplying by the power-of-two scale
 // stays exact, so the scale invariance holds in both. Elsewhere there is only the portable code.
 void sum_faces_portable(const GatherInput& in, std::size_t begin, std::size_t end,
-                        CurvatureField& field, GatherCounts& counts) {
-  sum_faces<Lanes2>(in, begin, end, field, counts);
+                        CurvatureField& field, GatherCounts& counts,
+                        std::vector<std::int32_t>& spanning) {
+  sum_faces<Lanes2>(in, begin, end, field, counts, spanning);
 }
 void finish_vertices_portable(const GatherInput& in, std::size_t begin, std::size_t end,
                               CurvatureField& field) {
@@ -504,8 +522,9 @@ void finish_vertices_portable(const GatherInput& in, std::size_t begin, std::siz
 #define TOONWATER_CURVATURE_AVX2_FMA 1
 [[gnu::target("avx2,fma")]] void sum_faces_avx2_fma(const GatherInput& in, std::size_t begin,
                                                     std::size_t end, CurvatureField& field,
-                                                    GatherCounts& counts) {
-  sum_faces<Lanes4>(in, begin, end, field, counts);
+                                                    GatherCounts& counts,
+                                                    std::vector<std::int32_t>& spanning) {
+  sum_faces<Lanes4>(in, begin, end, field, counts, spanning);
 }
 [[gnu::target("avx2,fma")]] void finish_vertices_avx2_fma(const GatherInput& in, std::size_t begin,
                                                           std::size_t end, CurvatureField& field) {
@@ -615,8 +634,6 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   // again with it.
   const std::size_t workers = worker_count(n);
   const std::size_t m = mesh.triangles.size();
-  std::vector<std::size_t> face_bounds(workers + 1);
-  for (std::size_t c = 0; c <= workers; ++c) face_bounds[c] = m * c / workers;  // as parallel_chunks
   const auto rings = std::make_unique_for_overwrite<RingSums[]>(n);
   const auto turns = std::make_unique_for_overwrite<TurnProduct[]>(n);
   bool use_avx2_fma = false;
@@ -626,13 +643,24 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
 #endif
   auto sum_all = [&](const IntrinsicTriangulation* intrinsic) {
     std::vector<GatherCounts> counts(workers);
-    const GatherInput input{mesh, topology, scale, intrinsic, face_bounds, rings.get(), turns.get()};
+    std::vector<std::vector<std::int32_t>> chunk_spanning(workers);
+    GatherInput input{mesh, topology, scale, intrinsic, {}, rings.get(), turns.get()};
     parallel_chunks(m, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
+      std::vector<std::int32_t> spanning;  // moved once: the chunks' vectors share a cache line
+      auto sum_chunk = [&] {
 #ifdef TOONWATER_CURVATURE_AVX2_FMA
-      if (use_avx2_fma) return sum_faces_avx2_fma(input, begin, end, field, counts[worker]);
+        if (use_avx2_fma) return sum_faces_avx2_fma(input, begin, end, field, counts[worker], spanning);
 #endif
-      sum_faces_portable(input, begin, end, field, counts[worker]);
+        sum_faces_portable(input, begin, end, field, counts[worker], spanning);
+      };
+      sum_chunk();
+      chunk_spanning[worker] = std::move(spanning);
     });
+    std::vector<std::int32_t> spanning;
+    for (const auto& listed : chunk_spanning) spanning.insert(spanning.end(), listed.begin(), listed.end());
+    std::sort(spanning.begin(), spanning.end());
+    spanning.erase(std::unique(spanning.begin(), spanning.end()), spanning.end());
+    input.spanning = spanning;
     parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
 #ifdef TOONWATER_CURVATURE_AVX2_FMA
       if (use_avx2_fma) return finish_vertices_avx2_fma(input, begin, end, field);
