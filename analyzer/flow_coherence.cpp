@@ -10,6 +10,13 @@
 #include <utility>
 
 namespace toonwater {
+namespace {
+
+// The bounds of no points, which any point's coordinates replace.
+const Box3 no_points{Vec3::Constant(std::numeric_limits<double>::infinity()),
+                     Vec3::Constant(-std::numeric_limits<double>::infinity())};
+
+}  // namespace
 
 FlowFrame flow_frame(const TriangleMesh& surface, const CurvatureField&, const FlowRegions& flow) {
   FlowFrame frame;
@@ -43,7 +50,8 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
   const bool any_surface = flow.free_surface.size() == n;
   const std::optional<PointGrid> grid =
       has_previous_ ? std::optional<PointGrid>(std::in_place, previous_.positions,
-                                               options_.max_distance * flow.median_edge_length)
+                                               options_.max_distance * flow.median_edge_length,
+                                               previous_bounds_)
                     : std::nullopt;
   // The free-surface vertices are numbered compactly in vertex order: counted chunk by chunk
   // (a byte a vertex, quicker on one core than waking another), then each chunk fills its part
@@ -61,6 +69,9 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
   pending_.field.resize(chunk_begin.back());
   pending_.label.resize(chunk_begin.back());
   predecessor_.resize(n);
+  // The pending frame's bounding box, chunk by chunk, from the positions as they are copied:
+  // the next frame's grid needs it, and a pass of its own would read them all again.
+  std::vector<Box3> chunk_bounds(workers, no_points);
   parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     if (!any_surface) {
       std::fill(predecessor_.begin() + static_cast<std::ptrdiff_t>(begin),
@@ -79,6 +90,7 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
     const PointGrid* const previous_surface = grid ? &*grid : nullptr;
     const double blend = options_.blend, rise_blend = options_.rise_blend;
     std::size_t next = chunk_begin[chunk];
+    Box3 bounds = no_points;  // in a local: in the vector, each update would wait for a store
     for (std::size_t v = begin; v < end; ++v) {
       predecessor[v] = -1;
       if (!on_surface[v]) continue;
@@ -95,8 +107,16 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
       next_position[next] = position[v];
       next_field[next] = s[v];
       ++next;
+      bounds.min = bounds.min.cwiseMin(position[v]);
+      bounds.max = bounds.max.cwiseMax(position[v]);
     }
+    chunk_bounds[chunk] = bounds;
   });
+  pending_bounds_ = no_points;
+  for (const Box3& bounds : chunk_bounds) {
+    pending_bounds_.min = pending_bounds_.min.cwiseMin(bounds.min);
+    pending_bounds_.max = pending_bounds_.max.cwiseMax(bounds.max);
+  }
 }
 
 void FlowCoherence::remember(const CurvatureField& curvature, const FlowRegions& flow) {
@@ -123,6 +143,7 @@ void FlowCoherence::remember(const CurvatureField& curvature, const FlowRegions&
   }
   last_flicker_ = has_previous_ && total > 0.0 ? changed / total : 0.0;
   std::swap(previous_, pending_);
+  std::swap(previous_bounds_, pending_bounds_);
   has_previous_ = true;
 }
 

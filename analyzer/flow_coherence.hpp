@@ -70,6 +70,7 @@ class FlowCoherence {
  private:
   CoherenceOptions options_;
   FlowFrame previous_, pending_;
+  Box3 previous_bounds_, pending_bounds_;  // of the frames' positions, for the grid
   std::vector<std::int32_t> predecessor_;  // per vertex of the pending frame, −1: none
   bool has_previous_ = false;
   double last_flicker_ = 0.0;

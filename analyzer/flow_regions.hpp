@@ -75,15 +75,6 @@ struct FlowOptions : FreeSurfaceOptions {
   std::optional<double> min_region_area;     // absolute A_min (scene units²)
 };
 
-struct Box3 {
-  Vec3 min = Vec3::Constant(0.0);
-  Vec3 max = Vec3::Constant(-1.0);  // empty by default
-  bool empty() const { return (max.array() < min.array()).any(); }
-  bool contains(const Vec3& p) const {
-    return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();
-  }
-};
-
 enum FlowLabel : std::int8_t { valley = -1, none = 0, ridge = 1 };
 
 struct FlowRegions {

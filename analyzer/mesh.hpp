@@ -21,4 +21,14 @@ struct TriangleMesh {
 // The input's up axis; POV-Ray and the analyzer's "height" use it.
 enum class Axis : std::uint8_t { x = 0, y = 1, z = 2 };
 
+// An axis-aligned box, min and max corner included.
+struct Box3 {
+  Vec3 min = Vec3::Constant(0.0);
+  Vec3 max = Vec3::Constant(-1.0);  // empty by default
+  bool empty() const { return (max.array() < min.array()).any(); }
+  bool contains(const Vec3& p) const {
+    return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();
+  }
+};
+
 }  // namespace toonwater

@@ -10,27 +10,39 @@
 
 namespace toonwater {
 
-PointGrid::PointGrid(const std::vector<Vec3>& points, double radius)
-    : radius_(radius > 0.0 && std::isfinite(radius) ? radius : 1.0) {
-  if (points.empty()) return;
-  // The bounding box on all cores.
+namespace {
+
+// The points' bounding box, on all cores.
+Box3 bounding_box(const std::vector<Vec3>& points) {
+  if (points.empty()) return Box3{};
   const std::size_t workers = worker_count(points.size());
-  std::vector<Vec3> chunk_min(workers, points.front()), chunk_max(workers, points.front());
+  std::vector<Box3> chunk_box(workers);
   parallel_chunks(points.size(), workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    // In locals: kept in the vectors, each point's update waited for the last one's store.
+    // In locals: kept in the vector, each point's update waited for the last one's store.
     Vec3 low = points[begin], high = points[begin];
     for (std::size_t i = begin; i < end; ++i) {
       low = low.cwiseMin(points[i]);
       high = high.cwiseMax(points[i]);
     }
-    chunk_min[chunk] = low;
-    chunk_max[chunk] = high;
+    chunk_box[chunk] = Box3{low, high};
   });
-  Vec3 min = chunk_min[0], max = chunk_max[0];
+  Box3 box = chunk_box[0];
   for (std::size_t w = 1; w < workers; ++w) {
-    min = min.cwiseMin(chunk_min[w]);
-    max = max.cwiseMax(chunk_max[w]);
+    box.min = box.min.cwiseMin(chunk_box[w].min);
+    box.max = box.max.cwiseMax(chunk_box[w].max);
   }
+  return box;
+}
+
+}  // namespace
+
+PointGrid::PointGrid(const std::vector<Vec3>& points, double radius)
+    : PointGrid(points, radius, bounding_box(points)) {}
+
+PointGrid::PointGrid(const std::vector<Vec3>& points, double radius, const Box3& bounds)
+    : radius_(radius > 0.0 && std::isfinite(radius) ? radius : 1.0) {
+  if (points.empty()) return;
+  const Vec3 &min = bounds.min, &max = bounds.max;
   const Vec3 extent = max - min;
   int thinnest = 0;
   for (int axis = 1; axis < 3; ++axis)
@@ -45,16 +57,17 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, double radius)
   cells_a_ = static_cast<std::int64_t>(extent[axis_a_] / cell_size_) + 1;
   cells_b_ = static_cast<std::int64_t>(extent[axis_b_] / cell_size_) + 1;
 
-  sort_into_cells(points, workers);
+  sort_into_cells(points);
 }
 
 // A counting sort on all cores that keeps each cell's points in input order: every chunk of
 // points counts its points per cell in an array of its own, the offsets are taken cell by
 // cell and within a cell chunk by chunk, and every chunk then places its points.
-void PointGrid::sort_into_cells(const std::vector<Vec3>& points, std::size_t workers) {
+void PointGrid::sort_into_cells(const std::vector<Vec3>& points) {
   const std::size_t n = points.size(), cell_count = static_cast<std::size_t>(cells_a_ * cells_b_);
-  std::vector<std::int32_t> cell_of(n);
-  // Left uninitialised by new: each chunk zeroes its own counts.
+  const std::size_t workers = worker_count(n);
+  // Left uninitialised by new: each chunk writes its points' cells and zeroes its own counts.
+  std::unique_ptr<std::int32_t[]> cell_of(new std::int32_t[n]);
   std::unique_ptr<std::int32_t[]> counts(new std::int32_t[workers * cell_count]);
   parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     std::int32_t* const count = counts.get() + chunk * cell_count;

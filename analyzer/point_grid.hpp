@@ -31,6 +31,9 @@ namespace toonwater {
 class PointGrid {
  public:
   PointGrid(const std::vector<Vec3>& points, double radius);
+  // The same, given the points' bounding box (exactly: the least and greatest coordinates), as
+  // a caller that wrote the points may have it without a pass of its own.
+  PointGrid(const std::vector<Vec3>& points, double radius, const Box3& bounds);
   // Index (into the points given) of the closest point within `radius` of p, or −1.
   std::int32_t closest(const Vec3& p) const;
 
@@ -44,7 +47,7 @@ class PointGrid {
   void scan(const Vec3& p, std::int64_t ca, std::int64_t cb, int inner, int outer,
             Best& best) const;
   void scan_run(const Vec3& p, std::int32_t begin, std::int32_t end, Best& best) const;
-  void sort_into_cells(const std::vector<Vec3>& points, std::size_t workers);
+  void sort_into_cells(const std::vector<Vec3>& points);
   // A coordinate along `axis` in cell widths from the origin, and the cell that holds it
   // (−1 or `cells` beyond the grid).
   double cells_from_origin(double coordinate, int axis) const;

@@ -37,6 +37,28 @@ TEST(PointGrid, FindsTheClosestPointWithinItsCell) {
   }
 }
 
+// Given the points' bounding box, as FlowCoherence gives the grid the box it took while copying
+// the frame's positions, the grid is the same: the same answers to every query.
+TEST(PointGrid, BuiltFromAGivenBoundingBoxAnswersAsWithoutIt) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> points(60000);
+  for (Vec3& p : points) p = Vec3(2.0 * u(rng), u(rng), 0.1 * u(rng));
+  Box3 bounds{points[0], points[0]};
+  for (const Vec3& p : points) {
+    bounds.min = bounds.min.cwiseMin(p);
+    bounds.max = bounds.max.cwiseMax(p);
+  }
+  const double radius = 0.02;
+  const PointGrid computed(points, radius), given(points, radius, bounds);
+  std::normal_distribution<double> jitter(0.0, 0.01);
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Vec3 q = trial % 10 == 0 ? Vec3(2.4 * u(rng), 1.2 * u(rng), 0.2 * u(rng))
+                                   : points[rng() % points.size()] + Vec3(jitter(rng), jitter(rng), jitter(rng));
+    ASSERT_EQ(given.closest(q), computed.closest(q)) << "query " << trial;
+  }
+}
+
 // Queries next to a point, as between two frames: the point found is the closest, also when it
 // lies across a cell border from the query.
 TEST(PointGrid, FindsTheClosestPointAcrossCellBordersForNearQueries) {
