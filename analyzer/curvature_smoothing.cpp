@@ -29,12 +29,10 @@ namespace {
 // elsewhere; its term, that weight times its value.
 struct SmoothingArrays {
   const Triangle* triangles;
-  const double* area;
-  const std::uint8_t* member;
+  const double* weight;
   const double* term;   // the values the faces read, weighted
   double* term_sum;     // Σ over v's faces of their corners' terms
   double* weight_sum;   // Σ over v's faces of their corners' weights: the same every step
-  double weight(std::int32_t v) const { return member[v] ? area[v] : 0.0; }
 };
 
 // One face's corners' terms (and, in the first step, weights) added to those of its corners in
@@ -48,7 +46,7 @@ void add_faces(const SmoothingArrays& a, std::size_t begin, std::size_t end, std
     if (has_repeated_corner(t)) continue;  // not among the vertices' faces
     const double term = a.term[t[0]] + a.term[t[1]] + a.term[t[2]];
     double weight = 0.0;
-    if constexpr (with_weights) weight = a.weight(t[0]) + a.weight(t[1]) + a.weight(t[2]);
+    if constexpr (with_weights) weight = a.weight[t[0]] + a.weight[t[1]] + a.weight[t[2]];
     for (const std::int32_t v : t) {
       if (static_cast<std::uint32_t>(v - low) < size) {  // in the chunk's range
         a.term_sum[v] += term;
@@ -71,13 +69,15 @@ void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_fac
   if (steps <= 0) return;
   const std::size_t n = values.size(), face_count = mesh.triangles.size();
   // Left uninitialised by new: the threads that use them first fill them.
-  std::unique_ptr<double[]> term(new double[n]), term_sum(new double[n]), weight_sum(new double[n]);
-  const SmoothingArrays a{mesh.triangles.data(), vertex_area.data(), member.data(),
-                          term.get(), term_sum.get(), weight_sum.get()};
+  std::unique_ptr<double[]> weight(new double[n]), term(new double[n]), term_sum(new double[n]),
+      weight_sum(new double[n]);
+  const SmoothingArrays a{mesh.triangles.data(), weight.get(), term.get(), term_sum.get(),
+                          weight_sum.get()};
   const std::size_t workers = worker_count(n);
   parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
-      term[v] = member[v] ? vertex_area[v] * values[v] : 0.0;
+      weight[v] = member[v] ? vertex_area[v] : 0.0;
+      term[v] = member[v] ? vertex_area[v] * values[v] : 0.0;  // not 0 · value: it may be inf
       term_sum[v] = weight_sum[v] = 0.0;
     }
   });
@@ -106,7 +106,7 @@ void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_fac
         for (const std::int32_t f : vertex_faces.of(shared[i])) {
           const Triangle& t = mesh.triangles[f];
           term_total += a.term[t[0]] + a.term[t[1]] + a.term[t[2]];
-          if (step == 0) weight_total += a.weight(t[0]) + a.weight(t[1]) + a.weight(t[2]);
+          if (step == 0) weight_total += a.weight[t[0]] + a.weight[t[1]] + a.weight[t[2]];
         }
         term_sum[shared[i]] = term_total;
         if (step == 0) weight_sum[shared[i]] = weight_total;
