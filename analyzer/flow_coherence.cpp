@@ -5,18 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <utility>
 
 namespace toonwater {
-namespace {
-
-// The bounds of no points, which any point's coordinates replace.
-const Box3 no_points{Vec3::Constant(std::numeric_limits<double>::infinity()),
-                     Vec3::Constant(-std::numeric_limits<double>::infinity())};
-
-}  // namespace
 
 FlowFrame flow_frame(const TriangleMesh& surface, const CurvatureField&, const FlowRegions& flow) {
   FlowFrame frame;
@@ -71,7 +63,7 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
   predecessor_.resize(n);
   // The pending frame's bounding box, chunk by chunk, from the positions as they are copied:
   // the next frame's grid needs it, and a pass of its own would read them all again.
-  std::vector<Box3> chunk_bounds(workers, no_points);
+  std::vector<Box3> chunk_bounds(workers, Box3::of_no_points());
   parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     if (!any_surface) {
       std::fill(predecessor_.begin() + static_cast<std::ptrdiff_t>(begin),
@@ -90,7 +82,7 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
     const PointGrid* const previous_surface = grid ? &*grid : nullptr;
     const double blend = options_.blend, rise_blend = options_.rise_blend;
     std::size_t next = chunk_begin[chunk];
-    Box3 bounds = no_points;  // in a local: in the vector, each update would wait for a store
+    Box3 bounds = Box3::of_no_points();  // in a local: in the vector, each update would wait for a store
     for (std::size_t v = begin; v < end; ++v) {
       predecessor[v] = -1;
       if (!on_surface[v]) continue;
@@ -107,16 +99,12 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
       next_position[next] = position[v];
       next_field[next] = s[v];
       ++next;
-      bounds.min = bounds.min.cwiseMin(position[v]);
-      bounds.max = bounds.max.cwiseMax(position[v]);
+      bounds.add(position[v]);
     }
     chunk_bounds[chunk] = bounds;
   });
-  pending_bounds_ = no_points;
-  for (const Box3& bounds : chunk_bounds) {
-    pending_bounds_.min = pending_bounds_.min.cwiseMin(bounds.min);
-    pending_bounds_.max = pending_bounds_.max.cwiseMax(bounds.max);
-  }
+  pending_bounds_ = Box3::of_no_points();
+  for (const Box3& bounds : chunk_bounds) pending_bounds_.add(bounds);
 }
 
 void FlowCoherence::remember(const CurvatureField& curvature, const FlowRegions& flow) {

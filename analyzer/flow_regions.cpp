@@ -140,8 +140,7 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   // The faded field and the labels, chunk by chunk, each with its own counts and box.
   struct Tally {
     std::size_t ridges = 0, valleys = 0;
-    Box3 box{Vec3::Constant(std::numeric_limits<double>::infinity()),
-             Vec3::Constant(-std::numeric_limits<double>::infinity())};
+    Box3 box = Box3::of_no_points();
   };
   const std::size_t member_workers = worker_count(m);
   std::vector<Tally> tallies(member_workers);
@@ -158,18 +157,16 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
       if (label == FlowLabel::none) continue;
       tally.ridges += label == FlowLabel::ridge;
       tally.valleys += label == FlowLabel::valley;
-      tally.box.min = tally.box.min.cwiseMin(positions[v]);
-      tally.box.max = tally.box.max.cwiseMax(positions[v]);
+      tally.box.add(positions[v]);
     }
     tallies[chunk] = tally;
   });
   Box3& box = flow.region_of_interest;
-  box = Tally{}.box;
+  box = Box3::of_no_points();
   for (const Tally& tally : tallies) {
     flow.ridge_vertices += tally.ridges;
     flow.valley_vertices += tally.valleys;
-    box.min = box.min.cwiseMin(tally.box.min);
-    box.max = box.max.cwiseMax(tally.box.max);
+    box.add(tally.box);
   }
   if (flow.ridge_vertices + flow.valley_vertices == 0) box = Box3{};
   flow.field = std::move(field);

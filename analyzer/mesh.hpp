@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace toonwater {
@@ -28,6 +29,20 @@ struct Box3 {
   bool empty() const { return (max.array() < min.array()).any(); }
   bool contains(const Vec3& p) const {
     return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();
+  }
+  // The box of no points: empty, and replaced by the first point or box added to it.
+  static Box3 of_no_points() {
+    return {Vec3::Constant(std::numeric_limits<double>::infinity()),
+            Vec3::Constant(-std::numeric_limits<double>::infinity())};
+  }
+  // Grows the box to hold p, or another box.
+  void add(const Vec3& p) {
+    min = min.cwiseMin(p);
+    max = max.cwiseMax(p);
+  }
+  void add(const Box3& box) {
+    min = min.cwiseMin(box.min);
+    max = max.cwiseMax(box.max);
   }
 };
 

@@ -18,19 +18,13 @@ Box3 bounding_box(const std::vector<Vec3>& points) {
   const std::size_t workers = worker_count(points.size());
   std::vector<Box3> chunk_box(workers);
   parallel_chunks(points.size(), workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    // In locals: kept in the vector, each point's update waited for the last one's store.
-    Vec3 low = points[begin], high = points[begin];
-    for (std::size_t i = begin; i < end; ++i) {
-      low = low.cwiseMin(points[i]);
-      high = high.cwiseMax(points[i]);
-    }
-    chunk_box[chunk] = Box3{low, high};
+    // In a local: kept in the vector, each point's update waited for the last one's store.
+    Box3 box = Box3::of_no_points();
+    for (std::size_t i = begin; i < end; ++i) box.add(points[i]);
+    chunk_box[chunk] = box;
   });
-  Box3 box = chunk_box[0];
-  for (std::size_t w = 1; w < workers; ++w) {
-    box.min = box.min.cwiseMin(chunk_box[w].min);
-    box.max = box.max.cwiseMax(chunk_box[w].max);
-  }
+  Box3 box = Box3::of_no_points();
+  for (const Box3& chunk : chunk_box) box.add(chunk);
   return box;
 }
 
