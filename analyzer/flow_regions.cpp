@@ -9,7 +9,6 @@
 #include "common/parallel.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -190,11 +189,11 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   // cells wide, as curved as a crest but no flow line).
   std::vector<std::uint8_t> member = std::move(surface.inside);
   const std::size_t workers = worker_count(n);
-  const double surface_area =
-      ordered_sums<1>(n, [on_surface = flow.free_surface.data(), status = curvature.status.data(),
-                          area = curvature.area.data()](std::size_t v, std::array<double, 1>& sum) {
-        if (on_surface[v] && status[v] != CurvatureStatus::undefined) sum[0] += area[v];
-      })[0];
+  const double surface_area = ordered_sum(
+      n, [on_surface = flow.free_surface.data(), status = curvature.status.data(),
+          area = curvature.area.data()](std::size_t v) {
+        return on_surface[v] && status[v] != CurvatureStatus::undefined ? area[v] : 0.0;
+      });
   flow.scale_length = std::sqrt(surface_area);
   const double length = flow.scale_length;
   const FlowDefaults defaults = flow_defaults(options.criterion);

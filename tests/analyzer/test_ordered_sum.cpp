@@ -1,12 +1,11 @@
-// ordered_sums: the blocks of a fixed size summed in index order, then the blocks' sums in block
+// ordered_sum: the blocks of a fixed size summed in index order, then the blocks' sums in block
 // order, on values whose sum depends on the order of the additions, for lengths around the
-// block size; the K sums are kept apart.
+// block size, and with terms left out (0) as a selection leaves them.
 #include "common/ordered_sum.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <array>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -40,9 +39,8 @@ TEST(OrderedSums, AreTheBlocksSummedInOrder) {
   const std::size_t b = ordered_sum_block;
   for (const std::size_t n : {std::size_t{0}, std::size_t{1}, b - 1, b, b + 1, 5 * b + 123, 40 * b + 7}) {
     const std::vector<double> values = spread_values(n, static_cast<unsigned>(n));
-    const std::array<double, 1> sum =
-        ordered_sums<1>(n, [&](std::size_t i, std::array<double, 1>& s) { s[0] += values[i]; });
-    EXPECT_EQ(sum[0], blockwise_sum(values)) << "n = " << n;
+    EXPECT_EQ(ordered_sum(n, [&](std::size_t i) { return values[i]; }), blockwise_sum(values))
+        << "n = " << n;
   }
 }
 
@@ -55,17 +53,13 @@ TEST(OrderedSums, DifferFromTheSerialSumOnlyByTheOrder) {
   EXPECT_NE(serial, blockwise_sum(values));
 }
 
-TEST(OrderedSums, KeepTheirSumsApart) {
+TEST(OrderedSums, LeaveOutTheTermsASelectionSkips) {
   const std::size_t n = 3 * ordered_sum_block + 17;
   const std::vector<double> values = spread_values(n, 4);
   std::vector<double> odd(n, 0.0), even(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) (i % 2 ? odd : even)[i] = values[i];
-  const std::array<double, 2> sums = ordered_sums<2>(n, [&](std::size_t i, std::array<double, 2>& s) {
-    if (i % 2) s[0] += values[i];
-    else s[1] += values[i];
-  });
-  EXPECT_EQ(sums[0], blockwise_sum(odd));
-  EXPECT_EQ(sums[1], blockwise_sum(even));
+  EXPECT_EQ(ordered_sum(n, [&](std::size_t i) { return i % 2 ? values[i] : 0.0; }), blockwise_sum(odd));
+  EXPECT_EQ(ordered_sum(n, [&](std::size_t i) { return i % 2 ? 0.0 : values[i]; }), blockwise_sum(even));
 }
 
 }  // namespace
