@@ -5,6 +5,8 @@
 // rows are (numerically) dependent does not.
 #include "analyzer/affine_transform.hpp"
 
+#include "analyzer/mesh_reader.hpp"
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -45,8 +47,17 @@ AffineTransform scale_then_translate(double scale, const Vec3& translation) {
   return validated({scale * Eigen::Matrix3d::Identity(), translation});
 }
 
-void apply_transform(const AffineTransform& transform, TriangleMesh& mesh) {
-  for (Vec3& p : mesh.positions) p = transform.linear * p + transform.translation;
+void apply_transform(const AffineTransform& transform, TriangleMesh& mesh,
+                     const std::filesystem::path& source) {
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    Vec3& p = mesh.positions[v];
+    p = transform.linear * p + transform.translation;
+    // Finite entries and a finite position can still give inf (1e300 scaled by 1e10): the
+    // analysis would take it for a point at infinity and write zeros where the user expects data.
+    if (!p.allFinite())
+      throw InputError(source.string() + ": vertex " + std::to_string(v) +
+                       " lies beyond the largest double after the transform");
+  }
   if (transform.linear.determinant() < 0)
     for (Triangle& t : mesh.triangles) std::swap(t[1], t[2]);
 }

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <filesystem>
 #include <span>
 
 namespace toonwater {
@@ -24,7 +25,9 @@ AffineTransform affine_from_rows(std::span<const double, 12> rows);
 // x ↦ scale·x + translation. Throws std::invalid_argument as affine_from_rows does.
 AffineTransform scale_then_translate(double scale, const Vec3& translation);
 
-// Maps every position; reverses every triangle when the map mirrors (det A < 0).
-void apply_transform(const AffineTransform& transform, TriangleMesh& mesh);
+// Maps every position; reverses every triangle when the map mirrors (det A < 0). Throws
+// InputError naming `source` (the mesh's file) and the vertex where a position overflows.
+void apply_transform(const AffineTransform& transform, TriangleMesh& mesh,
+                     const std::filesystem::path& source);
 
 }  // namespace toonwater

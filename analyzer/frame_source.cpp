@@ -21,7 +21,7 @@ SourceFrame FrameSource::read(const std::filesystem::path& path) {
     frame.read_seconds = seconds_since(start);
     return frame;
   }
-  if (options_.transform) apply_transform(*options_.transform, input.mesh);
+  if (options_.transform) apply_transform(*options_.transform, input.mesh, path);
   frame.read_seconds = seconds_since(start);
   if (options_.box) {
     frame.lower = frame.upper = input.mesh.positions.front();  // EmptyMeshError: at least one

@@ -109,7 +109,7 @@ void run_analyze(const AnalyzeArgs& args) {
   const std::optional<AffineTransform> transform = transform_from(args.transform);
   auto start = Clock::now();
   InputMesh input = read_mesh(args.mesh);
-  if (transform) apply_transform(*transform, input.mesh);
+  if (transform) apply_transform(*transform, input.mesh, args.mesh);
   const double read_seconds = seconds_since(start);
 
   AnalyzeOptions options;
@@ -128,20 +128,29 @@ void run_analyze(const AnalyzeArgs& args) {
   const Analysis analysis = analyze_mesh(std::move(input.mesh), options);
 
   start = Clock::now();
-  // Every output, or none: the renames wait until all of them are complete.
-  OutputBatch outputs;
-  if (!args.csv.empty()) write_curvature_csv(args.csv, analysis);
-  if (!args.ply.empty()) write_curvature_ply(args.ply, input_triangles, analysis);
+  // A maps directory this run makes is removed again if the run fails (it is then empty).
+  std::error_code ignored;
+  const bool new_maps_directory =
+      !args.maps.empty() && !std::filesystem::exists(std::filesystem::symlink_status(args.maps, ignored));
   std::optional<MapRanges> map_ranges;
-  if (!args.maps.empty()) {
-    MapOptions map_options;
-    map_options.size = args.maps_size;
-    if (args.maps_box.size() == 4)
-      map_options.box = MapBox{args.maps_box[0], args.maps_box[1], args.maps_box[2], args.maps_box[3]};
-    map_ranges = write_frame_maps(args.maps, frame_stem(args.mesh),
-                                  analysis, args.up, map_options);
+  try {
+    // Every output, or none: the renames wait until all of them are complete.
+    OutputBatch outputs;
+    if (!args.csv.empty()) write_curvature_csv(args.csv, analysis);
+    if (!args.ply.empty()) write_curvature_ply(args.ply, input_triangles, analysis);
+    if (!args.maps.empty()) {
+      MapOptions map_options;
+      map_options.size = args.maps_size;
+      if (args.maps_box.size() == 4)
+        map_options.box = MapBox{args.maps_box[0], args.maps_box[1], args.maps_box[2], args.maps_box[3]};
+      map_ranges = write_frame_maps(args.maps, frame_stem(args.mesh),
+                                    analysis, args.up, map_options);
+    }
+    outputs.commit();
+  } catch (...) {
+    if (new_maps_directory) std::filesystem::remove(args.maps, ignored);  // only if empty
+    throw;
   }
-  outputs.commit();
   print_summary(args.mesh, analysis, read_seconds, seconds_since(start));
   if (map_ranges)
     std::fprintf(stderr, "  maps in %s: colour ranges K \u00b1%.6g, H \u00b1%.6g\n", args.maps.c_str(),
@@ -155,12 +164,16 @@ void add_analyze_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "analyze", "Compute per-vertex curvature and water-flow regions of a surface mesh");
   cmd->add_option("mesh", args->mesh, "Surface mesh: OBJ, OFF, PLY, STL or Mantaflow .bobj.gz")
-      ->required();
+      ->required()
+      ->check(NonEmptyPath);
   add_transform_options(*cmd, args->transform);
-  cmd->add_option("--csv", args->csv, "Write x,y,z,gaussian,mean,k1,k2,area,label,flow per vertex");
-  cmd->add_option("--ply", args->ply, "Write a binary PLY with the curvature as vertex properties");
+  cmd->add_option("--csv", args->csv, "Write x,y,z,gaussian,mean,k1,k2,area,label,flow per vertex")
+      ->check(NonEmptyPath);
+  cmd->add_option("--ply", args->ply, "Write a binary PLY with the curvature as vertex properties")
+      ->check(NonEmptyPath);
   cmd->add_option("--maps", args->maps,
-                  "Write top-down curvature maps (EXR + PNG previews) into this directory");
+                  "Write top-down curvature maps (EXR + PNG previews) into this directory")
+      ->check(NonEmptyPath);
   cmd->add_option("--maps-size", args->maps_size,
                   "Map pixels along the longer side (default: 2 per median edge length)")
       ->check(CLI::Range(1, 4096));

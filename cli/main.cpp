@@ -18,7 +18,11 @@ namespace {
 
 namespace exit_code = toonwater::cli::exit_code;
 
-int fail(const std::string& message, int code) {
+// The message on one line whatever the file names in it hold: a newline or a terminal escape in
+// a name shows as '?' (other bytes, such as UTF-8 names, as they are).
+int fail(std::string message, int code) {
+  for (char& c : message)
+    if (static_cast<unsigned char>(c) < ' ' || c == '\x7f') c = '?';
   std::cerr << "toonwater: error: " << message << '\n';
   return code;
 }

@@ -108,20 +108,24 @@ void add_povgen_command(CLI::App& app) {
       "povgen", "Write POV-Ray scenes (Cartoon Water Shader) for a mesh or a frame sequence");
   cmd->add_option("--water", args->water,
                   "Water mesh: a file, a numbered sequence (sim/water_####.obj) or a glob")
-      ->required();
+      ->required()
+      ->check(NonEmptyPath);
   cmd->add_option("--object", args->objects,
-                  "Object mesh (static file or per-frame sequence); repeatable");
+                  "Object mesh (static file or per-frame sequence); repeatable")
+      ->check(NonEmptyPath);
   cmd->add_option("--config", args->config, "Scene configuration (TOML)")->check(CLI::ExistingFile);
   cmd->add_option("--set", args->overrides, "Override a configuration key: section.key=value");
   cmd->add_option("--out", args->out,
                   "Scene directory: new, empty or an earlier scene, which is replaced whole")
-      ->required();
+      ->required()
+      ->check(NonEmptyPath);
   cmd->add_flag("--force", args->force,
                 "Write into a non-empty directory that is not a toonwater scene (only the "
                 "scene's own files there are replaced)");
   cmd->add_option("--maps", args->maps,
                   "Also write top-down curvature maps of the water frames into this directory, "
-                  "with one colour range shared by all frames");
+                  "with one colour range shared by all frames")
+      ->check(NonEmptyPath);
   add_transform_options(*cmd, args->water_transform);  // applies to the water meshes
   cmd->add_option("--up", args->up, "Up axis of the input (Blender writes z)")
       ->transform(one_of<Axis>({{"x", Axis::x}, {"y", Axis::y}, {"z", Axis::z}}))

@@ -66,7 +66,9 @@ void run_render(const RenderArgs& args, bool force) {
 void add_render_command(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a povgen scene directory with POV-Ray");
-  cmd->add_option("dir", args->dir, "Scene directory written by toonwater povgen")->required();
+  cmd->add_option("dir", args->dir, "Scene directory written by toonwater povgen")
+      ->required()
+      ->check(NonEmptyPath);
   cmd->add_option("--jobs", args->jobs, "POV-Ray processes at the same time, each over a range of frames (default: four a core)")
       ->check(PositiveNumber);
   cmd->add_option("--frames", args->frames, "Frame range A-B (default: all)");

@@ -1,6 +1,7 @@
 // toonwater render DIR --on slurm|parallel ... and --status: the render farm options of `render`;
 // toonwater render-task DIR --frames A-B: what each farm task runs (hidden).
 #include "cli/render_farm.hpp"
+#include "cli/validators.hpp"
 
 #include "analyzer/mesh_reader.hpp"
 #include "povgen/farm_parallel.hpp"
@@ -47,7 +48,8 @@ void add_render_farm_options(CLI::App* cmd, const std::shared_ptr<FarmArgs>& far
       ->allow_extra_args(false);
   cmd->add_flag("--no-wait", farm->no_wait, "Slurm: print the job id and return at once");
   cmd->add_flag("--status", farm->status, "Report on the farm job last submitted for DIR");
-  cmd->add_option("--hosts", farm->hosts, "GNU parallel: ssh login file (--sshloginfile; ':' is this machine)");
+  cmd->add_option("--hosts", farm->hosts, "GNU parallel: ssh login file (--sshloginfile; ':' is this machine)")
+      ->check(NonEmptyPath);
   cmd->add_flag("--force", farm->force, "Render frames that already have an image too");
 }
 
@@ -110,7 +112,7 @@ void add_render_task_command(CLI::App& app) {
   auto frames = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand("render-task", "One render farm task (run by Slurm or GNU parallel)");
   cmd->group("");  // hidden: `render --on` writes these command lines
-  cmd->add_option("dir", *dir, "Scene directory")->required();
+  cmd->add_option("dir", *dir, "Scene directory")->required()->check(NonEmptyPath);
   cmd->add_option("--frames", *frames, "Frame range A-B")->required();
   cmd->callback([dir, frames] {
     povgen::RenderRequest request;

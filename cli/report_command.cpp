@@ -1,5 +1,6 @@
 // toonwater report [--out DIR] [--quick | --full] [--data DIR]
 #include "cli/commands.hpp"
+#include "cli/validators.hpp"
 
 #include "images/image_codec.hpp"
 #include "report/report.hpp"
@@ -45,10 +46,12 @@ void add_report_command(CLI::App& app) {
       "report", "Measure curvature error against run time and the pipeline's time per frame; "
                 "write a Markdown report with plots and CSV");
   cmd->add_option("--out", args->out, "Directory for report.md, the CSV files and the plots")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NonEmptyPath);
   cmd->add_option("--data", args->data,
                   "Directory holding the sample simulations (mantaflow-wake/, blender-ocean/)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(NonEmptyPath);
   auto* quick = cmd->add_flag("--quick", args->quick, "Reduced run (up to 16k vertices), for CI");
   cmd->add_flag("--full", args->full, "Also 1M-vertex meshes")->excludes(quick);
   cmd->callback([args] { run_report(*args); });

@@ -1,5 +1,6 @@
 // toonwater simulate wake|drop|reflection|refraction --frames N --out DIR [--resolution R]
 #include "cli/commands.hpp"
+#include "cli/validators.hpp"
 #include "cli/progress.hpp"
 
 #include "common/atomic_file.hpp"
@@ -72,7 +73,7 @@ void add_simulate_command(CLI::App& app) {
   cmd->add_option("--resolution", args->resolution,
                   "Grid cells along the longer side (refraction: segments around the body)")
       ->check(CLI::Range(8, 2048));
-  cmd->add_option("--out", args->out, "Output directory")->required();
+  cmd->add_option("--out", args->out, "Output directory")->required()->check(NonEmptyPath);
   cmd->callback([args] { run_simulate(*args); });
 }
 

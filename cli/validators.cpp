@@ -36,4 +36,10 @@ const CLI::Validator PositiveNumber =
 const CLI::Validator NonNegativeNumber =
     finite_number([](double v) { return v >= 0; }, "a non-negative finite number");
 
+const CLI::Validator NonEmptyPath = CLI::Validator(
+    [](std::string& value) -> std::string {
+      return value.empty() ? "an empty path names no file" : std::string{};
+    },
+    "");
+
 }  // namespace toonwater::cli

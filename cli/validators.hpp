@@ -21,6 +21,10 @@ extern const CLI::Validator FiniteNumber;
 extern const CLI::Validator PositiveNumber;
 extern const CLI::Validator NonNegativeNumber;
 
+// A file or directory name: refuses the empty string, which names no file (an unset shell
+// variable in `--csv "$OUT"`), where it would otherwise read as the option left out.
+extern const CLI::Validator NonEmptyPath;
+
 // One of the given words (any case), turned into the enum's value for CLI11 to store. Its
 // description and errors list the words, never the enum's raw values.
 template <class Enum>

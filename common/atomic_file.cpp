@@ -57,12 +57,49 @@ void untrack(int& slot) {
   slot = -1;
 }
 
+// An OutputBatch's renames are one step: a signal that arrives while they run waits for the
+// last of them, or the run would end with some outputs new and the others old. The handler may
+// run on any thread, so the two sides agree through one atomic state: the handler ends the
+// process only from `idle` (then nothing can start committing), and a commit starts only from
+// `idle` (then no handler is ending the process).
+enum CommitState : int { idle, committing, ending };
+std::atomic<int> commit_state{idle};
+std::atomic<int> deferred_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free);
+
 extern "C" void remove_temporaries_and_end(int signal_number) {
+  int state = idle;
+  if (!commit_state.compare_exchange_strong(state, ending)) {
+    if (state == committing) deferred_signal.store(signal_number);
+    return;  // committing: ended after the renames; ending: another thread is ending it
+  }
   for (InProgress& entry : in_progress)
     if (entry.ready) ::unlink(entry.path);
   ::signal(signal_number, SIG_DFL);
   ::raise(signal_number);
 }
+
+// Holds signals off an OutputBatch's renames while alive; a signal that came meanwhile ends the
+// process once they are done (end_deferred).
+class RenamesUninterrupted {
+ public:
+  RenamesUninterrupted() {
+    int state = idle;
+    // `ending`: a handler on another thread is removing the temporaries and ending the process.
+    while (!commit_state.compare_exchange_weak(state, committing)) {
+      if (state == ending) ::pause();
+      state = idle;
+    }
+  }
+  ~RenamesUninterrupted() { commit_state.store(idle); }
+  RenamesUninterrupted(const RenamesUninterrupted&) = delete;
+  RenamesUninterrupted& operator=(const RenamesUninterrupted&) = delete;
+
+  // After the renames (and after this object): the signal that waited, as it would have acted.
+  static void end_deferred() {
+    if (const int signal_number = deferred_signal.exchange(0)) remove_temporaries_and_end(signal_number);
+  }
+};
 
 // Blocks SIGINT, SIGTERM and SIGHUP in this thread while alive: no signal falls between creating
 // a temporary file and tracking it.
@@ -237,7 +274,11 @@ OutputBatch::~OutputBatch() {
   batch_open = false;
 }
 
-void OutputBatch::commit() {
+namespace {
+
+// The open batch's files, each renamed over its target; after a failed rename, the others
+// removed.
+void rename_batch_files() {
   std::lock_guard lock(batch_mutex);
   batch_open = false;
   for (std::size_t i = 0; i < batch_files.size(); ++i) {
@@ -255,6 +296,19 @@ void OutputBatch::commit() {
     untrack(f.slot);
   }
   batch_files.clear();
+}
+
+}  // namespace
+
+void OutputBatch::commit() {
+  try {
+    const RenamesUninterrupted uninterrupted;
+    rename_batch_files();
+  } catch (...) {
+    RenamesUninterrupted::end_deferred();  // a signal that waited still ends the run
+    throw;
+  }
+  RenamesUninterrupted::end_deferred();
 }
 
 void remove_stale_temporaries(const fs::path& directory) {

@@ -2,6 +2,7 @@
 // pointing out, and NaN, infinite or singular maps are refused — scale-free, so a tiny uniform
 // scale is still accepted. Also the analyze options that build them.
 #include "analyzer/affine_transform.hpp"
+#include "analyzer/mesh_reader.hpp"
 
 #include "corpus/analytic_surfaces.hpp"
 #include "tests/support/run_toonwater.hpp"
@@ -42,13 +43,28 @@ TEST(AffineTransform, RowsAreTheMatrixAndItsTranslation) {
       1, 0, 0, 20,   //
       0, 0, 3, 30});
   TriangleMesh mesh{{Vec3(1, 2, 3)}, {}};
-  apply_transform(t, mesh);
+  apply_transform(t, mesh, "t.obj");
   EXPECT_EQ(mesh.positions[0], Vec3(-4 + 10, 1 + 20, 9 + 30));
 
   TriangleMesh scaled{{Vec3(1, 2, 3), Vec3(-0.5, 0, 0.25)}, {}};
-  apply_transform(scale_then_translate(2, Vec3(1, -2, 0.5)), scaled);
+  apply_transform(scale_then_translate(2, Vec3(1, -2, 0.5)), scaled, "scaled.obj");
   EXPECT_EQ(scaled.positions[0], Vec3(3, 2, 6.5));
   EXPECT_EQ(scaled.positions[1], Vec3(0, -2, 1));
+}
+
+TEST(AffineTransform, APositionThatOverflowsIsAnInputErrorNamingTheFileAndVertex) {
+  // Each entry of the map and each coordinate is finite; the mapped position is not.
+  TriangleMesh mesh{{Vec3(0, 1, 0), Vec3(0, 1e300, 0), Vec3(1e300, 0, 0)}, {Triangle{0, 1, 2}}};
+  try {
+    apply_transform(scale_then_translate(1e10, Vec3::Zero()), mesh, "frame_0001.obj");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "frame_0001.obj: vertex 1 lies beyond the largest double after the transform");
+  }
+  TriangleMesh shifted{{Vec3(-1.5e308, 0, 0)}, {}};
+  EXPECT_THROW(apply_transform(scale_then_translate(1, Vec3(-1e308, 0, 0)), shifted, "a.obj"),
+               InputError);
 }
 
 TEST(AffineTransform, MirrorsReverseTheWindingSoNormalsStillPointOut) {
@@ -61,7 +77,7 @@ TEST(AffineTransform, MirrorsReverseTheWindingSoNormalsStillPointOut) {
       affine_from_rows(std::array<double, 12>{0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0})};  // rotation
   for (std::size_t m = 0; m < maps.size(); ++m) {
     TriangleMesh mesh = sphere;
-    apply_transform(maps[m], mesh);
+    apply_transform(maps[m], mesh, "sphere.obj");
     EXPECT_GT(six_volume(mesh), 0) << "map " << m;
     const Triangle& t = sphere.triangles[0];
     const Triangle expected =
@@ -115,6 +131,19 @@ TEST(AffineTransformCli, BadTransformsAreOneLineErrorsBeforeTheMeshIsRead) {
     EXPECT_EQ(r.output.find("missing.obj"), std::string::npos) << "checked first: " << r.output;
     EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << "one line: " << r.output;
   }
+}
+
+TEST(AffineTransformCli, ATransformThatOverflowsTheMeshIsBadInputAndWritesNothing) {
+  const test::ScratchDir dir;
+  const std::filesystem::path mesh = dir / "far.obj", csv = dir / "far.csv";
+  test::write_text(mesh, "v 1e300 0 0\nv 0 1e300 0\nv 0 0 1e300\nf 1 2 3\n");
+  const test::CommandResult r =
+      test::run_toonwater({"analyze", mesh.string(), "--scale", "1e10", "--csv", csv.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(mesh.string() + ": vertex 0 lies beyond the largest double"),
+            std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << "one line: " << r.output;
+  EXPECT_FALSE(std::filesystem::exists(csv));
 }
 
 }  // namespace

@@ -605,5 +605,46 @@ TEST_F(HostileCli, ErrorsAreOneLineWithTheDocumentedCode) {
   }
 }
 
+TEST_F(HostileCli, AnEmptyPathIsBadInputNotAnOptionLeftOut) {
+  // `--csv "$OUT"` with OUT unset: before, the empty value read as no --csv, and the run
+  // succeeded having written nothing.
+  write_text(at("w.obj"), grid_obj());
+  const std::vector<std::vector<std::string>> cases{
+      {"analyze", "w.obj", "--csv", ""},
+      {"analyze", "w.obj", "--ply", ""},
+      {"analyze", "w.obj", "--maps", ""},
+      {"analyze", "", "--csv", "e.csv"},
+      {"povgen", "--water", "w.obj", "--out", ""},
+      {"povgen", "--water", "", "--out", "scene"},
+      {"povgen", "--water", "w.obj", "--out", "scene", "--maps", ""},
+      {"render", ""},
+      {"simulate", "wake", "--frames", "1", "--out", ""},
+  };
+  for (const auto& args : cases) {
+    const Outcome r = toonwater(args);
+    EXPECT_EQ(r.exit_code, exit_code::bad_input) << args[0] << ": " << r.err;
+    EXPECT_TRUE(has(r.err, "an empty path names no file")) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_EQ(names(dir_.path()), std::vector<std::string>{"w.obj"});
+}
+
+TEST_F(HostileCli, FileNamesInErrorsCannotBreakTheLineOrReachTheTerminal) {
+  write_text(at("w.obj"), grid_obj());
+  const std::string newline_name = "a\nb.obj", escape_name = "\033[31mred\r.obj";
+  write_text(at(newline_name), "v 0 0 0\nv 1 0 0\nf 1 2 3\n");  // two corners: an input error
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"analyze", newline_name},
+           {"analyze", escape_name},
+           {"analyze", "w.obj", "--csv", "x\ny/z.csv"}}) {
+    const Outcome r = toonwater(args);
+    EXPECT_NE(r.exit_code, 0) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_TRUE(printable_lines(r.err)) << r.err;
+    EXPECT_TRUE(r.err.starts_with("toonwater: error: ")) << r.err;
+  }
+  EXPECT_TRUE(has(toonwater({"analyze", newline_name}).err, "a?b.obj")) << "the name, made printable";
+}
+
 }  // namespace
 }  // namespace toonwater
