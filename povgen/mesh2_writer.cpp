@@ -1,11 +1,13 @@
 #include "povgen/mesh2_writer.hpp"
 
 #include "analyzer/free_surface.hpp"
+#include "analyzer/mesh_reader.hpp"
 #include "common/parallel.hpp"
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <vector>
@@ -102,6 +104,19 @@ void block(std::string& out, std::string_view keyword, std::size_t count,
   for (const std::string& part : parts) out += part;
   out += "\n  }\n";
 }
+
+}  // namespace
+
+void check_scene_extent(const SceneMesh& mesh, const std::filesystem::path& source) {
+  const double largest = std::max(mesh.min.cwiseAbs().maxCoeff(), mesh.max.cwiseAbs().maxCoeff());
+  if (largest < largest_scene_coordinate) return;
+  char message[160];
+  std::snprintf(message, sizeof message, ": coordinates reach %.3g; a POV-Ray scene takes them below %.0e",
+                largest, largest_scene_coordinate);
+  throw InputError(source.string() + message);
+}
+
+namespace {
 
 // Unit vectors and texture coordinates: 6 decimals, finer than single precision resolves L·n.
 constexpr int kUnitDecimals = 6;

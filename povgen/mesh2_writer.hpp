@@ -18,12 +18,21 @@
 #include "povgen/scene_mesh.hpp"
 
 #include <cstdint>
+#include <filesystem>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace toonwater::povgen {
+
+// The largest |coordinate| a scene's meshes may have: positions are written as fixed-point
+// integers of up to 9e18 (with at least no decimal), and outline shells lie a little outside
+// their meshes. A mesh beyond it is refused as bad input (check_scene_extent).
+constexpr double largest_scene_coordinate = 1e18;
+
+// Throws InputError naming `source` where `mesh` reaches beyond largest_scene_coordinate.
+void check_scene_extent(const SceneMesh& mesh, const std::filesystem::path& source);
 
 // Per-face textures: face f gets the declared texture `names[index[f]]`.
 struct FaceTextures {

@@ -504,6 +504,7 @@ void write_object(SceneRun& run, std::size_t i, const fs::path& path, long frame
   const ObjectConfig& oc = *run.objects[i].placement.config;
   const PreparedSurface s =
       prepare_surface(geometry_analysis(run.take_object(i, path)), run.request.up, nullptr);
+  check_scene_extent(s.mesh, path);
   if (s.mesh.triangles.empty())
     throw InputError(path.string() + ": object '" + oc.name + "': all " +
                      std::to_string(s.mesh.degenerate_faces) + " faces are degenerate (zero area)");
@@ -650,6 +651,7 @@ void write_frames(SceneRun& run, FrameCache* cache, const ProgressFn& progress,
         run.report.maps_seconds += seconds_since(start);
         ++run.report.map_frames;
       }
+      check_scene_extent(s.mesh, path);
       // POV-Ray rejects a mesh2 without faces: a frame of zero-area faces only has no water.
       if (s.mesh.triangles.empty())
         write_empty_frame(run, frame, written_frame,

@@ -24,6 +24,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// More frames than any sequence povgen writes (simulate makes at most 100,000).
+constexpr long largest_frame_count = 10'000'000;
+
 SceneFrames read_ini_frames(const fs::path& ini) {
   std::ifstream in(ini);
   if (!in) throw InputError(ini.string() + ": no povgen scene here (scene.ini missing)");
@@ -49,6 +52,14 @@ SceneFrames read_ini_frames(const fs::path& ini) {
       f.output_name = line.substr(18, line.size() - 19);
   }
   f.animation = has_first && has_last;
+  // An edited or foreign scene.ini: a range that renders nothing would be a false success, and
+  // one of billions of frames would be planned (and its memory taken) before any is rendered.
+  if (f.animation && !(f.first <= f.last && static_cast<unsigned long>(f.last) -
+                                                  static_cast<unsigned long>(f.first) <
+                                              largest_frame_count))
+    throw InputError(ini.string() + ": frames " + std::to_string(f.first) + "-" +
+                     std::to_string(f.last) + " are not a range of 1 to " +
+                     std::to_string(largest_frame_count) + " frames");
   return f;
 }
 

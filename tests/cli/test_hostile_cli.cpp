@@ -646,5 +646,38 @@ TEST_F(HostileCli, FileNamesInErrorsCannotBreakTheLineOrReachTheTerminal) {
   EXPECT_TRUE(has(toonwater({"analyze", newline_name}).err, "a?b.obj")) << "the name, made printable";
 }
 
+TEST_F(HostileCli, MeshesBeyondWhatAPovraySceneTakesAreBadInput) {
+  // Finite, but beyond the fixed-point positions of mesh2: before, an internal error (exit 1).
+  write_text(at("w.obj"), grid_obj());
+  write_text(at("far.obj"), "v 0 0 0\nv 1e20 0 0\nv 0 0 1e20\nf 1 2 3\n");
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"povgen", "--water", "far.obj", "--out", "scene"},
+           {"povgen", "--water", "w.obj", "--object", "far.obj", "--out", "scene"},
+           {"povgen", "--water", "w.obj", "--translate", "1e300,0,0", "--out", "scene"}}) {
+    const Outcome r = toonwater(args);
+    EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
+    EXPECT_TRUE(has(r.err, "obj: coordinates reach 1e+")) << r.err;
+    EXPECT_TRUE(has(r.err, "a POV-Ray scene takes them below 1e+18")) << r.err;
+    EXPECT_FALSE(fs::exists(at("scene")));
+  }
+}
+
+TEST_F(HostileCli, RenderRefusesASceneIniWhoseFramesAreNoRange) {
+  write_text(at("w_0001.obj"), grid_obj());
+  write_text(at("w_0002.obj"), grid_obj(0.01));
+  ASSERT_EQ(toonwater({"povgen", "--water", "w_####.obj", "--out", "scene"}).exit_code, 0);
+  const std::string ini = read_text(at("scene/scene.ini"));
+  ASSERT_TRUE(has(ini, "Final_Frame=2")) << ini;
+  for (const std::string last : {"0", "999999999999"}) {
+    std::string edited = ini;
+    edited.replace(edited.find("Final_Frame=2"), 13, "Final_Frame=" + last);
+    write_text(at("scene/scene.ini"), edited);
+    const Outcome r = toonwater({"render", "scene"});
+    EXPECT_EQ(r.exit_code, exit_code::bad_input) << last << ": " << r.err;
+    EXPECT_TRUE(has(r.err, "scene.ini: frames 1-" + last + " are not a range")) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+}
+
 }  // namespace
 }  // namespace toonwater
