@@ -45,8 +45,9 @@ void apply_override(toml::table& root, const std::string& assignment) {
     toml::array* objects = root["object"].as_array();
     std::size_t index = 0;
     const auto& n = parts[1];
-    if (parts.size() != 3 || n.empty() ||
-        std::from_chars(n.data(), n.data() + n.size(), index).ptr != n.data() + n.size() ||
+    // An index too large for size_t fails (ec set) rather than leaving index 0: object 0.
+    const auto [end, error] = std::from_chars(n.data(), n.data() + n.size(), index);
+    if (parts.size() != 3 || n.empty() || error != std::errc{} || end != n.data() + n.size() ||
         !objects || index >= objects->size() || !objects->get(index)->is_table())
       throw key_error(key, "does not name an object (use object.N.key, N counting from 0)");
     table = objects->get(index)->as_table();

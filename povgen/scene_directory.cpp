@@ -10,6 +10,9 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <fstream>
+#include <iterator>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -30,12 +33,38 @@ fs::path normalised(const fs::path& path) {
   return p;
 }
 
-// The files povgen writes into a scene directory.
-bool is_scene_file(const std::string& name) {
+// The marker's first line; the names of the files povgen wrote follow, one a line, so that a
+// later run knows them from a user's file of the same pattern (a hand-written obj_mine.inc).
+constexpr std::string_view marker_header = "toonwater povgen scene directory\n";
+
+// The marker of a scene whose files are those in `directory` (the marker among them).
+std::string marker_listing(const fs::path& directory) {
+  std::error_code ec;
+  std::vector<std::string> names{scene_marker};
+  for (const auto& entry : fs::directory_iterator(directory, ec))
+    if (entry.path().filename() != scene_marker) names.push_back(entry.path().filename().string());
+  if (ec) fail(directory, "cannot list the directory", ec.value());
+  std::sort(names.begin(), names.end());
+  std::string text(marker_header);
+  for (const std::string& name : names) text += name + "\n";
+  return text;
+}
+
+// Whether povgen wrote the file `name` of the scene whose marker is `marker`. A marker of an
+// earlier version lists no files: the names povgen writes are taken for its own then.
+bool written_by_povgen(const std::string& name, const std::string& marker) {
+  if (marker.size() > marker_header.size() && marker.starts_with(marker_header))
+    return marker.find("\n" + name + "\n") != std::string::npos;
   const bool include =
       name.ends_with(".inc") && (name.starts_with("water_") || name.starts_with("obj_"));
   return include || name == "scene.pov" || name == "scene.ini" || name == "toon.inc" ||
          name == scene_marker;
+}
+
+// The marker's text ("" where there is none or it cannot be read).
+std::string read_marker(const fs::path& directory) {
+  std::ifstream in(directory / scene_marker, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 // Takes an exclusive flock on `path` (created if missing); -1 when another process holds it.
@@ -116,7 +145,7 @@ SceneDirectory::SceneDirectory(fs::path target, bool force) : target_(normalised
       staging_.clear();
       fail(parent, "cannot create a temporary directory", error);
     }
-    write_file_atomically(staging_ / scene_marker, "toonwater povgen scene directory\n");
+    write_file_atomically(staging_ / scene_marker, std::string(marker_header));
   } catch (...) {
     release();
     throw;
@@ -138,6 +167,7 @@ void SceneDirectory::release() {
 
 void SceneDirectory::commit() {
   std::error_code ec;
+  write_file_atomically(staging_ / scene_marker, marker_listing(staging_));
   if (merge_into_target_) {
     // Forced into a directory of other files: each scene file replaces its namesake only.
     std::vector<fs::path> files;
@@ -167,7 +197,9 @@ void SceneDirectory::commit() {
       staging_ = old;
     }
     // staging_ now holds the earlier scene: keep what povgen did not write there.
-    move_entries(staging_, target_, [](const std::string& n) { return !is_scene_file(n); });
+    const std::string earlier_marker = read_marker(staging_);
+    move_entries(staging_, target_,
+                 [&](const std::string& n) { return !written_by_povgen(n, earlier_marker); });
   }
   fs::remove_all(staging_, ec);
   staging_.clear();

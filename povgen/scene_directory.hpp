@@ -11,7 +11,8 @@
 // one directory at once: the second fails at once with a clear error.
 //
 // Files in an earlier scene directory that povgen did not write (rendered images, logs, a
-// user's notes) are moved into the new one, unless the new scene has a file of that name.
+// user's notes) are moved into the new one, unless the new scene has a file of that name. The
+// marker lists the files povgen wrote, so a user's file is kept whatever its name.
 #pragma once
 
 #include <filesystem>

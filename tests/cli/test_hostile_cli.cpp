@@ -303,6 +303,29 @@ TEST_F(HostileCli, PovgenRefusesADirectoryThatIsNotAScene) {
   EXPECT_EQ(read_text(at("mine/notes.txt")), "notes");
 }
 
+TEST_F(HostileCli, ARerunKeepsAUsersFilesEvenWithNamesLikePovgensOwn) {
+  write_sequence(3);
+  ASSERT_EQ(toonwater({"povgen", "--water", "water_####.obj", "--out", "scene"}).exit_code, 0);
+  ASSERT_TRUE(fs::exists(at("scene/water_0002.inc")));
+  // A user's files in the scene, two of them named as povgen names its own.
+  write_text(at("scene/obj_mine.inc"), "my object");
+  write_text(at("scene/water_0099.inc"), "my water");
+  write_text(at("scene/notes.txt"), "notes");
+  ASSERT_EQ(toonwater({"povgen", "--water", "water_000[01].obj", "--out", "scene"}).exit_code, 0);
+  EXPECT_EQ(read_text(at("scene/obj_mine.inc")), "my object");
+  EXPECT_EQ(read_text(at("scene/water_0099.inc")), "my water");
+  EXPECT_EQ(read_text(at("scene/notes.txt")), "notes");
+  // The earlier scene's own frame that the new one lacks is gone.
+  EXPECT_FALSE(fs::exists(at("scene/water_0002.inc")));
+  EXPECT_TRUE(fs::exists(at("scene/water_0001.inc")));
+  // The marker lists povgen's files, and only them.
+  const std::string marker = read_text(at("scene/.toonwater-scene"));
+  EXPECT_TRUE(has(marker, "\nscene.pov\n")) << marker;
+  EXPECT_TRUE(has(marker, "\nwater_0001.inc\n")) << marker;
+  EXPECT_FALSE(has(marker, "mine")) << marker;
+  EXPECT_FALSE(has(marker, "water_0099")) << marker;
+}
+
 TEST_F(HostileCli, SceneDirectoryBehindALinkIsReplacedAndTheLinkStays) {
   write_text(at("w.obj"), grid_obj());
   fs::create_directory(at("real"));

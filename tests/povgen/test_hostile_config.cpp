@@ -124,6 +124,19 @@ TEST(HostileConfig, NonAsciiInStringsCommentsAndBareOverridesIsRead) {
   EXPECT_EQ(config.objects[1].name, "caf__");
 }
 
+TEST(HostileConfig, AnObjectIndexTooLargeForAnIntegerNamesNoObject) {
+  // 2^64 and beyond once overflowed to index 0, renaming the first object.
+  const std::string objects = "[[object]]\nmesh = \"a.obj\"\n";
+  for (const std::string index : {"18446744073709551616", "99999999999999999999", "1"}) {
+    // Built by appending: GCC 12 misreports "literal" + string (-Wrestrict).
+    std::string key = "object.";
+    key += index;
+    key += ".name";
+    const std::string error = config_error(objects, {key + "=zzz"});
+    EXPECT_NE(error.find("'" + key + "' does not name an object"), std::string::npos) << error;
+  }
+}
+
 TEST(HostileConfig, BinaryGarbageAndInvalidUtf8GetAParseError) {
   std::string garbage = "[water]\nior = 1.2\n";
   garbage += "name = \"" + std::string("\xff\xfe\x00\x01\x80\xc0", 6) + "\"\n";

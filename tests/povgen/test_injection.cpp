@@ -174,8 +174,17 @@ void expect_only_generated_code(const fs::path& scene) {
               << name << ": " << line;
           open = line.find('"', close + 1);
         }
-      } else if (name == ".toonwater-scene") {  // the marker: fixed text, no POV-Ray code
-        EXPECT_EQ(text, "toonwater povgen scene directory\n");
+      } else if (name == ".toonwater-scene") {
+        // The marker: a fixed line, then the names of the scene's files (sanitised, and each
+        // a file there); no POV-Ray code and no user text.
+        const std::vector<std::string> lines = lines_of(text);
+        ASSERT_FALSE(lines.empty());
+        EXPECT_EQ(lines[0], "toonwater povgen scene directory");
+        static const std::regex listed_name(R"(\.?[A-Za-z0-9_]+(\.[a-z]+)?|\.toonwater-scene)");
+        for (std::size_t i = 1; i < lines.size(); ++i) {
+          EXPECT_TRUE(std::regex_match(lines[i], listed_name)) << name << ": " << lines[i];
+          EXPECT_TRUE(fs::exists(entry.path().parent_path() / lines[i])) << lines[i];
+        }
       } else {
         ASSERT_EQ(entry.path().extension(), ".inc") << "unexpected file " << name;
         if (hash != std::string::npos) {
