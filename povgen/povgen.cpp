@@ -186,7 +186,13 @@ struct ObjectSource {
 // from first to last, so the sequence must not have gaps.
 Sequence select_frames(const SceneConfig& config, const PovgenRequest& request) {
   Sequence water = find_sequence(request.water_pattern, request.base_dir);
-  if (config.render.frames && !water.single_file) {
+  // A single file has no frame numbers: a range given for it would be silently ignored.
+  if (config.render.frames && water.single_file)
+    throw InputError(request.water_pattern + ": render.frames " +
+                     std::to_string(config.render.frames->first) + "-" +
+                     std::to_string(config.render.frames->last) +
+                     " picks frames of a sequence, and this is a single file");
+  if (config.render.frames) {
     auto& f = water.frames;
     // A range beyond the sequence is a mistake to report, not to clip.
     const long have_first = f.begin()->first, have_last = f.rbegin()->first;

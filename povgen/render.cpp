@@ -142,6 +142,10 @@ fs::path checked_scene_dir(const fs::path& scene_dir) {
   const fs::path dir = fs::absolute(scene_dir);
   if (!fs::is_regular_file(dir / "scene.pov"))
     throw InputError(dir.string() + ": no povgen scene here (scene.pov missing)");
+  // render writes images and logs into the directory: only into one povgen wrote.
+  if (!fs::is_regular_file(dir / scene_marker))
+    throw InputError(dir.string() + ": not a scene directory povgen wrote (no " +
+                     std::string(scene_marker) + "); run toonwater povgen --out there first");
   return dir;
 }
 

@@ -559,6 +559,13 @@ TEST_F(HostileCli, FrameRangesOutsideTheSequenceAreRefused) {
   const Outcome render = toonwater({"render", "scene", "--frames", "0-2"});
   EXPECT_EQ(render.exit_code, exit_code::bad_input) << render.err;
   EXPECT_TRUE(has(render.err, "outside the scene's 1-2")) << render.err;
+  // A single file has no frames to pick: the range is refused, not ignored.
+  write_text(at("w.obj"), grid_obj());
+  const Outcome single = toonwater({"povgen", "--water", "w.obj", "--out", "single", "--set",
+                                    "render.frames=\"7\""});
+  EXPECT_EQ(single.exit_code, exit_code::bad_input) << single.err;
+  EXPECT_TRUE(has(single.err, "w.obj: render.frames 7-7 picks frames of a sequence")) << single.err;
+  EXPECT_FALSE(fs::exists(at("single")));
 }
 
 // ---- 11. temporaries of killed runs ----
@@ -700,6 +707,17 @@ TEST_F(HostileCli, RenderRefusesASceneIniWhoseFramesAreNoRange) {
     EXPECT_TRUE(has(r.err, "scene.ini: frames 1-" + last + " are not a range")) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
+}
+
+TEST_F(HostileCli, RenderWritesIntoNoDirectoryPovgenDidNotWrite) {
+  write_text(at("w.obj"), grid_obj());
+  ASSERT_EQ(toonwater({"povgen", "--water", "w.obj", "--out", "scene"}).exit_code, 0);
+  fs::remove(at("scene/.toonwater-scene"));  // a scene.pov and scene.ini of someone else's
+  const auto before = names(at("scene"));
+  const Outcome r = toonwater({"render", "scene"});
+  EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
+  EXPECT_TRUE(has(r.err, "not a scene directory povgen wrote")) << r.err;
+  EXPECT_EQ(names(at("scene")), before) << "no image or log written there";
 }
 
 }  // namespace

@@ -165,7 +165,9 @@ TEST(WakeDefaults, CartoonLookWithNothingConfigured) {
     std::ofstream low(dir / "low.obj");
     low << "v -9 -9 -5\nv 9 -9 -5\nv 0 9 -5\nf 1 2 3\n";
   }
-  povgen(dir / "alone", (dir / "low.obj").string(), (data / "sphere_0009.obj").string(), plain);
+  // A single file: no frame to pick (render.frames is refused for one).
+  const std::vector<std::string> single(plain.begin(), plain.end() - 2);
+  povgen(dir / "alone", (dir / "low.obj").string(), (data / "sphere_0009.obj").string(), single);
   povgen(dir / "opaque", (data / "water_####.obj").string(), (data / "sphere_####.obj").string(),
          plain);
   const Image alone = render(dir / "alone", "", "frame.png");
