@@ -17,16 +17,28 @@ namespace {
 
 constexpr double singular_ratio = 1e-12;
 
+// det A / (|a₀| |a₁| |a₂|) for the rows aᵢ of A: its sign is det A's, and |·| ≤ 1 measures how
+// far A is from flattening whatever its scale (det A itself overflows at a scale of 1e103 and
+// underflows at 1e-108, where the map is still exact). 0 where a row is zero.
+double normalised_determinant(const Eigen::Matrix3d& linear) {
+  Eigen::Matrix3d rows = linear;
+  for (int r = 0; r < 3; ++r) {
+    const double scale = rows.row(r).cwiseAbs().maxCoeff();  // first by the largest: no overflow
+    if (scale == 0.0) return 0.0;
+    rows.row(r) /= scale;
+    rows.row(r).normalize();
+  }
+  return rows.determinant();
+}
+
 AffineTransform validated(const AffineTransform& transform) {
   if (!transform.linear.allFinite() || !transform.translation.allFinite())
     throw std::invalid_argument("transform: an entry is NaN or infinite");
-  const double det = transform.linear.determinant();
-  const double bound = transform.linear.row(0).norm() * transform.linear.row(1).norm() *
-                       transform.linear.row(2).norm();
-  if (!(std::abs(det) > singular_ratio * bound)) {
+  const double det = normalised_determinant(transform.linear);
+  if (!(std::abs(det) > singular_ratio)) {
     std::ostringstream message;
-    message << "transform: the linear part is singular (determinant " << det
-            << "): it would flatten the mesh";
+    message << "transform: the linear part is singular (its rows' normalised determinant is "
+            << det << "): it would flatten the mesh";
     throw std::invalid_argument(message.str());
   }
   return transform;
@@ -58,7 +70,7 @@ void apply_transform(const AffineTransform& transform, TriangleMesh& mesh,
       throw InputError(source.string() + ": vertex " + std::to_string(v) +
                        " lies beyond the largest double after the transform");
   }
-  if (transform.linear.determinant() < 0)
+  if (normalised_determinant(transform.linear) < 0)
     for (Triangle& t : mesh.triangles) std::swap(t[1], t[2]);
 }
 

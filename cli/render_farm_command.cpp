@@ -43,7 +43,7 @@ void add_render_farm_options(CLI::App* cmd, const std::shared_ptr<FarmArgs>& far
       ->check(CLI::IsMember({"slurm", "parallel"}));
   cmd->add_option("--partition", farm->partition, "Slurm partition (default: the cluster's)");
   cmd->add_option("--frames-per-task", farm->frames_per_task, "Frames a farm task renders (10)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1L, 10'000'000L));  // CLI::PositiveNumber's error prints 309 digits
   cmd->add_option("--sbatch-arg", farm->sbatch_args, "An argument passed to sbatch (repeatable)")
       ->allow_extra_args(false);
   cmd->add_flag("--no-wait", farm->no_wait, "Slurm: print the job id and return at once");

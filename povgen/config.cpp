@@ -68,7 +68,9 @@ SceneConfig load_config(const ConfigSources& sources) {
   std::size_t file_objects = 0;
   if (root.contains("object")) {
     toml::array* objects = root["object"].as_array();
-    if (!objects) throw key_error("object", "must be an array of tables: [[object]]");
+    if (!objects)
+      throw ConfigError(source_location(*root.get("object")) +
+                        key_error("object", "must be an array of tables: [[object]]").what());
     file_objects = objects->size();
   }
   if (!sources.object_patterns.empty()) {

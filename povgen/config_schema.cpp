@@ -14,6 +14,13 @@
 #include <vector>
 
 namespace toonwater::povgen {
+
+std::string source_location(const toml::node& node) {
+  const toml::source_region& source = node.source();
+  if (!source.path || source.path->empty() || source.begin.line == 0) return "";
+  return *source.path + ":" + std::to_string(source.begin.line) + ": ";
+}
+
 namespace {
 
 // ---- how a value is read: its type and range, how its default is written ----
@@ -199,16 +206,10 @@ struct Section {
   std::function<void(S&, const std::set<std::string>& given)> check;
 };
 
-// "FILE:LINE: " for a value that came from a file; "" for one from --set.
-std::string where(const toml::node& node) {
-  const toml::source_region& source = node.source();
-  if (!source.path || source.path->empty() || source.begin.line == 0) return "";
-  return *source.path + ":" + std::to_string(source.begin.line) + ": ";
-}
 
 const toml::table& as_table(const toml::node& node, const std::string& key) {
   const toml::table* t = node.as_table();
-  if (!t) throw ConfigError(where(node) + key_error(key, "must be a table").what());
+  if (!t) throw ConfigError(source_location(node) + key_error(key, "must be a table").what());
   return *t;
 }
 
@@ -222,15 +223,22 @@ void read_keys(const Section<S>& section, const toml::node& node, const std::str
     const Key<S>* found = nullptr;
     for (const Key<S>& candidate : section.keys)
       if (candidate.name == name) found = &candidate;
-    if (!found) throw ConfigError(where(v) + key_error(full, "is not a known key").what());
+    if (!found) throw ConfigError(source_location(v) + key_error(full, "is not a known key").what());
     try {
       found->read(out, v, full);
     } catch (const ConfigError& e) {
-      throw ConfigError(where(v) + e.what());
+      throw ConfigError(source_location(v) + e.what());
     }
     given.insert(name);
   }
-  if (section.check) section.check(out, given);
+  // A rule between keys names the table it is in: the error has no one value to point at.
+  if (section.check) {
+    try {
+      section.check(out, given);
+    } catch (const ConfigError& e) {
+      throw ConfigError(source_location(node) + e.what());
+    }
+  }
 }
 
 // ---- the schema ----
@@ -426,14 +434,15 @@ void read_section(const std::string& name, const toml::node& node, SceneConfig& 
       known = true;
     }
   });
-  if (!known) throw ConfigError(where(node) + key_error(name, "is not a known section").what());
+  if (!known) throw ConfigError(source_location(node) + key_error(name, "is not a known section").what());
 }
 
 ObjectConfig read_object(const toml::node& node, const std::string& prefix) {
   ObjectConfig object;
   read_keys(object_section(), node, prefix, object);
   if (object.mesh.empty())
-    throw key_error(prefix + ".mesh", "is required (a mesh file or sequence pattern)");
+    throw ConfigError(source_location(node) +
+                      key_error(prefix + ".mesh", "is required (a mesh file or sequence pattern)").what());
   return object;
 }
 

@@ -16,6 +16,9 @@
 
 namespace toonwater::povgen {
 
+// "FILE:LINE: " for a node read from a file; "" for one that --set made.
+std::string source_location(const toml::node& node);
+
 // Reads the root table's section `name` into `config`. Throws ConfigError for a section that
 // does not exist, a key it does not have and a value of the wrong type or range ("FILE:LINE:
 // config: 'section.key' ..." where the value comes from a file).

@@ -106,6 +106,18 @@ TEST(AffineTransform, NonFiniteAndSingularMapsAreRefused) {
   // Scale-free: micrometre and kilometre scales are fine.
   EXPECT_NO_THROW(scale_then_translate(1e-6, Vec3::Zero()));
   EXPECT_NO_THROW(scale_then_translate(1e6, Vec3(1e6, 0, 0)));
+  // det A overflows or underflows here, but the maps are exact: not singular.
+  EXPECT_NO_THROW(scale_then_translate(1e300, Vec3::Zero()));
+  EXPECT_NO_THROW(scale_then_translate(1e-150, Vec3::Zero()));
+  EXPECT_THROW(affine_from_rows(std::array<double, 12>{1e200, 0, 0, 0, 1e200, 0, 0, 0, 0, 0, 1e200, 0}),
+               std::invalid_argument);  // rows 0 and 1 alike, however large
+}
+
+TEST(AffineTransform, ATinyMirrorStillReversesTheWinding) {
+  // det = −1e-450 underflows to −0: the sign must come from the map, not from det A.
+  TriangleMesh mesh{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, {Triangle{0, 1, 2}}};
+  apply_transform(scale_then_translate(-1e-150, Vec3::Zero()), mesh, "tiny.obj");
+  EXPECT_EQ(mesh.triangles[0], (Triangle{0, 2, 1}));
 }
 
 TEST(AffineTransformCli, BadTransformsAreOneLineErrorsBeforeTheMeshIsRead) {

@@ -543,6 +543,10 @@ TEST_F(HostileCli, NonFiniteAndFractionalNumbersAreRefused) {
   EXPECT_EQ(toonwater({"povgen", "--water", "w.obj", "--out", "scene", "--set", "render.width=64.0"})
                 .exit_code,
             0);
+  const Outcome r = toonwater({"render", "scene", "--frames-per-task", "0"});
+  EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
+  EXPECT_TRUE(has(r.err, "--frames-per-task")) << r.err;
+  EXPECT_LT(r.err.size(), 200u) << "no 309-digit numbers: " << r.err;
 }
 
 TEST_F(HostileCli, FrameRangesOutsideTheSequenceAreRefused) {

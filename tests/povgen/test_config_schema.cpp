@@ -148,5 +148,16 @@ TEST(ConfigSchema, ValueErrorsInAFileNameItsLine) {
             "scene.toml:2: config: 'render.frames' must be a frame range A-B with A <= B");
 }
 
+TEST(ConfigSchema, ErrorsBetweenKeysOrOfAMissingKeyNameTheirTablesLine) {
+  EXPECT_EQ(error_in_file("\n[camera]\nlocation = [1, 2, 3]\nlook_at = [1, 2, 3]\n"),
+            "scene.toml:2: config: 'camera.look_at' must differ from camera.location");
+  EXPECT_EQ(error_in_file("[light]\ndirection = [1, 1, 1]\nposition = [0, 5, 0]\n"),
+            "scene.toml:1: config: 'light.position' excludes light.direction: give one");
+  EXPECT_EQ(error_in_file("[water]\nior = 1.33\n\n[[object]]\nname = \"s\"\n"),
+            "scene.toml:4: config: 'object.0.mesh' is required (a mesh file or sequence pattern)");
+  EXPECT_EQ(error_in_file("\nobject = 5\n"),
+            "scene.toml:2: config: 'object' must be an array of tables: [[object]]");
+}
+
 }  // namespace
 }  // namespace toonwater::test
