@@ -128,10 +128,8 @@ void run_analyze(const AnalyzeArgs& args) {
   const Analysis analysis = analyze_mesh(std::move(input.mesh), options);
 
   start = Clock::now();
-  // A maps directory this run makes is removed again if the run fails (it is then empty).
-  std::error_code ignored;
-  const bool new_maps_directory =
-      !args.maps.empty() && !std::filesystem::exists(std::filesystem::symlink_status(args.maps, ignored));
+  // The maps directories this run makes are removed again if it fails (they are empty then).
+  const NewDirectories new_maps_directories(args.maps);
   std::optional<MapRanges> map_ranges;
   try {
     // Every output, or none: the renames wait until all of them are complete.
@@ -148,7 +146,7 @@ void run_analyze(const AnalyzeArgs& args) {
     }
     outputs.commit();
   } catch (...) {
-    if (new_maps_directory) std::filesystem::remove(args.maps, ignored);  // only if empty
+    new_maps_directories.remove_empty();
     throw;
   }
   print_summary(args.mesh, analysis, read_seconds, seconds_since(start));

@@ -333,6 +333,25 @@ void remove_temporaries_on_signals() {
   for (const int s : {SIGINT, SIGTERM, SIGHUP}) ::signal(s, remove_temporaries_and_end);
 }
 
+NewDirectories::NewDirectories(const fs::path& directory) {
+  if (directory.empty()) return;
+  std::error_code ec;
+  fs::path p = fs::absolute(directory, ec).lexically_normal();
+  if (ec) return;
+  if (!p.has_filename()) p = p.parent_path();  // a trailing separator names the same directory
+  for (; p.has_relative_path(); p = p.parent_path()) {
+    // A path that cannot be examined (not found sets the error too) is taken as missing only
+    // when it is not found.
+    if (fs::symlink_status(p, ec).type() != fs::file_type::not_found) break;
+    missing_.push_back(p);
+  }
+}
+
+void NewDirectories::remove_empty() const {
+  std::error_code ignored;
+  for (const fs::path& directory : missing_) fs::remove(directory, ignored);  // only if empty
+}
+
 void write_file_atomically(const fs::path& path, std::string_view contents) {
   AtomicFileWriter file(path);
   file.write(contents);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string_view>
+#include <vector>
 
 namespace toonwater {
 
@@ -60,6 +61,20 @@ class OutputBatch {
   OutputBatch(const OutputBatch&) = delete;
   OutputBatch& operator=(const OutputBatch&) = delete;
   void commit();
+};
+
+// An output directory and those of its ancestors that do not exist yet: a run that fails
+// after making them (the maps directory of a run that then finds the disk full) removes them
+// again, so that it leaves nothing behind. Only the directories that are then empty go: a
+// file that another process put there meanwhile keeps its directory.
+class NewDirectories {
+ public:
+  explicit NewDirectories(const std::filesystem::path& directory);
+  // Removes, deepest first, each of the directories that did not exist when this was made.
+  void remove_empty() const;
+
+ private:
+  std::vector<std::filesystem::path> missing_;  // deepest first
 };
 
 // Replaces `path` with `contents` atomically (AtomicFileWriter in one piece).

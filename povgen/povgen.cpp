@@ -696,48 +696,56 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   if (!request.maps_dir.empty() && fs::is_directory(request.maps_dir))
     remove_stale_temporaries(request.maps_dir);
   SceneDirectory scene(request.out_dir, request.force);
-  run.out_dir = scene.staging();
-  // With maps, every file of the scene and the maps is renamed into place at the end, together
-  // (OutputBatch): both outputs are replaced, or neither.
-  std::optional<OutputBatch> batch;
-  if (run.plan.maps) batch.emplace();
+  // The maps directories this run makes go again if it fails (they are empty then).
+  const NewDirectories new_maps_directories(request.maps_dir);
+  try {
+    run.out_dir = scene.staging();
+    // With maps, every file of the scene and the maps is renamed into place at the end, together
+    // (OutputBatch): both outputs are replaced, or neither.
+    std::optional<OutputBatch> batch;
+    if (run.plan.maps) batch.emplace();
 
-  // The survey's frames wait in the staging directory's cache file, removed before the commit.
-  std::optional<FrameCache> cache;
-  SequenceSurvey survey;
-  if (run.plan.shares()) {
-    cache.emplace(run.out_dir / ".frame_cache.bin", request.frame_cache_bytes);
-    survey = survey_sequence(run, *cache, progress, stop);
-  }
-  run.layout.camera = frame_camera(config, request.up, survey.box_min, survey.box_max);
-  if (run.plan.shading != WaterShading::toon) run.view_range = view_range(survey.view, run.plan.shading);
-  if (survey.maps) {
-    const MapOptions map_options;
-    run.map_view = survey.maps->view(map_options);
-    run.map_ranges = survey.maps->ranges(map_options.percentile);
-    run.report.map_ranges = run.map_ranges;
-  }
+    // The survey's frames wait in the staging directory's cache file, removed before the commit.
+    std::optional<FrameCache> cache;
+    SequenceSurvey survey;
+    if (run.plan.shares()) {
+      cache.emplace(run.out_dir / ".frame_cache.bin", request.frame_cache_bytes);
+      survey = survey_sequence(run, *cache, progress, stop);
+    }
+    run.layout.camera = frame_camera(config, request.up, survey.box_min, survey.box_max);
+    if (run.plan.shading != WaterShading::toon)
+      run.view_range = view_range(survey.view, run.plan.shading);
+    if (survey.maps) {
+      const MapOptions map_options;
+      run.map_view = survey.maps->view(map_options);
+      run.map_ranges = survey.maps->ranges(map_options.percentile);
+      run.report.map_ranges = run.map_ranges;
+    }
 
-  // Static objects first.
-  for (std::size_t i = 0; i < run.objects.size(); ++i)
-    if (!run.objects[i].placement.animated)
-      write_object(run, i, run.objects[i].sequence.frames.begin()->second, 0);
-  write_frames(run, cache ? &*cache : nullptr, progress, stop);
-  if (cache) {
-    run.report.cached_frames = cache->size();
-    run.report.spilled_frames = cache->spilled();
-  }
-  cache.reset();
+    // Static objects first.
+    for (std::size_t i = 0; i < run.objects.size(); ++i)
+      if (!run.objects[i].placement.animated)
+        write_object(run, i, run.objects[i].sequence.frames.begin()->second, 0);
+    write_frames(run, cache ? &*cache : nullptr, progress, stop);
+    if (cache) {
+      run.report.cached_frames = cache->size();
+      run.report.spilled_frames = cache->spilled();
+    }
+    cache.reset();
 
-  for (std::size_t i = 0; i < run.objects.size(); ++i) {
-    run.objects[i].placement.submerged = run.submerged[i];
-    run.layout.objects.push_back(run.objects[i].placement);
+    for (std::size_t i = 0; i < run.objects.size(); ++i) {
+      run.objects[i].placement.submerged = run.submerged[i];
+      run.layout.objects.push_back(run.objects[i].placement);
+    }
+    run.write("toon.inc", scene_toon_inc(run.layout));
+    run.write("scene.ini", scene_ini(run.layout));
+    run.write("scene.pov", scene_pov(run.layout));
+    if (batch) batch->commit();
+    scene.commit();
+  } catch (...) {
+    new_maps_directories.remove_empty();
+    throw;
   }
-  run.write("toon.inc", scene_toon_inc(run.layout));
-  run.write("scene.ini", scene_ini(run.layout));
-  run.write("scene.pov", scene_pov(run.layout));
-  if (batch) batch->commit();
-  scene.commit();
   return run.report;
 }
 

@@ -32,6 +32,30 @@ std::string write_error(const fs::path& path, std::string_view contents) {
   return {};
 }
 
+TEST(NewDirectories, RemovesTheDirectoriesItFoundMissingWhileTheyAreEmpty) {
+  const ScratchDir dir;
+  fs::create_directory(dir / "kept");
+  const NewDirectories made(dir / "kept" / "a" / "b" / "c");
+  fs::create_directories(dir / "kept" / "a" / "b" / "c");
+  made.remove_empty();
+  EXPECT_FALSE(fs::exists(dir / "kept" / "a"));
+  EXPECT_TRUE(fs::is_directory(dir / "kept")) << "it existed before";
+
+  // A file put there meanwhile keeps its directory and those above it.
+  const NewDirectories again(dir / "kept" / "a" / "b" / "c" / "");
+  fs::create_directories(dir / "kept" / "a" / "b" / "c");
+  write_text(dir / "kept" / "a" / "b" / "other.txt", "someone else's");
+  again.remove_empty();
+  EXPECT_FALSE(fs::exists(dir / "kept" / "a" / "b" / "c"));
+  EXPECT_EQ(read_text(dir / "kept" / "a" / "b" / "other.txt"), "someone else's");
+
+  // Nothing was missing: nothing goes.
+  const NewDirectories none(dir / "kept");
+  none.remove_empty();
+  EXPECT_TRUE(fs::is_directory(dir / "kept"));
+  NewDirectories(fs::path()).remove_empty();  // no directory given
+}
+
 TEST(AtomicFile, CreatesAndReplacesContent) {
   ScratchDir dir;
   const fs::path target = dir / "out.csv";

@@ -590,6 +590,10 @@ TEST_F(MeshReader, StlErrors) {
                     "ends inside a facet");
   expect_line_error("d.stl", facet_start + "vertex 0 0\n", 4, "vertex has 2 coordinates");
   expect_line_error("e.stl", "solid s\nvertex 0 0 0\n", 2, "unexpected 'vertex'");
+  // Cut between two facets: each facet read is whole, only endsolid is missing.
+  expect_line_error("f.stl",
+                    facet_start + "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n",
+                    8, "ends before endsolid");
 }
 
 }  // namespace
