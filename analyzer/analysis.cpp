@@ -33,7 +33,7 @@ Analysis analyze_mesh(TriangleMesh input, const AnalyzeOptions& options) {
 
   start = Clock::now();
   if (options.flow_regions) {
-    a.flow = find_flow_regions(a.surface, a.topology.vertex_faces, a.curvature, options.flow,
+    a.flow = find_flow_regions(a.surface, a.topology, a.curvature, options.flow,
                                options.coherence);
   } else {
     a.flow.label.assign(a.surface.positions.size(), FlowLabel::none);

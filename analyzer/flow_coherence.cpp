@@ -135,6 +135,16 @@ void FlowCoherence::remember(const CurvatureField& curvature, const FlowRegions&
   has_previous_ = true;
 }
 
+double FlowCoherence::sequence_noise_floor(double frame_noise_floor) {
+  if (frame_noise_floor > 0.0 && std::isfinite(frame_noise_floor))
+    noise_floors_.push_back(frame_noise_floor);
+  if (noise_floors_.empty()) return 0.0;
+  std::vector<double> sorted = noise_floors_;
+  std::sort(sorted.begin(), sorted.end());
+  const std::size_t m = sorted.size();
+  return m % 2 ? sorted[m / 2] : 0.5 * (sorted[m / 2 - 1] + sorted[m / 2]);
+}
+
 void FlowCoherence::apply(const TriangleMesh& surface, const CurvatureField& curvature,
                           FlowRegions& flow) {
   std::vector<double> field = flow.smoothed_field;

@@ -63,6 +63,11 @@ class FlowCoherence {
   // coherent ones. The first frame's are left as they are.
   void apply(const TriangleMesh& surface, const CurvatureField& curvature, FlowRegions& flow);
 
+  // The noise floor the sequence's threshold is held above (flow_regions.hpp): the median of
+  // the frames' own floors so far, this one's included (0 is no estimate and is left out). The
+  // median changes by little from frame to frame, and a few violent frames do not move it.
+  double sequence_noise_floor(double frame_noise_floor);
+
   // Flicker of the frame last remembered, against the frame before it: the share of
   // free-surface area whose label changed; 0 for the first frame.
   double last_flicker() const { return last_flicker_; }
@@ -73,6 +78,7 @@ class FlowCoherence {
   Box3 previous_bounds_, pending_bounds_;  // of the frames' positions, for the grid
   std::vector<std::int32_t> predecessor_;  // per vertex of the pending frame, −1: none
   bool has_previous_ = false;
+  std::vector<double> noise_floors_;
   double last_flicker_ = 0.0;
 };
 

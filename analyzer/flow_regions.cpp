@@ -1,10 +1,13 @@
 // Water-flow regions; the field, its threshold and the steps are stated in flow_regions.hpp.
 #include "analyzer/flow_regions.hpp"
 
+#include "analyzer/border_distance.hpp"
 #include "analyzer/curvature_smoothing.hpp"
 #include "analyzer/disjoint_sets.hpp"
 #include "analyzer/flow_coherence.hpp"
 #include "analyzer/free_surface.hpp"
+#include "analyzer/noise_floor.hpp"
+#include "analyzer/tank_walls.hpp"
 #include "common/ordered_sum.hpp"
 #include "common/parallel.hpp"
 
@@ -16,15 +19,35 @@
 
 namespace toonwater {
 
-// Chosen on real simulation output and analytic ripples (README, "Water-flow regions"): with
-// mean, a long crest is drawn where its radius of curvature 1/(2H) is below L/4 (the wake and
-// bow wave of a Mantaflow basin, a ripple ring 0.5 % of the scene's size high and 15 % long on
-// its crest and trough circles; calm water and the marching-cubes noise on it are not); with
-// paper, the value that labels about the same share of the Mantaflow basin as the paper's rule
-// (T = 0.01/ℓ²) did at its resolution.
+// Chosen on real simulation output and analytic ripples (README, "Water-flow regions"). With
+// mean:
+// - c = 2: a long crest is drawn where its radius of curvature 1/(2H) is below L/4 (the wake
+//   and bow wave of a Mantaflow basin; a ripple ring 0.5 % of the scene's size high and 15 %
+//   long on its crest and trough circles);
+// - z = 3: H must also stand 3 noise floors above the calm water (Gaussian noise passes that at
+//   0.3 % of the vertices, isolated ones the area limit fades); with 4 an FFT ocean, whose chop
+//   counts as noise, kept no crest at all;
+// - the field's smoothing, 0.8 edge lengths (2 steps), damps the vertex-to-vertex noise of the
+//   cotangent H and keeps analytic ripples 12 cells long alike at every resolution (1.25 edge
+//   lengths lost 40 % of their area at 81²); the noise floor does the rest;
+// - the shading normals' smoothing, 1.5 edge lengths (7 steps), spans the marching-cubes jitter
+//   of a level set's surface, whose wavelength is about two cells;
+// - the walls' strip, 3 edge lengths and a ramp as wide again, covers the 2–3 cells over which
+//   a Mantaflow tank's surface droops into its walls;
+// - the border's strip, 1 edge length and a ramp of 2, covers the fillet into a column's side
+//   (wider ones ate a wake's bow wave beside its sphere);
+// - 6 regions are what an animator draws on one water surface: the impact, the crown, a few
+//   rings and waves.
+// With paper, the value that labels about the same share of the Mantaflow basin as the paper's
+// rule (T = 0.01/ℓ²) did at its resolution, and nothing else (the shading normals are smoothed
+// alike: they are the scene's, whatever the criterion).
 FlowDefaults flow_defaults(FlowCriterion criterion) {
-  if (criterion == FlowCriterion::mean) return {2.0, 2, 0.002};
-  return {30.0, 0, 0.0};
+  if (criterion == FlowCriterion::mean) return {2.0, 0.8, 1.5, 0.002, 3.0, 3.0, 6.0, 1.0, 3.0, 6};
+  return {30.0, 0.0, 1.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0};
+}
+
+int smoothing_steps_for_radius(double radius_in_edge_lengths) {
+  return static_cast<int>(std::ceil(3.0 * radius_in_edge_lengths * radius_in_edge_lengths));
 }
 
 namespace {
@@ -44,12 +67,19 @@ std::int8_t region_sign(double s) {
 // otherwise appear at once over its whole flat top.
 constexpr double peak_ramp = 0.5;
 
-double fade_factor(double area, double peak, double min_area) {
+// `salience_cut`: the salience of the most salient region left out by max_regions (0: none is);
+// by salience: from twice it (1) down to it (hidden).
+double fade_factor(double area, double peak, double min_area, double salience,
+                   double salience_cut) {
   constexpr double just_below_one = 0.999;
   const double hidden = just_below_one / peak;
-  const double by_area = std::clamp((area - min_area) / min_area, 0.0, 1.0);
-  const double by_peak = std::clamp((peak - 1.0) / peak_ramp, 0.0, 1.0);
-  return hidden + (1.0 - hidden) * std::min(by_area, by_peak);
+  const double by_area =
+      min_area > 0.0 ? std::clamp((area - min_area) / min_area, 0.0, 1.0) : 1.0;
+  const double by_peak =
+      min_area > 0.0 ? std::clamp((peak - 1.0) / peak_ramp, 0.0, 1.0) : 1.0;
+  const double by_salience =
+      salience_cut > 0.0 ? std::clamp((salience - salience_cut) / salience_cut, 0.0, 1.0) : 1.0;
+  return hidden + (1.0 - hidden) * std::min({by_area, by_peak, by_salience});
 }
 
 }  // namespace
@@ -111,14 +141,14 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   // Each region's figures sit in the slot of its root; the other slots are never touched (nor
   // their pages faulted in: `new` leaves them uninitialised).
   struct Region {
-    double area, peak, factor;
+    double area, peak, salience, factor;
   };
   std::unique_ptr<Region[]> region(new Region[m]);
   std::unique_ptr<std::int32_t[]> region_of(new std::int32_t[m]);
   parallel_chunks(m, worker_count(m), [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       region_of[i] = sets.root_of(static_cast<std::int32_t>(i));
-      if (region_of[i] == static_cast<std::int32_t>(i)) region[i] = Region{0.0, 0.0, 1.0};
+      if (region_of[i] == static_cast<std::int32_t>(i)) region[i] = Region{0.0, 0.0, 0.0, 1.0};
     }
   });
   // Areas summed in vertex order, so that they do not depend on the core count.
@@ -127,11 +157,21 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
     Region& r = region[region_of[i]];
     r.area += vertex_area[members[i]];
     r.peak = std::max(r.peak, std::abs(field[members[i]]));
+    r.salience += vertex_area[members[i]] * (std::abs(field[members[i]]) - 1.0);
     if (region_of[i] == static_cast<std::int32_t>(i)) roots.push_back(static_cast<std::int32_t>(i));
+  }
+  double salience_cut = 0.0;
+  if (flow.max_regions > 0 && roots.size() > flow.max_regions) {
+    std::vector<double> saliences;
+    for (std::int32_t root : roots) saliences.push_back(region[root].salience);
+    const auto cut = saliences.begin() + static_cast<std::ptrdiff_t>(flow.max_regions);
+    std::nth_element(saliences.begin(), cut, saliences.end(), std::greater<>());
+    salience_cut = *cut;
   }
   for (std::int32_t root : roots) {
     Region& r = region[root];
-    if (flow.min_region_area > 0.0) r.factor = fade_factor(r.area, r.peak, flow.min_region_area);
+    if (flow.min_region_area > 0.0 || salience_cut > 0.0)
+      r.factor = fade_factor(r.area, r.peak, flow.min_region_area, r.salience, salience_cut);
     flow.specks_faded += r.factor < 1.0;
     flow.regions += r.factor * r.peak >= 1.0;
   }
@@ -171,9 +211,57 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   flow.field = std::move(field);
 }
 
-FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
+namespace {
+
+// Step 1 of flow_regions.hpp on the shading normals: the curvature normals smoothed over every
+// vertex whose curvature is defined (crowns, sheets and droplets have toon bands too), then,
+// where they face up (the free surface and the top of the rounded rim along a wall), tilted
+// back towards up by the walls' weight; unit length. `noise`: the noise floor of their
+// horizontal components on the calm part (`member`), the RMS of the two (noise_floor.hpp).
+std::vector<Vec3> shading_normals(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
+                                  const CurvatureField& curvature,
+                                  std::span<const std::uint8_t> member,
+                                  std::span<const double> wall_weight, Axis up, int steps,
+                                  double& noise) {
+  const std::size_t n = mesh.positions.size();
+  const int u = static_cast<int>(up);
+  std::vector<std::uint8_t> defined(n);
+  for (std::size_t v = 0; v < n; ++v) defined[v] = curvature.status[v] != CurvatureStatus::undefined;
+  std::vector<Vec3> normal = curvature.normal;
+  std::vector<double> raw(n), component(n);
+  double noise_squares = 0.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (std::size_t v = 0; v < n; ++v) raw[v] = component[v] = curvature.normal[v][axis];
+    smooth_vertex_field(mesh, vertex_faces, curvature.area, defined, component, steps);
+    for (std::size_t v = 0; v < n; ++v) normal[v][axis] = component[v];
+    if (axis == u) continue;
+    const double floor =
+        smoothed_noise_floor(mesh, vertex_faces, curvature.area, member, raw, component, steps);
+    noise_squares += 0.5 * floor * floor;
+  }
+  noise = std::sqrt(noise_squares);
+  Vec3 up_vector = Vec3::Zero();
+  up_vector[u] = 1.0;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (!defined[v]) continue;
+    const double length = normal[v].norm();
+    if (!(length > 0.0) || !std::isfinite(length)) {
+      normal[v] = curvature.normal[v];
+      continue;
+    }
+    normal[v] /= length;
+    if (normal[v][u] <= free_surface_min_up_component) continue;
+    normal[v] = (wall_weight[v] * normal[v] + (1.0 - wall_weight[v]) * up_vector).normalized();
+  }
+  return normal;
+}
+
+}  // namespace
+
+FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topology,
                               const CurvatureField& curvature, const FlowOptions& options,
                               FlowCoherence* coherence) {
+  const VertexFaces& vertex_faces = topology.vertex_faces;
   const std::size_t n = mesh.positions.size();
   FlowRegions flow;
   flow.criterion = options.criterion;
@@ -188,7 +276,8 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   // surface's border, where marching cubes rounds the water into a wall (a fillet one or two
   // cells wide, as curved as a crest but no flow line).
   std::vector<std::uint8_t> member = std::move(surface.inside);
-  const std::size_t workers = worker_count(n);
+  for (std::size_t v = 0; v < n; ++v)
+    member[v] = member[v] && curvature.status[v] != CurvatureStatus::undefined;
   const double surface_area = ordered_sum(
       n, [on_surface = flow.free_surface.data(), status = curvature.status.data(),
           area = curvature.area.data()](std::size_t v) {
@@ -197,36 +286,68 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const VertexFaces& verte
   flow.scale_length = std::sqrt(surface_area);
   const double length = flow.scale_length;
   const FlowDefaults defaults = flow_defaults(options.criterion);
-  const double c = options.threshold_relative.value_or(defaults.threshold_relative);
-  flow.threshold = options.threshold.value_or(
-      length > 0.0 ? (options.criterion == FlowCriterion::mean ? c / length : c / (length * length))
-                   : 0.0);
+  const bool paper = options.criterion == FlowCriterion::paper;
   flow.min_region_area = options.min_region_area.value_or(defaults.min_region_relative * surface_area);
+  flow.max_regions = defaults.max_regions;
+  const int steps = options.smoothing_steps.value_or(
+      smoothing_steps_for_radius(defaults.smoothing_radius));
 
+  // The field's source, smoothed (step 1): H, or the paper's sign(H)·|K|.
   std::vector<double> field(n, 0.0);
-  if (flow.threshold > 0.0 && std::isfinite(flow.threshold)) {
-    parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
-      std::uint8_t* const carries = member.data();  // plain pointers: it is a byte store
-      const CurvatureStatus* const status = curvature.status.data();
-      const double *const mean_of = curvature.mean.data(), *const gaussian_of = curvature.gaussian.data();
-      double* const s = field.data();
-      const bool paper = options.criterion == FlowCriterion::paper;
-      const double threshold = flow.threshold;
-      for (std::size_t v = begin; v < end; ++v) {
-        // Where the curvature is undefined there is no field, and no weight in the smoothing.
-        carries[v] = carries[v] && status[v] != CurvatureStatus::undefined;
-        if (!carries[v]) continue;
-        const double mean = mean_of[v];
-        const double value = paper ? std::copysign(std::abs(gaussian_of[v]), mean) / threshold
-                                   : mean / threshold;
-        // Only H = 0 exactly (or −0) gives the paper's field the sign of zero: it is not a region.
-        s[v] = paper && mean == 0.0 ? 0.0 : value;
-        if (!std::isfinite(s[v])) s[v] = 0.0;
-      }
-    });
-    smooth_vertex_field(mesh, vertex_faces, curvature.area, member, field,
-                        options.smoothing_steps.value_or(defaults.smoothing_steps));
+  for (std::size_t v = 0; v < n; ++v) {
+    if (!member[v]) continue;
+    const double mean = curvature.mean[v];
+    // Only H = 0 exactly (or −0) gives the paper's field the sign of zero: it is not a region.
+    const double value = paper ? (mean == 0.0 ? 0.0 : std::copysign(std::abs(curvature.gaussian[v]), mean))
+                               : mean;
+    field[v] = std::isfinite(value) ? value : 0.0;
   }
+  const std::vector<double> raw = field;
+  smooth_vertex_field(mesh, vertex_faces, curvature.area, member, field, steps);
+
+  // The threshold, held above the noise floor unless given.
+  flow.noise_floor =
+      smoothed_noise_floor(mesh, vertex_faces, curvature.area, member, raw, field, steps);
+  flow.sequence_noise_floor =
+      coherence ? coherence->sequence_noise_floor(flow.noise_floor) : flow.noise_floor;
+  const double c = options.threshold_relative.value_or(defaults.threshold_relative);
+  const double scene_threshold =
+      length > 0.0 ? (paper ? c / (length * length) : c / length) : 0.0;
+  const bool explicit_threshold = options.threshold || options.threshold_relative;
+  flow.threshold = options.threshold.value_or(
+      explicit_threshold ? scene_threshold
+                         : std::max(scene_threshold, defaults.noise_multiple * flow.sequence_noise_floor));
+
+  // The tank's walls (step 2), for the field and the shading normals.
+  const bool closed = topology.boundary_edges == 0 && topology.nonmanifold_edges == 0;
+  const TankWalls walls =
+      closed ? find_tank_walls(mesh, options.up, flow.median_edge_length) : TankWalls{};
+  flow.walls = walls.count();
+  const std::vector<double> wall_weight =
+      wall_weights(mesh, options.up, walls, defaults.wall_near * flow.median_edge_length,
+                   defaults.wall_far * flow.median_edge_length);
+  // The free surface's border (step 2): the fillets where it turns into walls and objects.
+  const std::vector<double> from_border =
+      defaults.border_far > 0.0 ? border_distance(mesh, vertex_faces, member) : std::vector<double>{};
+  auto border_weight = [&](std::size_t v) {
+    if (from_border.empty()) return 1.0;
+    const double near = defaults.border_near * flow.median_edge_length,
+                 far = defaults.border_far * flow.median_edge_length;
+    const double x = std::clamp((from_border[v] - near) / (far - near), 0.0, 1.0);
+    return x * x * (3.0 - 2.0 * x);
+  };
+  if (flow.threshold > 0.0 && std::isfinite(flow.threshold)) {
+    for (std::size_t v = 0; v < n; ++v) {
+      field[v] = member[v] ? field[v] / flow.threshold * wall_weight[v] * border_weight(v) : 0.0;
+      if (!std::isfinite(field[v])) field[v] = 0.0;
+    }
+  } else {
+    std::fill(field.begin(), field.end(), 0.0);
+  }
+  flow.shading_normal = shading_normals(mesh, vertex_faces, curvature, member, wall_weight,
+                                        options.up, smoothing_steps_for_radius(defaults.shading_radius),
+                                        flow.normal_noise);
+
   flow.smoothed_field = field;
   if (coherence) coherence->blend(mesh, flow, field);
   label_flow_field(mesh, curvature.area, std::move(field), flow);

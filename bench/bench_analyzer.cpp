@@ -144,7 +144,7 @@ void FlowRegions(benchmark::State& state) {
   const CurvatureField field = compute_curvature(p.mesh, p.topology);
   for (auto _ : state)
     benchmark::DoNotOptimize(
-        find_flow_regions(p.mesh, p.topology.vertex_faces, field, wave_flow_options()));
+        find_flow_regions(p.mesh, p.topology, field, wave_flow_options()));
   set_vertex_rate(state, p.mesh.positions.size());
 }
 
@@ -152,10 +152,10 @@ void FlowWithCoherence(benchmark::State& state) {
   const Prepared p = prepared(state.range(0));
   const CurvatureField field = compute_curvature(p.mesh, p.topology);
   FlowCoherence coherence;
-  find_flow_regions(p.mesh, p.topology.vertex_faces, field, wave_flow_options(), &coherence);
+  find_flow_regions(p.mesh, p.topology, field, wave_flow_options(), &coherence);
   for (auto _ : state)
     benchmark::DoNotOptimize(
-        find_flow_regions(p.mesh, p.topology.vertex_faces, field, wave_flow_options(), &coherence));
+        find_flow_regions(p.mesh, p.topology, field, wave_flow_options(), &coherence));
   set_vertex_rate(state, p.mesh.positions.size());
 }
 
@@ -164,7 +164,7 @@ void CurvatureAndLabels(benchmark::State& state) {
   for (auto _ : state) {
     const CurvatureField field = compute_curvature(p.mesh, p.topology);
     benchmark::DoNotOptimize(
-        find_flow_regions(p.mesh, p.topology.vertex_faces, field, wave_flow_options()));
+        find_flow_regions(p.mesh, p.topology, field, wave_flow_options()));
   }
   set_vertex_rate(state, p.mesh.positions.size());
 }
@@ -172,11 +172,11 @@ void CurvatureAndLabels(benchmark::State& state) {
 void CurvatureAndFlowStage(benchmark::State& state) {
   const Prepared p = prepared(state.range(0));
   FlowCoherence coherence;
-  find_flow_regions(p.mesh, p.topology.vertex_faces, compute_curvature(p.mesh, p.topology),
+  find_flow_regions(p.mesh, p.topology, compute_curvature(p.mesh, p.topology),
                     wave_flow_options(), &coherence);
   for (auto _ : state) {
     const CurvatureField field = compute_curvature(p.mesh, p.topology);
-    benchmark::DoNotOptimize(find_flow_regions(p.mesh, p.topology.vertex_faces, field,
+    benchmark::DoNotOptimize(find_flow_regions(p.mesh, p.topology, field,
                                                wave_flow_options(), &coherence));
   }
   set_vertex_rate(state, p.mesh.positions.size());

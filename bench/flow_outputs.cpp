@@ -74,11 +74,11 @@ void write_wave_cases(const fs::path& dir) {
     options.up = Axis::z;
     const std::string name = "wave-" + std::to_string(n);
     write_file(dir / (name + "-alone.txt"),
-               dump(find_flow_regions(mesh, topology.vertex_faces, curvature, options), 0.0));
+               dump(find_flow_regions(mesh, topology, curvature, options), 0.0));
     FlowCoherence coherence;
-    find_flow_regions(mesh, topology.vertex_faces, curvature, options, &coherence);
+    find_flow_regions(mesh, topology, curvature, options, &coherence);
     const FlowRegions second =
-        find_flow_regions(mesh, topology.vertex_faces, curvature, options, &coherence);
+        find_flow_regions(mesh, topology, curvature, options, &coherence);
     write_file(dir / (name + "-coherent.txt"), dump(second, coherence.last_flicker()));
   }
 }

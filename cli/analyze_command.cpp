@@ -53,7 +53,9 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
                "  boundary %zu, non-manifold %zu, isolated %zu vertices; degenerate faces "
                "%zu, caps %zu, mollified faces %zu (intrinsic flips %zu), flipped faces %zu;\n"
                "  curvature extrapolated at %zu, undefined at %zu\n"
-               "  flow (%s): T = %.6g (scene length %.6g), rest height %.6g, free surface %zu "
+               "  flow (%s): T = %.6g (scene length %.6g, noise floor %.6g, %zu tank walls, normal "
+               "noise %.3g), "
+               "rest height %.6g, free surface %zu "
                "vertices (%zu patches dropped), %zu regions (%zu specks faded below %.6g), "
                "ridge %zu, valley %zu\n"
                "  time: read %.3f s, weld %.3f s, topology %.3f s, curvature %.3f s, "
@@ -64,7 +66,7 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
                a.curvature.intrinsic_flips, a.flipped_faces, a.curvature.extrapolated_vertices,
                a.curvature.undefined_vertices,
                f.criterion == FlowCriterion::mean ? "mean" : "paper", f.threshold, f.scale_length,
-               f.rest_height, f.free_surface_vertices, f.free_surface_patches_dropped, f.regions,
+               f.sequence_noise_floor, f.walls, f.normal_noise, f.rest_height, f.free_surface_vertices, f.free_surface_patches_dropped, f.regions,
                f.specks_faded, f.min_region_area, f.ridge_vertices, f.valley_vertices,
                read_seconds, a.times.weld, a.times.topology,
                a.times.curvature, a.times.flow, write_seconds);

@@ -20,7 +20,7 @@ struct Flow {
 Flow flow_of(const TriangleMesh& mesh, FlowOptions options = {}) {
   options.up = Axis::z;
   Flow f{curvature_of(mesh), {}};
-  f.regions = find_flow_regions(f.curvature.mesh, f.curvature.topology.vertex_faces,
+  f.regions = find_flow_regions(f.curvature.mesh, f.curvature.topology,
                                 f.curvature.field, options);
   return f;
 }
