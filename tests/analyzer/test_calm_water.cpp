@@ -118,8 +118,9 @@ TEST(TankWalls, TheDroopAlongTheWallsIsCalmAndAWaveBesideThemIsNot) {
   // Tilted by less than 4.5° anywhere past the border ring, where the droop tilts by 18°.
   for (std::size_t v = 0; v < calm.curvature.mesh.positions.size(); ++v) {
     const Vec3& p = calm.curvature.mesh.positions[v];
-    if (calm.regions.free_surface[v] && to_wall(p.x(), p.y()) > 2.5 * kCell)
+    if (calm.regions.free_surface[v] && to_wall(p.x(), p.y()) > 2.5 * kCell) {
       EXPECT_GT(calm.regions.shading_normal[v].z(), 0.997) << p.transpose();
+    }
   }
   // The same droop without the wall fade is a ridge all round (what the fade is for).
   FlowOptions no_noise_floor;
@@ -151,9 +152,13 @@ TEST(TankWalls, AClosedTanksSidesAreWallsAndWeighNothingNearThem) {
   const std::vector<double> weight = wall_weights(m, Axis::z, walls, 0.2, 0.4);
   for (std::size_t v = 0; v < m.positions.size(); ++v) {
     const double d = 1.0 - std::max(std::abs(m.positions[v].x()), std::abs(m.positions[v].y()));
-    if (d <= 0.2 + 1e-12) EXPECT_EQ(weight[v], 0.0);
-    if (d >= 0.4 - 1e-12) EXPECT_EQ(weight[v], 1.0);
-    if (d > 0.2 + 1e-9 && d < 0.4 - 1e-9) EXPECT_TRUE(weight[v] > 0.0 && weight[v] < 1.0) << d;
+    if (d <= 0.2 + 1e-12) {
+      EXPECT_EQ(weight[v], 0.0) << d;
+    } else if (d >= 0.4 - 1e-12) {
+      EXPECT_EQ(weight[v], 1.0) << d;
+    } else if (d > 0.2 + 1e-9 && d < 0.4 - 1e-9) {
+      EXPECT_TRUE(weight[v] > 0.0 && weight[v] < 1.0) << d;
+    }
   }
   // A wave touching the side of its box over a short stretch makes no wall of it.
   TriangleMesh bulge = tank(21, [](double, double) { return 0.0; });

@@ -73,8 +73,9 @@ TEST(BlenderOcean, OpenSheetHasABoundaryRimAndItsChopIsBelowTheNoiseFloor) {
   double ridge_height = 0;
   for (std::size_t v = 0; v < a.surface.positions.size(); ++v)
     if (a.flow.label[v] == FlowLabel::ridge) ridge_height += a.surface.positions[v].z();
-  if (a.flow.ridge_vertices > 0)
+  if (a.flow.ridge_vertices > 0) {
     EXPECT_GT(ridge_height / static_cast<double>(a.flow.ridge_vertices), a.flow.rest_height);
+  }
   std::vector<double> tilt;
   for (const Vec3& n : a.flow.shading_normal) tilt.push_back(n.x());
   const std::vector<std::uint8_t> all(tilt.size(), 1);
