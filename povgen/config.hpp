@@ -75,6 +75,9 @@ struct WaterConfig {
   BandThresholds bands = BandThresholds::relative;
   double dt_bright = 0.05;   // relative: bright where L·n > calm + dt_bright
   double dt_medium = -0.05;  // relative: dark where L·n <= calm + dt_medium
+  // Relative limits widen past the water's normal noise (scene_writer.hpp) unless dt_bright or
+  // dt_medium is given: set by the schema, no key of its own.
+  bool bands_above_noise = true;
   double t_bright = 0.7;  // absolute (and objects, always): L·n above this: bright band
   double t_medium = 0.2;  // L·n above this (and not bright): medium band; else dark
   double ka = 0.2;

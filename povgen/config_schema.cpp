@@ -292,8 +292,10 @@ const Section<WaterConfig>& water_section() {
                {{"relative", BandThresholds::relative}, {"absolute", BandThresholds::absolute}}},
            "band thresholds around the calm water's L·n, or absolute",
            "(\"absolute\" when `t_bright` or `t_medium` is given)"),
-       key("dt_bright", &C::dt_bright, l_dot_n, "relative: bright where L·n > calm + dt_bright"),
-       key("dt_medium", &C::dt_medium, l_dot_n, "relative: dark where L·n <= calm + dt_medium"),
+       key("dt_bright", &C::dt_bright, l_dot_n, "relative: bright where L·n > calm + dt_bright",
+           "0.05, or 3 noise floors of the water's L·n when larger"),
+       key("dt_medium", &C::dt_medium, l_dot_n, "relative: dark where L·n <= calm + dt_medium",
+           "-0.05, or 3 noise floors below when larger"),
        key("t_bright", &C::t_bright, l_dot_n, "absolute: bright where L·n > t_bright"),
        key("t_medium", &C::t_medium, l_dot_n, "absolute: dark where L·n <= t_medium"),
        key("ka", &C::ka, weight, "ambient weight"),
@@ -318,6 +320,7 @@ const Section<WaterConfig>& water_section() {
           throw key_error("water.dt_medium", "must be less than water.dt_bright");
         if ((given.count("t_bright") || given.count("t_medium")) && !given.count("bands"))
           c.bands = BandThresholds::absolute;
+        if (given.count("dt_bright") || given.count("dt_medium")) c.bands_above_noise = false;
       }};
   return section;
 }

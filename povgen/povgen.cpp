@@ -82,7 +82,11 @@ PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow,
     out.analysis_seconds = seconds_since(start);
     return out;
   }
-  out.mesh = make_scene_mesh(a.surface, a.curvature.normal, is_closed(a.topology), up);
+  // The toon bands are chosen from the flow stage's shading normals where it ran
+  // (flow_regions.hpp), smoothed over the free surface at the scale of the cells.
+  const std::vector<Vec3>& normals =
+      a.flow.shading_normal.empty() ? a.curvature.normal : a.flow.shading_normal;
+  out.mesh = make_scene_mesh(a.surface, normals, is_closed(a.topology), up);
   if (shading == WaterShading::toon) {
     if (flow->style != FlowStyle::regions) {
       // Strokes taper over 3 % of the scene's size: resolution-free, like the field.
@@ -91,6 +95,7 @@ PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow,
         for (Vec3& p : line.points) p = to_povray(p, up);
     }
     out.flow_field = std::move(a.flow.field);
+    out.normal_noise = a.flow.normal_noise;
     out.ridge_vertices = a.flow.ridge_vertices;
     out.valley_vertices = a.flow.valley_vertices;
   } else {
@@ -279,6 +284,7 @@ WaterPlan plan_water(const SceneConfig& config, const PovgenRequest& request, st
 struct SequenceSurvey {
   bool have_box = false;
   Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();  // POV-Ray frame
+  std::vector<double> normal_noise;                      // each frame's with water
   CurvatureRanges view;                                  // the curvature view's colour range
   std::optional<MapPlanner> maps;
   void grow_box(const Vec3& lower, const Vec3& upper, Axis up) {
@@ -411,6 +417,7 @@ void surface_fields(Record& record, Surface& s) {
   record.field(s.view_values);
   record.field(s.ridge_vertices);
   record.field(s.valley_vertices);
+  record.field(s.normal_noise);
   record.field(s.analysis_seconds);
 }
 
@@ -460,7 +467,9 @@ SequenceSurvey survey_sequence(SceneRun& run, FrameCache& cache, const ProgressF
         survey.maps->add(*f.analysis);
         pack_map_inputs(record, *f.analysis);
       }
-      pack_surface(record, run.prepare(f));
+      const PreparedSurface prepared = run.prepare(f);
+      survey.normal_noise.push_back(prepared.normal_noise);
+      pack_surface(record, prepared);
     }
     for (const ObjectSource& o : run.objects) {
       if (!read_objects || !o.placement.animated) continue;
@@ -566,6 +575,8 @@ void write_empty_frame(SceneRun& run, long frame, long written_frame, const std:
 // The water include of one frame that has water.
 void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long written_frame) {
   const SceneConfig& config = run.config;
+  // The band limits are the sequence's from its first frame on (no survey: this frame's).
+  if (!run.have_water_box && run.layout.normal_noise == 0.0) run.layout.normal_noise = s.normal_noise;
   s.view_range = run.view_range;
   run.report.analysis_seconds += s.analysis_seconds;
   run.report.vertices += s.mesh.positions.size();
@@ -713,6 +724,11 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
       survey = survey_sequence(run, *cache, progress, stop);
     }
     run.layout.camera = frame_camera(config, request.up, survey.box_min, survey.box_max);
+    if (!survey.normal_noise.empty()) {
+      auto middle = survey.normal_noise.begin() + static_cast<std::ptrdiff_t>(survey.normal_noise.size() / 2);
+      std::nth_element(survey.normal_noise.begin(), middle, survey.normal_noise.end());
+      run.layout.normal_noise = *middle;
+    }
     if (run.plan.shading != WaterShading::toon)
       run.view_range = view_range(survey.view, run.plan.shading);
     if (survey.maps) {

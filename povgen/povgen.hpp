@@ -39,6 +39,7 @@ struct PreparedSurface {
   std::vector<double> view_values;  // per vertex K or H for a curvature view; else empty
   double view_range = 0;            // the sequence's colour range of view_values
   std::size_t ridge_vertices = 0, valley_vertices = 0;
+  double normal_noise = 0;      // of the shading normals (flow_regions.hpp); 0 without flow
   double analysis_seconds = 0;  // weld, topology, normals (and curvature and flow when asked)
 };
 

@@ -194,8 +194,11 @@ std::pair<double, double> water_thresholds(const SceneLayout& l) {
   if (w.bands == BandThresholds::absolute) return {w.t_bright, w.t_medium};
   // Kept inside (−1, 1), where the band keys stay inside the colour map.
   const double calm = calm_light(l);
-  return {std::clamp(calm + w.dt_bright, -0.999, 0.999),
-          std::clamp(calm + w.dt_medium, -0.9995, 0.9985)};
+  const double margin = w.bands_above_noise ? band_noise_multiple * l.normal_noise *
+                                                  std::sqrt(std::max(0.0, 1.0 - calm * calm))
+                                            : 0.0;
+  return {std::clamp(calm + std::max(w.dt_bright, margin), -0.999, 0.999),
+          std::clamp(calm + std::min(w.dt_medium, -margin), -0.9995, 0.9985)};
 }
 
 std::string water_line_id(const std::string& object_name) {

@@ -44,6 +44,9 @@ struct SceneLayout {
   // textures declared in scene.pov (closed_volume_textures).
   bool closed_water = false;
   bool animation = false;  // false: one frame, written as frame 0
+  // The noise floor of the water's shading normals, horizontal part (flow_regions.hpp): the
+  // median over the frames the survey saw, or the first frame's; 0 when unknown.
+  double normal_noise = 0.0;
   long first_frame = 0, last_frame = 0;
 };
 
@@ -62,7 +65,11 @@ std::vector<double> shell_offsets(const OutlineConfig& outline, const SceneMesh&
 // the water's top), where relative band thresholds are measured from.
 double calm_light(const SceneLayout& layout);
 
-// The water's absolute band thresholds {T_bright, T_medium}.
+// The water's absolute band thresholds {T_bright, T_medium}. Relative ones are calm + dt, and
+// unless dt_bright or dt_medium is given they keep 3 noise floors of L·n from calm, so that
+// the simulation's normal noise on calm water never crosses a band limit: the noise floor of
+// L·n is that of the normals' horizontal part times the light's horizontal part.
+constexpr double band_noise_multiple = 3.0;
 std::pair<double, double> water_thresholds(const SceneLayout& layout);
 
 // The identifier of an object's water line in a frame (a number: its height in POV-Ray's y),

@@ -158,6 +158,52 @@ TEST(PovgenRender, RelativeBandsPutCalmWaterInTheMiddleBand) {
   EXPECT_LT(count(absolute, medium) + count(absolute, dark), 40);
 }
 
+// Calm water carrying marching-cubes-like jitter of 0.15 cells, vertex by vertex, as a level set
+// meshed on a grid has it: one band and no flow region (the shading normals are smoothed over
+// the cells' scale, the band limits and the flow threshold sit above the data's noise), while
+// a wave of a few cells on the same jitter still shows in both.
+TEST(PovgenRender, CalmNoisyWaterIsOneBandWithoutFlow) {
+  ScratchDir dir;
+  constexpr int n = 81;
+  constexpr double cell = 2.0 / (n - 1);
+  auto jitter = [](double x, double z) {
+    return 0.15 * cell * std::sin(12.9898 * std::round(x / cell) + 78.233 * std::round(z / cell)) *
+           std::cos(43758.5453 * std::round(x / cell) - 9.1 * std::round(z / cell));
+  };
+  write_obj(dir / "calm.obj", make_height_grid(n, 1.0, jitter));
+  write_obj(dir / "wave.obj", make_height_grid(n, 1.0, [&](double x, double z) {
+              return jitter(x, z) + 0.2 * std::exp(-(x * x + z * z) / 0.04);
+            }));
+  const std::array<double, 3> ridge{1, 0, 0}, valley{0, 1, 0};
+  auto args = [&](const std::string& mesh) {
+    return std::vector<std::string>{"--water", (dir / mesh).string(), "--set", "outline.enabled=false",
+                                    "--set", "water.bright=" + color(kBright), "--set",
+                                    "water.medium=" + color(kMedium), "--set", "water.dark=" + color(kDark),
+                                    "--set", "camera.location=[0, 2.5, 2.5]", "--set",
+                                    "camera.look_at=[0, 0, 0]", "--set", "render.width=96", "--set",
+                                    "render.height=72"} +
+           opaque_flat_water() +
+           std::vector<std::string>{"--set", "flow.enabled=true", "--set", "flow.ridge_color=" + color(ridge),
+                                    "--set", "flow.valley_color=" + color(valley)};
+  };
+  auto count = [](const Image& img, const std::array<double, 3>& c) {
+    const Rgb8 want = to_rgb8(c[0], c[1], c[2]);
+    int k = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) k += near(img.at(x, y), want, 1);
+    return k;
+  };
+  const Image calm = render_scene(dir, "calm", args("calm.obj"));
+  const int water = count(calm, kBright) + count(calm, kMedium) + count(calm, kDark);
+  EXPECT_GT(water, 3000);
+  EXPECT_EQ(count(calm, kMedium), water) << "every pixel of calm water in the middle band";
+  EXPECT_EQ(count(calm, ridge) + count(calm, valley), 0) << "no flow on calm water";
+  const Image wave = render_scene(dir, "wave", args("wave.obj"));
+  EXPECT_GT(count(wave, kBright), 20) << "the wave's slope facing the light";
+  EXPECT_GT(count(wave, kDark), 20) << "the slope facing away";
+  EXPECT_GT(count(wave, ridge), 20) << "its crest";
+}
+
 // A reflected ray that misses every object sees the flat sky colour, not the background: on
 // black water that reflects fully, the water shows the sky everywhere but where it reflects
 // the ball.
