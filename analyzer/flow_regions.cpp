@@ -1,7 +1,6 @@
 // Water-flow regions; the field, its threshold and the steps are stated in flow_regions.hpp.
 #include "analyzer/flow_regions.hpp"
 
-#include "analyzer/border_distance.hpp"
 #include "analyzer/curvature_smoothing.hpp"
 #include "analyzer/disjoint_sets.hpp"
 #include "analyzer/flow_coherence.hpp"
@@ -34,16 +33,17 @@ namespace toonwater {
 //   of a level set's surface, whose wavelength is about two cells;
 // - the walls' strip, 3 edge lengths and a ramp as wide again, covers the 2–3 cells over which
 //   a Mantaflow tank's surface droops into its walls;
-// - the border's strip, 1 edge length and a ramp of 2, covers the fillet into a column's side
-//   (wider ones ate a wake's bow wave beside its sphere);
+// - nothing fades along the free surface's other borders: the crest of a bore or a wave beside
+//   its steep front is what an animator draws at an impact (a fade over 1-3 edge lengths there
+//   lost the dam break's bore as it hit the sphere);
 // - 6 regions are what an animator draws on one water surface: the impact, the crown, a few
 //   rings and waves.
 // With paper, the value that labels about the same share of the Mantaflow basin as the paper's
 // rule (T = 0.01/ℓ²) did at its resolution, and nothing else (the shading normals are smoothed
 // alike: they are the scene's, whatever the criterion).
 FlowDefaults flow_defaults(FlowCriterion criterion) {
-  if (criterion == FlowCriterion::mean) return {2.0, 0.8, 1.5, 0.002, 3.0, 3.0, 6.0, 1.0, 3.0, 6};
-  return {30.0, 0.0, 1.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0};
+  if (criterion == FlowCriterion::mean) return {2.0, 0.8, 1.5, 0.002, 3.0, 3.0, 6.0, 6};
+  return {30.0, 0.0, 1.5, 0.0, 0.0, 0.0, 0.0, 0};
 }
 
 int smoothing_steps_for_radius(double radius_in_edge_lengths) {
@@ -326,19 +326,9 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topo
   const std::vector<double> wall_weight =
       wall_weights(mesh, options.up, walls, defaults.wall_near * flow.median_edge_length,
                    defaults.wall_far * flow.median_edge_length);
-  // The free surface's border (step 2): the fillets where it turns into walls and objects.
-  const std::vector<double> from_border =
-      defaults.border_far > 0.0 ? border_distance(mesh, vertex_faces, member) : std::vector<double>{};
-  auto border_weight = [&](std::size_t v) {
-    if (from_border.empty()) return 1.0;
-    const double near = defaults.border_near * flow.median_edge_length,
-                 far = defaults.border_far * flow.median_edge_length;
-    const double x = std::clamp((from_border[v] - near) / (far - near), 0.0, 1.0);
-    return x * x * (3.0 - 2.0 * x);
-  };
   if (flow.threshold > 0.0 && std::isfinite(flow.threshold)) {
     for (std::size_t v = 0; v < n; ++v) {
-      field[v] = member[v] ? field[v] / flow.threshold * wall_weight[v] * border_weight(v) : 0.0;
+      field[v] = member[v] ? field[v] / flow.threshold * wall_weight[v] : 0.0;
       if (!std::isfinite(field[v])) field[v] = 0.0;
     }
   } else {

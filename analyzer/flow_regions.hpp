@@ -27,11 +27,9 @@
 //      deviation `smoothing_radius` edge lengths (one step spreads it by ℓ²/3 per axis on a
 //      regular mesh: steps = 3 r²), which damps the vertex-to-vertex noise of the cotangent
 //      curvature on marching-cubes meshes at the scale of the cells, on any resolution;
-//   2. borders: the field is faded to 0 within a few edge lengths of the walls of a closed
-//      volume (tank_walls.hpp), where the meniscus and the marching cubes' rounding curve the
-//      water like a crest over a strip as wide as the droop, and, more narrowly, of the free
-//      surface's border along the surface (border_distance.hpp): the fillet where it turns
-//      down into the side of a column, a steep front or the meniscus around an object;
+//   2. the tank's walls: the field is faded to 0 within a few edge lengths of the walls of a
+//      closed volume (tank_walls.hpp), where the meniscus and the marching cubes' rounding
+//      curve the water like a crest over a strip as wide as the droop;
 //   3. over a sequence, blending with the previous frame (flow_coherence.hpp);
 //   4. fading: a region (connected free-surface vertices with s >= 1, or s <= −1) whose area is
 //      below A_min (a speck), whose peak |s| is barely 1, or that is not among the
@@ -84,7 +82,6 @@ struct FlowDefaults {
   double min_region_relative;  // A_min / L²
   double noise_multiple;       // z in T >= z σ; 0: no noise floor
   double wall_near, wall_far;  // the walls' fade, edge lengths from a wall; 0, 0: none
-  double border_near, border_far;  // the fade along the free surface's border, likewise
   std::size_t max_regions;     // drawn regions at most; 0: no limit
 };
 FlowDefaults flow_defaults(FlowCriterion criterion);

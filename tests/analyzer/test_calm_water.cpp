@@ -1,7 +1,6 @@
-// Calm water stays calm: the noise floor of the flow field, the tank's walls, the free surface's
-// border and the salience limit (flow_regions.hpp, noise_floor.hpp, tank_walls.hpp,
-// border_distance.hpp), on closed tanks whose free surface carries known noise and waves.
-#include "analyzer/border_distance.hpp"
+// Calm water stays calm: the noise floor of the flow field, the tank's walls and the salience
+// limit (flow_regions.hpp, noise_floor.hpp, tank_walls.hpp), on closed tanks whose free surface
+// carries known noise and waves.
 #include "analyzer/flow_regions.hpp"
 #include "analyzer/noise_floor.hpp"
 #include "analyzer/tank_walls.hpp"
@@ -165,18 +164,6 @@ TEST(TankWalls, AClosedTanksSidesAreWallsAndWeighNothingNearThem) {
   for (Vec3& p : bulge.positions)
     if (p.x() > 0.99 && std::abs(p.y()) < 0.2) p.x() += 0.3;
   EXPECT_FALSE(find_tank_walls(bulge, Axis::z, 0.1).wall[1]);
-}
-
-TEST(BorderDistance, IsTheDistanceAlongTheSurfaceToTheNearestNonMember) {
-  const TriangleMesh m = plane(31);  // unit steps, x and y in [−15, 15]
-  std::vector<std::uint8_t> member(m.positions.size());
-  for (std::size_t v = 0; v < member.size(); ++v) member[v] = m.positions[v].x() > -10.5;
-  const std::vector<double> d = border_distance(m, curvature_of(m).topology.vertex_faces, member);
-  for (std::size_t v = 0; v < member.size(); ++v) {
-    const double straight = m.positions[v].x() + 11.0;
-    if (!member[v]) EXPECT_EQ(d[v], 0.0);
-    else EXPECT_NEAR(d[v], straight, 1e-9) << v;  // along the grid lines, exact
-  }
 }
 
 // Twelve crests of growing height: at most max_regions are drawn, and they are the tallest.
