@@ -1,0 +1,177 @@
+// Calm water from straight above; what is measured is stated in overhead_study.hpp.
+#include "report/overhead_study.hpp"
+
+#include "analyzer/disjoint_sets.hpp"
+#include "povgen/povgen.hpp"
+#include "povgen/render.hpp"
+#include "povgen/scene_writer.hpp"
+#include "povgen/sequence.hpp"
+#include "report/image.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace toonwater::report {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The classes of a pixel, in the pure colours the scene draws them in.
+enum Class : std::int8_t { other = -1, bright, medium, dark, ridge, valley };
+constexpr std::array<povgen::Color, 5> kColours{{{1, 1, 0}, {0, 0, 1}, {0, 1, 1}, {1, 0, 0}, {0, 1, 0}}};
+
+std::vector<std::int8_t> classify(const Image& image) {
+  std::vector<std::int8_t> classes(static_cast<std::size_t>(image.width) * image.height, other);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const auto p = image.pixel(x, y);
+      for (std::size_t c = 0; c < kColours.size(); ++c)
+        if (std::abs(p[0] - kColours[c][0]) + std::abs(p[1] - kColours[c][1]) +
+                std::abs(p[2] - kColours[c][2]) < 0.1f)
+          classes[static_cast<std::size_t>(y) * image.width + x] = static_cast<std::int8_t>(c);
+    }
+  return classes;
+}
+
+// The sizes of the 4-connected pieces of each class, per pixel (0 for `other`).
+std::vector<std::size_t> piece_sizes(const std::vector<std::int8_t>& classes, int width, int height) {
+  const std::size_t n = classes.size();
+  DisjointSets pieces(n);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const auto i = static_cast<std::int32_t>(y * width + x);
+      if (classes[i] == other) continue;
+      if (x + 1 < width && classes[i + 1] == classes[i]) pieces.join(i, i + 1);
+      if (y + 1 < height && classes[i + width] == classes[i]) pieces.join(i, i + width);
+    }
+  std::vector<std::size_t> size(n, 0), of_pixel(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (classes[i] != other) ++size[pieces.root(static_cast<std::int32_t>(i))];
+  for (std::size_t i = 0; i < n; ++i)
+    if (classes[i] != other) of_pixel[i] = size[pieces.root(static_cast<std::int32_t>(i))];
+  return of_pixel;
+}
+
+}  // namespace
+
+std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
+                                              const OverheadOptions& options,
+                                              const fs::path& work_dir) {
+  const int w = static_cast<int>(options.up);
+  const int u = w == 0 ? 1 : 0, v = w == 2 ? 1 : 2;  // the picture's horizontal, vertical axes
+  const double across = options.tank_max[u] - options.tank_min[u];
+  const double down = options.tank_max[v] - options.tank_min[v];
+  // The tank and a margin of 2 % fill the picture; from 50 times its size away, a pixel is the
+  // same size all over the water to 0.2 %.
+  const double span = 1.04 * std::max(across, down * options.width / options.height);
+  const double pixel = span / options.width;
+  const double distance = 50.0 * span;
+  Vec3 centre = 0.5 * (options.tank_min + options.tank_max);
+  centre[w] = options.tank_max[w];
+  Vec3 location = centre;
+  location[w] += distance;
+  location[v] -= 1e-4 * distance;  // not exactly overhead: POV-Ray's sky vector must not be the view
+
+  povgen::SceneConfig config;
+  config.camera.location = location;
+  config.camera.look_at = centre;
+  config.camera.angle = 2.0 * std::atan(0.5 * span / distance) * 180.0 / std::numbers::pi;
+  config.render.width = options.width;
+  config.render.height = options.height;
+  config.render.antialias = false;
+  config.render.frames = options.frames;
+  config.render.background = {0, 0, 0};
+  config.water.bright = kColours[bright];
+  config.water.medium = kColours[medium];
+  config.water.dark = kColours[dark];
+  config.water.ka = 0.0;
+  config.water.kd = 1.0;
+  config.water.ks = 0.0;
+  config.water.transmit = 0.0;
+  config.water.reflection = 0.0;
+  config.outline.enabled = false;
+  config.flow.ridge_color = kColours[ridge];
+  config.flow.valley_color = kColours[valley];
+  for (const std::string& mesh : options.objects) {
+    povgen::ObjectConfig object;
+    object.name = "object" + std::to_string(config.objects.size());
+    object.mesh = mesh;
+    object.base_dir = fs::current_path();
+    object.color = {1, 0, 1};
+    object.outline = false;
+    object.reflection = povgen::ReflectionTarget::none;
+    config.objects.push_back(object);
+  }
+
+  povgen::PovgenRequest request;
+  request.water_pattern = pattern;
+  request.base_dir = fs::current_path();
+  request.up = options.up;
+  request.out_dir = work_dir / "overhead";
+  povgen::generate_scene(config, request, {}, nullptr);
+  povgen::RenderRequest render;
+  render.scene_dir = request.out_dir;
+  render.jobs = 2;
+  const povgen::RenderReport rendered = povgen::render_frames(render, {});
+  if (!rendered.failures.empty())
+    throw std::runtime_error("overhead study: frame " + std::to_string(rendered.failures[0].frame) +
+                             ": " + rendered.failures[0].message);
+
+  povgen::Sequence sequence = povgen::find_sequence(pattern, fs::current_path());
+  if (options.frames)
+    std::erase_if(sequence.frames, [&](const auto& f) {
+      return f.first < options.frames->first || f.first > options.frames->last;
+    });
+  povgen::SceneLayout layout;
+  layout.animation = sequence.frames.size() > 1;
+  layout.last_frame = sequence.frames.rbegin()->first;
+  const double cell_pixels = options.cell * options.cell / (pixel * pixel);
+  const double left = centre[u] - 0.5 * span, top = centre[v] + 0.5 * pixel * options.height;
+  std::vector<OverheadFrame> frames;
+  std::vector<std::int8_t> previous;
+  for (const auto& [frame, path] : sequence.frames) {
+    const Image image = read_rgb(request.out_dir / povgen::frame_image_name(layout, frame));
+    const std::vector<std::int8_t> classes = classify(image);
+    const std::vector<std::size_t> size = piece_sizes(classes, image.width, image.height);
+    OverheadFrame f;
+    f.frame = frame;
+    std::size_t changed = 0, contrast = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * image.width + x;
+        const std::int8_t c = classes[i];
+        if (c == other) continue;
+        ++f.water_pixels;
+        contrast += c == bright || c == dark;
+        if (!previous.empty() && previous[i] != other && previous[i] != c) ++changed;
+        if (c == ridge || c == valley) {
+          ++f.flow_pixels;
+          const double px = left + (x + 0.5) * pixel, py = top - (y + 0.5) * pixel;
+          const double to_wall = std::min({px - options.tank_min[u], options.tank_max[u] - px,
+                                           py - options.tank_min[v], options.tank_max[v] - py});
+          f.wall_flow_pixels += to_wall < 4.0 * options.cell;
+        }
+      }
+    // Pieces counted once, at their root pixel's class: by the pixels over their size.
+    double flow_pieces = 0, band_specks = 0;
+    for (std::size_t i = 0; i < classes.size(); ++i) {
+      const std::int8_t c = classes[i];
+      if (c == other) continue;
+      const double share = 1.0 / static_cast<double>(size[i]);
+      if ((c == ridge || c == valley) && static_cast<double>(size[i]) >= cell_pixels) flow_pieces += share;
+      if (c != ridge && c != valley && static_cast<double>(size[i]) < cell_pixels) band_specks += share;
+    }
+    f.flow_pieces = static_cast<std::size_t>(std::lround(flow_pieces));
+    f.band_specks = static_cast<std::size_t>(std::lround(band_specks));
+    f.changed_share = f.water_pixels ? static_cast<double>(changed) / static_cast<double>(f.water_pixels) : 0.0;
+    f.contrast_share = f.water_pixels ? static_cast<double>(contrast) / static_cast<double>(f.water_pixels) : 0.0;
+    frames.push_back(f);
+    previous = classes;
+  }
+  return frames;
+}
+
+}  // namespace toonwater::report
