@@ -9,6 +9,7 @@
 #include "povgen/render.hpp"
 #include "povgen/scene_writer.hpp"
 #include "povgen/sequence.hpp"
+#include "report/study_scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -233,19 +234,8 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
     SequenceFlowStudy study;
     study.criterion = criterion == FlowCriterion::mean ? "mean" : "paper";
     config.flow.criterion = criterion;
-    povgen::PovgenRequest request;
-    request.water_pattern = pattern;
-    request.base_dir = fs::current_path();
-    request.up = up;
-    request.out_dir = work_dir / ("flow_" + study.criterion);
-    povgen::generate_scene(config, request, {}, nullptr);
-    povgen::RenderRequest render;
-    render.scene_dir = request.out_dir;
-    render.jobs = 2;
-    const povgen::RenderReport rendered = povgen::render_frames(render, {});
-    if (!rendered.failures.empty())
-      throw std::runtime_error("flow study: frame " + std::to_string(rendered.failures[0].frame) +
-                               ": " + rendered.failures[0].message);
+    const fs::path scene_dir = work_dir / ("flow_" + study.criterion);
+    write_and_render(config, pattern, up, scene_dir, "flow study");
     povgen::SceneLayout layout;
     layout.animation = sequence.frames.size() > 1;
     layout.last_frame = sequence.frames.rbegin()->first;
@@ -254,7 +244,7 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
     double speck_pixels = 0;
     for (const auto& [frame, path] : sequence.frames) {
       const FlowMask mask =
-          flow_mask(read_rgb(request.out_dir / povgen::frame_image_name(layout, frame)),
+          flow_mask(read_rgb(scene_dir / povgen::frame_image_name(layout, frame)),
                     {1, 0, 0}, {0, 1, 0});
       const FlowPictureMetrics m = measure_flow_mask(mask, pixels_per_cell);
       ++study.frames;
@@ -274,7 +264,7 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
     std::advance(middle, sequence.frames.size() / 2);
     study.picture = picture_dir / ("flow_" + study.criterion + ".png");
     fs::create_directories(picture_dir);
-    fs::copy_file(request.out_dir / povgen::frame_image_name(layout, middle->first), study.picture,
+    fs::copy_file(scene_dir / povgen::frame_image_name(layout, middle->first), study.picture,
                   fs::copy_options::overwrite_existing);
     studies.push_back(std::move(study));
   }

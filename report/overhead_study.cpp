@@ -2,17 +2,15 @@
 #include "report/overhead_study.hpp"
 
 #include "analyzer/disjoint_sets.hpp"
-#include "povgen/povgen.hpp"
-#include "povgen/render.hpp"
 #include "povgen/scene_writer.hpp"
 #include "povgen/sequence.hpp"
 #include "report/image.hpp"
+#include "report/study_scene.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
-#include <stdexcept>
 
 namespace toonwater::report {
 namespace {
@@ -106,19 +104,8 @@ std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
     config.objects.push_back(object);
   }
 
-  povgen::PovgenRequest request;
-  request.water_pattern = pattern;
-  request.base_dir = fs::current_path();
-  request.up = options.up;
-  request.out_dir = work_dir / "overhead";
-  povgen::generate_scene(config, request, {}, nullptr);
-  povgen::RenderRequest render;
-  render.scene_dir = request.out_dir;
-  render.jobs = 2;
-  const povgen::RenderReport rendered = povgen::render_frames(render, {});
-  if (!rendered.failures.empty())
-    throw std::runtime_error("overhead study: frame " + std::to_string(rendered.failures[0].frame) +
-                             ": " + rendered.failures[0].message);
+  const fs::path scene_dir = work_dir / "overhead";
+  write_and_render(config, pattern, options.up, scene_dir, "overhead study");
 
   povgen::Sequence sequence = povgen::find_sequence(pattern, fs::current_path());
   if (options.frames)
@@ -133,7 +120,7 @@ std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
   std::vector<OverheadFrame> frames;
   std::vector<std::int8_t> previous;
   for (const auto& [frame, path] : sequence.frames) {
-    const Image image = read_rgb(request.out_dir / povgen::frame_image_name(layout, frame));
+    const Image image = read_rgb(scene_dir / povgen::frame_image_name(layout, frame));
     const std::vector<std::int8_t> classes = classify(image);
     const std::vector<std::size_t> size = piece_sizes(classes, image.width, image.height);
     OverheadFrame f;

@@ -5,6 +5,7 @@
 #include "analyzer/noise_floor.hpp"
 #include "analyzer/tank_walls.hpp"
 #include "tests/analyzer/curvature_test_util.hpp"
+#include "tests/analyzer/flow_test_util.hpp"
 #include "tests/analyzer/water_meshes.hpp"
 
 #include <gtest/gtest.h>
@@ -32,17 +33,6 @@ double jitter(double x, double y) {
   return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1.0p-52 - 1.0;
 }
 
-struct Flow {
-  Curvature curvature;
-  FlowRegions regions;
-};
-
-Flow flow_of(const TriangleMesh& mesh, FlowOptions options = {}) {
-  options.up = Axis::z;
-  Flow f{curvature_of(mesh), {}};
-  f.regions = find_flow_regions(f.curvature.mesh, f.curvature.topology, f.curvature.field, options);
-  return f;
-}
 
 std::size_t labelled(const FlowRegions& r) { return r.ridge_vertices + r.valley_vertices; }
 

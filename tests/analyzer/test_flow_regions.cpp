@@ -2,6 +2,7 @@
 // are scale- and resolution-free, ripple rings, specks, and the free surface of closed volumes.
 #include "analyzer/flow_regions.hpp"
 #include "tests/analyzer/curvature_test_util.hpp"
+#include "tests/analyzer/flow_test_util.hpp"
 #include "tests/analyzer/water_meshes.hpp"
 
 #include <gtest/gtest.h>
@@ -12,18 +13,6 @@
 namespace toonwater::test {
 namespace {
 
-struct Flow {
-  Curvature curvature;
-  FlowRegions regions;
-};
-
-Flow flow_of(const TriangleMesh& mesh, FlowOptions options = {}) {
-  options.up = Axis::z;
-  Flow f{curvature_of(mesh), {}};
-  f.regions = find_flow_regions(f.curvature.mesh, f.curvature.topology,
-                                f.curvature.field, options);
-  return f;
-}
 
 std::size_t nearest_vertex(const TriangleMesh& m, double x, double y) {
   std::size_t best = 0;
