@@ -77,8 +77,11 @@ double fade_factor(double area, double peak, double min_area, double salience,
       min_area > 0.0 ? std::clamp((area - min_area) / min_area, 0.0, 1.0) : 1.0;
   const double by_peak =
       min_area > 0.0 ? std::clamp((peak - 1.0) / peak_ramp, 0.0, 1.0) : 1.0;
+  // A cut of +inf (saliences beyond the doubles) leaves no region, as any larger one would.
   const double by_salience =
-      salience_cut > 0.0 ? std::clamp((salience - salience_cut) / salience_cut, 0.0, 1.0) : 1.0;
+      !(salience_cut > 0.0)       ? 1.0
+      : std::isinf(salience_cut)  ? (std::isinf(salience) ? 1.0 : 0.0)
+                                  : std::clamp((salience - salience_cut) / salience_cut, 0.0, 1.0);
   return hidden + (1.0 - hidden) * std::min({by_area, by_peak, by_salience});
 }
 
