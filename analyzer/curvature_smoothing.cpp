@@ -20,31 +20,39 @@
 #include <cmath>
 #include <memory>
 #include <span>
+#include <type_traits>
 
 namespace toonwater {
 namespace {
 
 // The arrays of a smoothing, by plain pointers: through the unique_ptrs the compiler loaded the
 // addresses again for every corner. A vertex's weight is its area where it is a member and 0
-// elsewhere; its term, that weight times its value.
+// elsewhere; its term, that weight times its value (a number, or a vector smoothed whole).
+template <class Value>
 struct SmoothingArrays {
   const Triangle* triangles;
   const double* weight;
-  const double* term;   // the values the faces read, weighted
-  double* term_sum;     // Σ over v's faces of their corners' terms
+  const Value* term;    // the values the faces read, weighted
+  Value* term_sum;      // Σ over v's faces of their corners' terms
   double* weight_sum;   // Σ over v's faces of their corners' weights: the same every step
 };
 
+template <class Value>
+Value zero() {
+  if constexpr (std::is_same_v<Value, Vec3>) return Vec3::Zero();
+  else return 0.0;
+}
+
 // One face's corners' terms (and, in the first step, weights) added to those of its corners in
 // [low, low + size); the others are listed in `shared` (first step) or left to the gather.
-template <bool with_weights>
-void add_faces(const SmoothingArrays& a, std::size_t begin, std::size_t end, std::int32_t low,
+template <bool with_weights, class Value>
+void add_faces(const SmoothingArrays<Value>& a, std::size_t begin, std::size_t end, std::int32_t low,
                std::uint32_t size, std::span<std::uint8_t> is_shared,
                std::vector<std::int32_t>& shared) {
   for (std::size_t f = begin; f < end; ++f) {
     const Triangle& t = a.triangles[f];
     if (has_repeated_corner(t)) continue;  // not among the vertices' faces
-    const double term = a.term[t[0]] + a.term[t[1]] + a.term[t[2]];
+    const Value term = a.term[t[0]] + a.term[t[1]] + a.term[t[2]];
     double weight = 0.0;
     if constexpr (with_weights) weight = a.weight[t[0]] + a.weight[t[1]] + a.weight[t[2]];
     for (const std::int32_t v : t) {
@@ -61,24 +69,24 @@ void add_faces(const SmoothingArrays& a, std::size_t begin, std::size_t end, std
   }
 }
 
-}  // namespace
-
-void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
-                         std::span<const double> vertex_area, std::span<const std::uint8_t> member,
-                         std::vector<double>& values, int steps) {
+template <class Value>
+void smooth_values(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
+                   std::span<const double> vertex_area, std::span<const std::uint8_t> member,
+                   std::vector<Value>& values, int steps) {
   if (steps <= 0) return;
   const std::size_t n = values.size(), face_count = mesh.triangles.size();
   // Left uninitialised by new: the threads that use them first fill them.
-  std::unique_ptr<double[]> weight(new double[n]), term(new double[n]), term_sum(new double[n]),
-      weight_sum(new double[n]);
-  const SmoothingArrays a{mesh.triangles.data(), weight.get(), term.get(), term_sum.get(),
-                          weight_sum.get()};
+  std::unique_ptr<double[]> weight(new double[n]), weight_sum(new double[n]);
+  std::unique_ptr<Value[]> term(new Value[n]), term_sum(new Value[n]);
+  const SmoothingArrays<Value> a{mesh.triangles.data(), weight.get(), term.get(), term_sum.get(),
+                                 weight_sum.get()};
   const std::size_t workers = worker_count(n);
   parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       weight[v] = member[v] ? vertex_area[v] : 0.0;
-      term[v] = member[v] ? vertex_area[v] * values[v] : 0.0;  // not 0 · value: it may be inf
-      term_sum[v] = weight_sum[v] = 0.0;
+      term[v] = member[v] ? Value(vertex_area[v] * values[v]) : zero<Value>();  // not 0 · value: it may be inf
+      term_sum[v] = zero<Value>();
+      weight_sum[v] = 0.0;
     }
   });
   const std::size_t face_chunks = worker_count(face_count);
@@ -102,7 +110,8 @@ void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_fac
     const std::vector<std::int32_t>& shared = chunk_shared[0];
     parallel_chunks(shared.size(), worker_count(shared.size()), [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i) {
-        double term_total = 0.0, weight_total = 0.0;
+        Value term_total = zero<Value>();
+        double weight_total = 0.0;
         for (const std::int32_t f : vertex_faces.of(shared[i])) {
           const Triangle& t = mesh.triangles[f];
           term_total += a.term[t[0]] + a.term[t[1]] + a.term[t[2]];
@@ -117,11 +126,25 @@ void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_fac
       for (std::size_t v = begin; v < end; ++v) {
         if (member[v] && weight_sum[v] > 0.0) values[v] = term_sum[v] / weight_sum[v];
         if (last) continue;
-        term[v] = member[v] ? vertex_area[v] * values[v] : 0.0;
-        term_sum[v] = 0.0;
+        term[v] = member[v] ? Value(vertex_area[v] * values[v]) : zero<Value>();
+        term_sum[v] = zero<Value>();
       }
     });
   }
+}
+
+}  // namespace
+
+void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
+                         std::span<const double> vertex_area, std::span<const std::uint8_t> member,
+                         std::vector<double>& values, int steps) {
+  smooth_values(mesh, vertex_faces, vertex_area, member, values, steps);
+}
+
+void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
+                         std::span<const double> vertex_area, std::span<const std::uint8_t> member,
+                         std::vector<Vec3>& values, int steps) {
+  smooth_values(mesh, vertex_faces, vertex_area, member, values, steps);
 }
 
 void smooth_curvature(const TriangleMesh& mesh, const VertexFaces& vertex_faces,

@@ -22,6 +22,10 @@ namespace toonwater {
 void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
                          std::span<const double> vertex_area, std::span<const std::uint8_t> member,
                          std::vector<double>& values, int steps);
+// The same for a field of vectors, each smoothed whole (as its three components would be).
+void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
+                         std::span<const double> vertex_area, std::span<const std::uint8_t> member,
+                         std::vector<Vec3>& values, int steps);
 
 // K and H smoothed as above over the vertices whose curvature is not undefined, then
 // k1,2 = H ± sqrt(max(H² − K, 0)).

@@ -231,15 +231,18 @@ std::vector<Vec3> shading_normals(const TriangleMesh& mesh, const VertexFaces& v
   std::vector<std::uint8_t> defined(n);
   for (std::size_t v = 0; v < n; ++v) defined[v] = curvature.status[v] != CurvatureStatus::undefined;
   std::vector<Vec3> normal = curvature.normal;
-  std::vector<double> raw(n), component(n);
+  smooth_vertex_field(mesh, vertex_faces, curvature.area, defined, normal, steps);
+  const double gain =
+      smoothing_noise_gain(mesh, vertex_faces, curvature.area, defined, member, steps);
+  std::vector<double> raw(n), smoothed(n);
   double noise_squares = 0.0;
   for (int axis = 0; axis < 3; ++axis) {
-    for (std::size_t v = 0; v < n; ++v) raw[v] = component[v] = curvature.normal[v][axis];
-    smooth_vertex_field(mesh, vertex_faces, curvature.area, defined, component, steps);
-    for (std::size_t v = 0; v < n; ++v) normal[v][axis] = component[v];
     if (axis == u) continue;
-    const double floor =
-        smoothed_noise_floor(mesh, vertex_faces, curvature.area, member, raw, component, steps);
+    for (std::size_t v = 0; v < n; ++v) {
+      raw[v] = curvature.normal[v][axis];
+      smoothed[v] = normal[v][axis];
+    }
+    const double floor = smoothed_noise_floor(raw, smoothed, member, gain);
     noise_squares += 0.5 * floor * floor;
   }
   noise = std::sqrt(noise_squares);
@@ -309,8 +312,9 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topo
   smooth_vertex_field(mesh, vertex_faces, curvature.area, member, field, steps);
 
   // The threshold, held above the noise floor unless given.
-  flow.noise_floor =
-      smoothed_noise_floor(mesh, vertex_faces, curvature.area, member, raw, field, steps);
+  flow.noise_floor = smoothed_noise_floor(
+      raw, field, member,
+      smoothing_noise_gain(mesh, vertex_faces, curvature.area, member, member, steps));
   flow.sequence_noise_floor =
       coherence ? coherence->sequence_noise_floor(flow.noise_floor) : flow.noise_floor;
   const double c = options.threshold_relative.value_or(defaults.threshold_relative);

@@ -110,5 +110,24 @@ TEST(CurvatureSmoothing, EqualsTheGatherOverEachVertexsFaces) {
   }
 }
 
+// A vector field smoothed whole is each of its components smoothed alone, bit for bit.
+TEST(CurvatureSmoothing, VectorsAreSmoothedAsTheirComponents) {
+  std::mt19937 rng(9);
+  TriangleMesh mesh = make_saddle(101, 0.5, jittered).mesh;
+  std::shuffle(mesh.triangles.begin(), mesh.triangles.end(), rng);
+  const Curvature c = curvature_of(mesh);
+  std::vector<std::uint8_t> member(mesh.positions.size());
+  for (auto& m : member) m = rng() % 5 != 0;
+  std::vector<Vec3> vectors = c.field.normal;
+  smooth_vertex_field(c.mesh, c.topology.vertex_faces, c.field.area, member, vectors, 7);
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double> component(vectors.size());
+    for (std::size_t v = 0; v < component.size(); ++v) component[v] = c.field.normal[v][axis];
+    smooth_vertex_field(c.mesh, c.topology.vertex_faces, c.field.area, member, component, 7);
+    for (std::size_t v = 0; v < component.size(); ++v)
+      ASSERT_EQ(vectors[v][axis], component[v]) << "vertex " << v << ", axis " << axis;
+  }
+}
+
 }  // namespace
 }  // namespace toonwater::test
