@@ -20,8 +20,9 @@ double median_length(std::vector<double>& squared_lengths) {
   return std::sqrt(kth_smallest(squared_lengths, squared_lengths.size() / 2));
 }
 
-double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {
-  const EdgeSample sample(mesh.triangles.size(), max_samples);
+double median_edge_length(std::span<const Vec3> positions, std::span<const Triangle> triangles,
+                          std::size_t max_samples) {
+  const EdgeSample sample(triangles.size(), max_samples);
   // The sampled edges' lengths chunk by chunk (each a cache miss or two), then joined in order.
   const std::size_t workers = worker_count(sample.count(), 4096);
   std::vector<std::vector<double>> chunk_lengths(workers);
@@ -31,7 +32,7 @@ double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples) {
     std::vector<double> lengths;
     lengths.reserve(end - begin);
     for (std::size_t i = begin; i < end; ++i) {
-      const double squared_length = EdgeSample::squared_length(mesh.positions, mesh.triangles, i * sample.stride());
+      const double squared_length = EdgeSample::squared_length(positions, triangles, i * sample.stride());
       if (EdgeSample::counts(squared_length)) lengths.push_back(squared_length);
     }
     chunk_lengths[chunk] = std::move(lengths);

@@ -47,6 +47,11 @@ class EdgeSample {
 // 0 if there are none.
 double median_length(std::vector<double>& squared_lengths);
 
-double median_edge_length(const TriangleMesh& mesh, std::size_t max_samples = edge_length_samples);
+double median_edge_length(std::span<const Vec3> positions, std::span<const Triangle> triangles,
+                          std::size_t max_samples = edge_length_samples);
+inline double median_edge_length(const TriangleMesh& mesh,
+                                 std::size_t max_samples = edge_length_samples) {
+  return median_edge_length(mesh.positions, mesh.triangles, max_samples);
+}
 
 }  // namespace toonwater

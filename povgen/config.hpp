@@ -94,6 +94,10 @@ struct WaterConfig {
   // The render mesh is simplified while no surface point moves more than this many pixels on
   // screen (povgen/simplify.hpp); 0 writes the full mesh.
   double simplify = 0.5;
+  // Patches of a band or flow region smaller than a disc of this radius in pixels, or than the
+  // shading's smoothing scale, take the colour around them (povgen/toon_islands.hpp); 0 keeps
+  // every patch.
+  double min_patch = 2.0;
 };
 
 // pixels: of an image render.width wide, each shell vertex offset by the size of a pixel at its

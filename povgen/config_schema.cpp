@@ -312,7 +312,9 @@ const Section<WaterConfig>& water_section() {
            Keyword<WaterBody>{{{"opaque", WaterBody::opaque}, {"clear", WaterBody::clear}}},
            "a closed liquid volume: see-through free surface over an opaque body, or all clear"),
        key("simplify", &C::simplify, Number{0.0, 100.0},
-           "simplify the render mesh within this many pixels on screen (0: full mesh)")},
+           "simplify the render mesh within this many pixels on screen (0: full mesh)"),
+       key("min_patch", &C::min_patch, Number{0.0, 100.0},
+           "smallest patch of a band or flow region drawn, radius in pixels (0: every patch)")},
       [](C& c, const std::set<std::string>& given) {
         if (c.t_medium >= c.t_bright)
           throw key_error("water.t_medium", "must be less than water.t_bright");

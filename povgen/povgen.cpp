@@ -12,6 +12,7 @@
 #include "analyzer/vertex_normals.hpp"
 #include "analyzer/weld.hpp"
 #include "povgen/axes.hpp"
+#include "povgen/toon_islands.hpp"
 #include "povgen/frame_cache.hpp"
 #include "povgen/mesh2_writer.hpp"
 #include "povgen/scene_directory.hpp"
@@ -168,11 +169,29 @@ std::vector<TextureCoordinate> texture_coordinates(const PreparedSurface& surfac
              : value_coordinates(surface.view_values, surface.view_range);
 }
 
+std::vector<TextureCoordinate> water_coordinates(const PreparedSurface& surface,
+                                                 const LightGeometry& light,
+                                                 const SceneLayout& layout) {
+  std::vector<TextureCoordinate> uv = texture_coordinates(surface, light);
+  if (!surface.view_values.empty()) return uv;  // a curvature view shows the values as they are
+  const SceneConfig& config = *layout.config;
+  const auto [t_bright, t_medium] = water_thresholds(layout);
+  ToonLimits limits{{band_coordinate(t_medium), band_coordinate(t_bright)}, std::nullopt};
+  if (!surface.flow_field.empty() && config.flow.style != FlowStyle::lines)
+    limits.flow = {flow_coordinate(-1.0), flow_coordinate(1.0)};
+  if (!(config.water.min_patch > 0.0)) return uv;
+  IslandLimits island;
+  island.radius_pixels = config.water.min_patch;
+  merge_toon_islands(surface.mesh, layout.camera.location,
+                     pixel_widths(surface.mesh, layout.camera, config.render.width), limits,
+                     island, uv);
+  return uv;
+}
+
 std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
-                         const LightGeometry& light, std::span<const double> shell_offsets,
+                         std::span<const TextureCoordinate> uv, std::span<const double> shell_offsets,
                          const FaceTextures* textures, const std::vector<bool>* shell_faces) {
   std::string text = "// Written by toonwater povgen: meshes for scene.pov.\n";
-  const auto uv = texture_coordinates(surface, light);
   append_mesh2(text, prefix + "_mesh", surface.mesh, uv, textures);
   if (!shell_offsets.empty())
     append_shell_mesh2(text, prefix + "_shell", surface.mesh, shell_offsets, shell_faces);
@@ -529,7 +548,7 @@ void write_object(SceneRun& run, std::size_t i, const fs::path& path, long frame
           ? shell_offsets(run.config.outline, s.mesh, run.layout.camera, run.config.render.width)
           : std::vector<double>{};
   count_whole_shell(run, s.mesh, offsets);
-  std::string text = mesh_include(s, "Obj_" + oc.name, run.light, offsets, nullptr, nullptr);
+  std::string text = mesh_include(s, "Obj_" + oc.name, texture_coordinates(s, run.light), offsets, nullptr, nullptr);
   run.report.write_seconds += seconds_since(start);
   run.write(object_include_name(oc.name, run.objects[i].placement.animated, frame), text);
   // The object with its shell: the water's shell faces keep away from it to be dropped.
@@ -594,7 +613,8 @@ void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long writt
 
   write_animated_objects(run, frame, written_frame);
   run.report.faces += s.mesh.triangles.size();
-  run.report.simplify_seconds += simplify_water(s, run.light, run.layout, run.plan.flow).seconds;
+  std::vector<TextureCoordinate> uv = water_coordinates(s, run.light, run.layout);
+  run.report.simplify_seconds += simplify_water(s, uv, run.layout, run.plan.flow).seconds;
   run.report.faces_kept += s.mesh.triangles.size();
   const auto start = Clock::now();
   const std::vector<double> offsets =
@@ -621,7 +641,7 @@ void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long writt
   const std::vector<bool> shell_faces =
       kept_water_shell_faces(run, s.mesh, offsets, s.flow_lines.empty(), run.keep_out,
                              free_surface_shell ? &upward : nullptr);
-  const std::string text = mesh_include(s, "Water", run.light, offsets,
+  const std::string text = mesh_include(s, "Water", uv, offsets,
                                         textures ? &*textures : nullptr,
                                         shell_faces.empty() ? nullptr : &shell_faces) +
                            water_lines(run, &s.mesh);

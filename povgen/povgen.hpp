@@ -18,6 +18,7 @@
 #include "povgen/config.hpp"
 #include "povgen/mesh2_writer.hpp"
 #include "povgen/scene_mesh.hpp"
+#include "povgen/scene_writer.hpp"
 
 #include <atomic>
 #include <cstddef>
@@ -69,15 +70,20 @@ PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* f
 // The texture coordinates written per vertex: toon coordinates, or the curvature view's values.
 std::vector<TextureCoordinate> texture_coordinates(const PreparedSurface& surface,
                                                    const LightGeometry& light);
+// The water's, as a frame is written for the scene's camera: its toon bands without the
+// islands too small to draw (band_islands.hpp).
+std::vector<TextureCoordinate> water_coordinates(const PreparedSurface& surface,
+                                                 const LightGeometry& light,
+                                                 const SceneLayout& layout);
 
 // The include of a frame whose water mesh is empty: the declarations, holding nothing.
 std::string empty_water_include();
 
-// The mesh2 include text: `Prefix_mesh` with toon coordinates (and `textures` per face when
-// given), and `Prefix_shell` when `shell_offsets` (one per vertex, world units) is not empty,
-// of the faces `shell_faces` marks (all when null).
+// The mesh2 include text: `Prefix_mesh` with the texture coordinates `uv` (and `textures` per
+// face when given), and `Prefix_shell` when `shell_offsets` (one per vertex, world units) is not
+// empty, of the faces `shell_faces` marks (all when null).
 std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
-                         const LightGeometry& light, std::span<const double> shell_offsets,
+                         std::span<const TextureCoordinate> uv, std::span<const double> shell_offsets,
                          const FaceTextures* textures = nullptr,
                          const std::vector<bool>* shell_faces = nullptr);
 

@@ -62,6 +62,8 @@ SceneMesh make_scene_mesh(const TriangleMesh& surface, std::span<const Vec3> nor
   return out;
 }
 
+double band_coordinate(double l_dot_n) { return 0.5 + 0.4999 * std::clamp(l_dot_n, -1.0, 1.0); }
+
 double flow_coordinate(double field) {
   constexpr double field_limit = 4.0, scale = 0.12;  // v in [0.02, 0.98]
   return 0.5 + scale * std::clamp(std::isfinite(field) ? field : 0.0, -field_limit, field_limit);
@@ -78,9 +80,9 @@ std::vector<TextureCoordinate> toon_coordinates(const SceneMesh& mesh, const Lig
       const double length = to_light.norm();
       to_light = length > 0.0 ? Vec3(to_light / length) : mesh.normals[v];
     }
-    const double l_dot_n = std::clamp(to_light.dot(mesh.normals[v]), -1.0, 1.0);
     const double v_coordinate = flow_field.empty() ? 0.5 : flow_coordinate(flow_field[v]);
-    uv[v] = {static_cast<float>(0.5 + 0.4999 * l_dot_n), static_cast<float>(v_coordinate)};
+    uv[v] = {static_cast<float>(band_coordinate(to_light.dot(mesh.normals[v]))),
+             static_cast<float>(v_coordinate)};
   }
   return uv;
 }

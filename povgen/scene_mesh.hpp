@@ -47,7 +47,9 @@ struct LightGeometry {
 
 using TextureCoordinate = std::array<float, 2>;
 
-// v of a flow field value, as above (the template's Toon_flow_key).
+// u of an L·n, and v of a flow field value, as above (the template's Toon_band_key and
+// Toon_flow_key).
+double band_coordinate(double l_dot_n);
 double flow_coordinate(double field);
 
 // (u, v) per vertex as above; `flow_field` may be empty (no flow regions: v = 0.5).

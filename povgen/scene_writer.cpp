@@ -159,6 +159,19 @@ CameraPlacement frame_camera(const SceneConfig& config, Axis up, const Vec3& sce
   return out;
 }
 
+std::vector<double> pixel_widths(const SceneMesh& mesh, const CameraPlacement& camera,
+                                 int image_width) {
+  // A pixel at depth z (along the view axis) spans 2 z tan(angle / 2) / width.
+  const Vec3 d = (camera.look_at - camera.location).normalized();
+  const double per_depth =
+      2.0 * std::tan(0.5 * camera.angle * std::numbers::pi / 180.0) / std::max(1, image_width);
+  const double nearest = 1e-6 * std::max(mesh.diagonal(), 1e-9);
+  std::vector<double> widths(mesh.positions.size());
+  for (std::size_t v = 0; v < widths.size(); ++v)
+    widths[v] = per_depth * std::max((mesh.positions[v] - camera.location).dot(d), nearest);
+  return widths;
+}
+
 std::vector<double> shell_offsets(const OutlineConfig& outline, const SceneMesh& mesh,
                                   const CameraPlacement& camera, int image_width) {
   const std::size_t n = mesh.positions.size();
@@ -168,15 +181,8 @@ std::vector<double> shell_offsets(const OutlineConfig& outline, const SceneMesh&
       return std::vector<double>(n, outline.width.value_or(0.006) * mesh.diagonal());
     case WidthUnits::pixels: break;
   }
-  // A pixel at depth z (along the view axis) spans 2 z tan(angle / 2) / width.
-  const Vec3 d = (camera.look_at - camera.location).normalized();
-  const double per_depth =
-      2.0 * std::tan(0.5 * camera.angle * std::numbers::pi / 180.0) / std::max(1, image_width);
-  const double pixels = outline.width.value_or(2.0);
-  const double nearest = 1e-6 * std::max(mesh.diagonal(), 1e-9);
-  std::vector<double> offsets(n);
-  for (std::size_t v = 0; v < n; ++v)
-    offsets[v] = pixels * per_depth * std::max((mesh.positions[v] - camera.location).dot(d), nearest);
+  std::vector<double> offsets = pixel_widths(mesh, camera, image_width);
+  for (double& offset : offsets) offset *= outline.width.value_or(2.0);
   return offsets;
 }
 

@@ -56,6 +56,11 @@ struct SceneLayout {
 CameraPlacement frame_camera(const SceneConfig& config, Axis up, const Vec3& scene_min,
                              const Vec3& scene_max);
 
+// The width of a pixel (of an image `image_width` wide) at each vertex's depth from the camera,
+// in world units.
+std::vector<double> pixel_widths(const SceneMesh& mesh, const CameraPlacement& camera,
+                                 int image_width);
+
 // The shell offset of each vertex of `mesh` for the configured outline width: in pixels, the
 // width times the size of a pixel (of render.width) at the vertex's depth from the camera.
 std::vector<double> shell_offsets(const OutlineConfig& outline, const SceneMesh& mesh,

@@ -381,7 +381,7 @@ SimplifyOptions simplify_options(const WaterConfig& water, std::pair<double, dou
   // u = 0.5 + 0.4999 · L·n (or · value / range in the curvature view), v = flow_coordinate(s).
   o.u_tolerance = 0.4999 * max_l_dot_n_change;
   const auto [t_bright, t_medium] = band_thresholds;
-  if (toon) o.u_levels = {0.5 + 0.4999 * t_medium, 0.5 + 0.4999 * t_bright};
+  if (toon) o.u_levels = {band_coordinate(t_medium), band_coordinate(t_bright)};
   o.v_tolerance = flow_coordinate(max_flow_field_change) - flow_coordinate(0.0);
   if (toon && flow && flow->enabled) o.v_levels = {flow_coordinate(-1.0), flow_coordinate(1.0)};
   return o;
@@ -397,7 +397,7 @@ double screen_tolerance(double pixels, double nearest_distance, double angle_deg
   return pixels * nearest_distance * cos2 / focal_pixels;
 }
 
-SimplifyStats simplify_surface(PreparedSurface& surface, const std::vector<TextureCoordinate>& uv,
+SimplifyStats simplify_surface(PreparedSurface& surface, std::vector<TextureCoordinate>& uv,
                                const SimplifyOptions& options) {
   SceneMesh& mesh = surface.mesh;
   SimplifyStats stats;
@@ -435,19 +435,20 @@ SimplifyStats simplify_surface(PreparedSurface& surface, const std::vector<Textu
   mesh.triangles = std::move(triangles);
   surface.flow_field = select(surface.flow_field, kept);
   surface.view_values = select(surface.view_values, kept);
+  uv = select(uv, kept);
   stats.faces_after = mesh.triangles.size();
   stats.simplified = true;
   return stats;
 }
 
-SimplifyStats simplify_water(PreparedSurface& surface, const LightGeometry& light,
+SimplifyStats simplify_water(PreparedSurface& surface, std::vector<TextureCoordinate>& uv,
                              const SceneLayout& layout, const FlowConfig* flow) {
   const auto start = std::chrono::steady_clock::now();
   const CameraReach camera = camera_reach(layout, surface.mesh.min, surface.mesh.max);
   const double tolerance = screen_tolerance(layout.config->water.simplify, camera.nearest_distance,
                                             camera.angle_degrees, camera.width, camera.height);
   SimplifyStats stats = simplify_surface(
-      surface, texture_coordinates(surface, light),
+      surface, uv,
       simplify_options(layout.config->water, water_thresholds(layout), flow, tolerance));
   stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -67,15 +67,15 @@ SimplifyOptions simplify_options(const WaterConfig& water, std::pair<double, dou
 double screen_tolerance(double pixels, double nearest_distance, double angle_degrees, int width,
                         int height);
 
-// Simplifies the surface's mesh and its per-vertex data (flow field, view values) in place;
-// `uv` holds its texture coordinates (texture_coordinates in povgen.hpp).
-SimplifyStats simplify_surface(PreparedSurface& surface, const std::vector<TextureCoordinate>& uv,
+// Simplifies the surface's mesh, its per-vertex data (flow field, view values) and its texture
+// coordinates `uv` (texture_coordinates in povgen.hpp) in place.
+SimplifyStats simplify_surface(PreparedSurface& surface, std::vector<TextureCoordinate>& uv,
                                const SimplifyOptions& options);
 
 // A water frame simplified for the scene's camera: `water.simplify` pixels at the camera's
-// reach of the frame, with the texture coordinates and band thresholds the frame is written
-// with (`flow`: the frame's flow settings, if any).
-SimplifyStats simplify_water(PreparedSurface& surface, const LightGeometry& light,
+// reach of the frame, with the texture coordinates `uv` and band thresholds the frame is
+// written with (`flow`: the frame's flow settings, if any).
+SimplifyStats simplify_water(PreparedSurface& surface, std::vector<TextureCoordinate>& uv,
                              const SceneLayout& layout, const FlowConfig* flow);
 
 }  // namespace toonwater::povgen

@@ -89,7 +89,7 @@ TEST(ConfigSchema, TheReadmeTableListsEveryKeyWithItsDefault) {
 
 TEST(ConfigSchema, EveryKeyHasATypeAndHelp) {
   const std::vector<povgen::ConfigKey> schema = povgen::config_keys();
-  EXPECT_EQ(schema.size(), 54u);
+  EXPECT_EQ(schema.size(), 55u);
   for (const povgen::ConfigKey& k : schema) {
     EXPECT_FALSE(k.type.empty()) << k.key;
     EXPECT_FALSE(k.help.empty()) << k.key;

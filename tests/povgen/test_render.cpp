@@ -204,6 +204,75 @@ TEST(PovgenRender, CalmNoisyWaterIsOneBandWithoutFlow) {
   EXPECT_GT(count(wave, ridge), 20) << "its crest";
 }
 
+// Band limits inside the noise (explicit, so not raised above it) on raw normals (no flow stage)
+// of a surface jittered by up to a cell: the noise paints specks of every band over calm water. Patches smaller than the shading's
+// scale or 2 px on screen take the colour around them (water.min_patch, povgen/toon_islands.hpp):
+// the specks go, while a wave's slopes, larger than both, keep their bands.
+TEST(PovgenRender, SpecksOfTheBandsTakeTheColourAroundThem) {
+  ScratchDir dir;
+  constexpr int n = 81;
+  constexpr double cell = 2.0 / (n - 1);
+  write_obj(dir / "noisy.obj", make_height_grid(n, 1.0, [&](double x, double z) {
+              const double noise = cell *
+                                   std::sin(12.9898 * std::round(x / cell) + 78.233 * std::round(z / cell)) *
+                                   std::cos(43758.5453 * std::round(x / cell) - 9.1 * std::round(z / cell));
+              return noise + 0.2 * std::exp(-(x * x + z * z) / 0.04);
+            }));
+  auto args = [&](const std::string& min_patch) {
+    return std::vector<std::string>{"--water", (dir / "noisy.obj").string(), "--set", "outline.enabled=false",
+                                    "--set", "water.bright=" + color(kBright), "--set",
+                                    "water.medium=" + color(kMedium), "--set", "water.dark=" + color(kDark),
+                                    "--set", "water.dt_bright=0.1", "--set", "water.dt_medium=-0.1",
+                                    "--set", "camera.location=[0, 2.5, 2.5]", "--set",
+                                    "camera.look_at=[0, 0, 0]", "--set", "render.width=160", "--set",
+                                    "render.height=120", "--set", "water.min_patch=" + min_patch} +
+           opaque_flat_water();
+  };
+  // The 4-connected patches of each band colour smaller than a disc of 2 px, and the pixels of
+  // the bright and dark bands.
+  struct Patches {
+    int specks = 0, bright = 0, dark = 0;
+  };
+  auto patches = [](const Image& img) {
+    Patches p;
+    std::vector<int> band(static_cast<std::size_t>(img.width * img.height), -1);
+    const std::array<std::array<double, 3>, 3> colors{kBright, kMedium, kDark};
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x)
+        for (int b = 0; b < 3; ++b)
+          if (near(img.at(x, y), to_rgb8(colors[b][0], colors[b][1], colors[b][2]), 1))
+            band[static_cast<std::size_t>(y * img.width + x)] = b;
+    std::vector<bool> seen(band.size(), false);
+    for (std::size_t start = 0; start < band.size(); ++start) {
+      if (band[start] < 0 || seen[start]) continue;
+      std::vector<std::size_t> stack{start};
+      seen[start] = true;
+      int size = 0;
+      while (!stack.empty()) {
+        const std::size_t i = stack.back();
+        stack.pop_back();
+        ++size;
+        const int x = static_cast<int>(i) % img.width, y = static_cast<int>(i) / img.width;
+        const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+        for (int k = 0; k < 4; ++k) {
+          if (nx[k] < 0 || ny[k] < 0 || nx[k] >= img.width || ny[k] >= img.height) continue;
+          const auto j = static_cast<std::size_t>(ny[k] * img.width + nx[k]);
+          if (!seen[j] && band[j] == band[start]) seen[j] = true, stack.push_back(j);
+        }
+      }
+      p.specks += size < 13;
+    }
+    for (int b : band) p.bright += b == 0, p.dark += b == 2;
+    return p;
+  };
+  const Patches raw = patches(render_scene(dir, "raw", args("0")));
+  const Patches merged = patches(render_scene(dir, "merged", args("2")));
+  EXPECT_GE(raw.specks, 40) << "the noise crosses the band limits";
+  EXPECT_LE(8 * merged.specks, raw.specks) << "left: slivers along the wave's ragged band edges";
+  EXPECT_GT(merged.bright, 100) << "the wave's slope facing the light";
+  EXPECT_GT(merged.dark, 100) << "the slope facing away";
+}
+
 // A reflected ray that misses every object sees the flat sky colour, not the background: on
 // black water that reflects fully, the water shows the sky everywhere but where it reflects
 // the ball.

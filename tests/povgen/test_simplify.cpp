@@ -68,8 +68,10 @@ PreparedSurface prepared(TriangleMesh mesh) {
 
 povgen::SimplifyStats simplify(PreparedSurface& s, double tolerance) {
   povgen::SceneConfig config;
+  std::vector<povgen::TextureCoordinate> uv =
+      povgen::texture_coordinates(s, povgen::light_geometry(config.light, Axis::y));
   return povgen::simplify_surface(
-      s, povgen::texture_coordinates(s, povgen::light_geometry(config.light, Axis::y)),
+      s, uv,
       povgen::simplify_options(config.water, {config.water.t_bright, config.water.t_medium},
                                nullptr, tolerance));
 }
@@ -127,8 +129,9 @@ TEST(Simplify, RippleKeepsItsCrestsWithinThePixelBound) {
                                                     config.camera.angle, 320, 180);
   ASSERT_GT(tolerance, 0.0);
   ASSERT_LT(tolerance, 0.01);
-  const povgen::SimplifyStats stats = povgen::simplify_water(
-      s, povgen::light_geometry(config.light, Axis::y), layout, nullptr);
+  std::vector<povgen::TextureCoordinate> uv =
+      povgen::texture_coordinates(s, povgen::light_geometry(config.light, Axis::y));
+  const povgen::SimplifyStats stats = povgen::simplify_water(s, uv, layout, nullptr);
   ASSERT_TRUE(stats.simplified);
   EXPECT_LT(stats.faces_after, stats.faces_before / 2);
   EXPECT_GT(stats.faces_after, 200u);  // the ripple needs its triangles
