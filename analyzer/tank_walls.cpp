@@ -1,8 +1,6 @@
 // Tank walls; the rule is stated in tank_walls.hpp.
 #include "analyzer/tank_walls.hpp"
 
-#include "analyzer/free_surface.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
