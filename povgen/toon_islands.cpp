@@ -141,7 +141,8 @@ std::size_t merge_toon_islands(const SceneMesh& mesh, const Vec3& eye,
   std::vector<int> label(n);
   for (std::size_t v = 0; v < n; ++v) label[v] = class_of(uv[v]);
 
-  // Each vertex's third of its faces' area, and its picture: that area seen from the camera.
+  // Each vertex's third of its faces' area, and its picture: that area seen from the camera,
+  // none of it where it faces away (the back of a sheet or a drop, hidden by its front).
   std::vector<double> area(n, 0.0), pixels(n, 0.0);
   for (const Triangle& t : mesh.triangles) {
     const Vec3& a = mesh.positions[t[0]];
@@ -151,7 +152,7 @@ std::size_t merge_toon_islands(const SceneMesh& mesh, const Vec3& eye,
   for (std::size_t v = 0; v < n; ++v) {
     const Vec3 view = eye - mesh.positions[v];
     const double distance = view.norm(), width = pixel_width[v];
-    const double facing = distance > 0.0 ? std::abs(mesh.normals[v].dot(view)) / distance : 1.0;
+    const double facing = distance > 0.0 ? std::max(0.0, mesh.normals[v].dot(view)) / distance : 1.0;
     pixels[v] = width > 0.0 ? area[v] * facing / (width * width) : 0.0;
   }
   const double edge = median_edge_length(mesh.positions, mesh.triangles);
@@ -165,6 +166,11 @@ std::size_t merge_toon_islands(const SceneMesh& mesh, const Vec3& eye,
 
   constexpr double below = -std::numeric_limits<double>::infinity();
   constexpr double above = std::numeric_limits<double>::infinity();
+  auto into_band = [&](float u, int b) {
+    const double lo = b > 0 ? limits.bands[static_cast<std::size_t>(b) - 1] : below;
+    const double hi = b < bands - 1 ? limits.bands[static_cast<std::size_t>(b)] : above;
+    return inside(u, lo, hi);
+  };
   for (std::size_t v = 0; v < n && merges > 0; ++v) {
     const int c = label[v];
     if (c == before[v]) continue;
@@ -174,10 +180,27 @@ std::size_t merge_toon_islands(const SceneMesh& mesh, const Vec3& eye,
       uv[v][1] = inside(uv[v][1], limits.flow->second, above);
     } else {
       if (limits.flow) uv[v][1] = inside(uv[v][1], limits.flow->first, limits.flow->second);
-      const double lo = c > 0 ? limits.bands[static_cast<std::size_t>(c) - 1] : below;
-      const double hi = c < bands - 1 ? limits.bands[static_cast<std::size_t>(c)] : above;
-      uv[v][0] = inside(uv[v][0], lo, hi);
+      uv[v][0] = into_band(uv[v][0], c);
     }
+  }
+
+  // Under a flow region's border, the band of the water around it: an edge from a region's
+  // vertex out to the bands then changes band nowhere, and no sliver of another band is drawn
+  // between the region and its surroundings.
+  if (!limits.flow) return merges;
+  std::vector<int> around(n * static_cast<std::size_t>(bands), 0);
+  for (const Triangle& t : mesh.triangles)
+    for (int c = 0; c < 3; ++c) {
+      const int a = t[c], b = t[(c + 1) % 3];
+      const bool a_flow = label[a] >= bands, b_flow = label[b] >= bands;
+      if (a_flow && !b_flow) ++around[static_cast<std::size_t>(a) * bands + label[b]];
+      if (b_flow && !a_flow) ++around[static_cast<std::size_t>(b) * bands + label[a]];
+    }
+  for (std::size_t v = 0; v < n; ++v) {
+    if (label[v] < bands) continue;
+    const auto first = around.begin() + static_cast<std::ptrdiff_t>(v * bands);
+    const auto most = std::max_element(first, first + bands);
+    if (*most > 0) uv[v][0] = into_band(uv[v][0], static_cast<int>(most - first));
   }
   return merges;
 }

@@ -19,9 +19,15 @@
 // (a whole part of the mesh in one class) stays. A merged vertex's u and v move to just inside
 // its new class's limits: the least change that paints it in that class.
 //
-// The picture's size of an island is the sum over its vertices of area · |n·view| / w², with w
-// the width of a pixel at the vertex and `view` the direction to the camera: a patch seen
-// edge-on is a sliver on screen whatever its area.
+// A flow region hides the bands under it, but not along its border, where u is interpolated
+// from the region's vertices out to the water around it: a region's vertex next to the bands
+// takes the band most of its neighbours outside the region have, so that no sliver of another
+// band lines the region.
+//
+// The picture's size of an island is the sum over its vertices of area · max(0, n·view) / w²,
+// with w the width of a pixel at the vertex and `view` the direction to the camera: a patch seen
+// edge-on is a sliver on screen whatever its area, and one facing away is hidden by the water
+// in front of it (a sheet's underside, by the sheet).
 #pragma once
 
 #include "analyzer/mesh.hpp"
@@ -54,8 +60,9 @@ std::size_t merge_small_islands(std::span<const Triangle> triangles, std::span<c
                                 std::span<const double> pixels, std::span<const double> min_area,
                                 double min_pixels, std::vector<int>& label);
 
-// The toon coordinates `uv` of `mesh` with its small islands merged, for a camera at `eye`
-// whose pixels are `pixel_width` wide at each vertex (scene_writer.hpp). Returns the merges.
+// The toon coordinates `uv` of `mesh` with its small islands merged and its regions' borders in
+// the band around them, for a camera at `eye` whose pixels are `pixel_width` wide at each vertex
+// (scene_writer.hpp). Returns the merges.
 std::size_t merge_toon_islands(const SceneMesh& mesh, const Vec3& eye,
                                std::span<const double> pixel_width, const ToonLimits& limits,
                                const IslandLimits& island, std::vector<TextureCoordinate>& uv);

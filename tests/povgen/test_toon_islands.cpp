@@ -124,5 +124,36 @@ TEST(ToonIslands, MergedVerticesMoveJustInsideTheirNewClass) {
   EXPECT_EQ(uv[3 * n + 15][0], 0.5f);
 }
 
+// A ridge region whose vertices lie in the bright band, in calm water of the medium band: the
+// region's border vertices take the medium band, so no bright sliver lines the region; inside
+// it, where nothing is interpolated out to the water, u stays.
+TEST(ToonIslands, ARegionsBorderTakesTheBandAroundIt) {
+  constexpr int n = 21;
+  povgen::SceneMesh mesh;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      mesh.positions.emplace_back(i, 0.0, j);
+      mesh.normals.emplace_back(0.0, 1.0, 0.0);
+    }
+  mesh.triangles = grid_triangles(n);
+  const ToonLimits limits{{0.4, 0.6}, std::make_pair(0.38, 0.62)};
+  std::vector<TextureCoordinate> uv(n * n, TextureCoordinate{0.5f, 0.5f});
+  for (int i = 6; i < 15; ++i)
+    for (int j = 6; j < 15; ++j) uv[i * n + j] = TextureCoordinate{0.7f, 0.8f};
+  const std::vector<double> pixel_width(n * n, 0.1);
+  povgen::merge_toon_islands(mesh, Vec3(10, 10, 10), pixel_width, limits, IslandLimits{}, uv);
+  for (int i = 6; i < 15; ++i)
+    for (int j = 6; j < 15; ++j) {
+      const bool border = i == 6 || i == 14 || j == 6 || j == 14;
+      EXPECT_EQ(uv[i * n + j][1], 0.8f) << "still the ridge";
+      if (border) {
+        EXPECT_LE(uv[i * n + j][0], 0.6f) << i << "," << j;
+        EXPECT_GT(uv[i * n + j][0], 0.599f) << i << "," << j;
+      } else {
+        EXPECT_EQ(uv[i * n + j][0], 0.7f) << i << "," << j;
+      }
+    }
+}
+
 }  // namespace
 }  // namespace toonwater::test
