@@ -24,10 +24,11 @@
 // takes the band most of its neighbours outside the region have, so that no sliver of another
 // band lines the region.
 //
-// The picture's size of an island is the sum over its vertices of area · max(0, n·view) / w²,
-// with w the width of a pixel at the vertex and `view` the direction to the camera: a patch seen
-// edge-on is a sliver on screen whatever its area, and one facing away is hidden by the water
-// in front of it (a sheet's underside, by the sheet).
+// An island's size is its area as the camera sees it, the sum over its vertices of
+// area · max(0, n·view), with `view` the direction to the camera, and in pixels that over w², w
+// the width of a pixel at the vertex: a patch seen edge-on (on a tank's wall seen from above) is
+// a sliver in the picture whatever its area, and one facing away is hidden by the water in front
+// of it (a sheet's underside, by the sheet).
 #pragma once
 
 #include "analyzer/mesh.hpp"
