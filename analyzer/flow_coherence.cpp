@@ -37,7 +37,7 @@ double label_flicker(const FlowFrame& previous, const TriangleMesh& surface,
 }
 
 void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
-                          std::vector<double>& field) {
+                          std::vector<double>& field, std::vector<Vec3>& shading_normal) {
   const std::size_t n = surface.positions.size();
   const bool any_surface = flow.free_surface.size() == n;
   const std::optional<PointGrid> grid =
@@ -59,6 +59,9 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
   pending_.edge_length = flow.median_edge_length;
   pending_.positions.resize(chunk_begin.back());
   pending_.field.resize(chunk_begin.back());
+  const bool normals = shading_normal.size() == n;
+  pending_.shading_normal.resize(normals ? chunk_begin.back() : 0);
+  const bool normals_before = normals && previous_.shading_normal.size() == previous_.positions.size();
   pending_.label.resize(chunk_begin.back());
   predecessor_.resize(n);
   // The pending frame's bounding box, chunk by chunk, from the positions as they are copied:
@@ -81,6 +84,7 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
     double* const next_field = pending_.field.data();
     const PointGrid* const previous_surface = grid ? &*grid : nullptr;
     const double blend = options_.blend, rise_blend = options_.rise_blend;
+    const double normal_blend = options_.normal_blend;
     std::size_t next = chunk_begin[chunk];
     Box3 bounds = Box3::of_no_points();  // in a local: in the vector, each update would wait for a store
     for (std::size_t v = begin; v < end; ++v) {
@@ -95,9 +99,17 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
         // has left.
         const double b = before * now > 0 && std::abs(now) > std::abs(before) ? rise_blend : blend;
         s[v] = (1 - b) * now + b * before;
+        // Undefined normals (zero) are neither blended nor blended into.
+        if (normals_before && shading_normal[v].squaredNorm() > 0.5 &&
+            previous_.shading_normal[p].squaredNorm() > 0.5) {
+          const Vec3 mixed =
+              (1 - normal_blend) * shading_normal[v] + normal_blend * previous_.shading_normal[p];
+          if (mixed.squaredNorm() > 0.0) shading_normal[v] = mixed.normalized();
+        }
       }
       next_position[next] = position[v];
       next_field[next] = s[v];
+      if (normals) pending_.shading_normal[next] = shading_normal[v];
       ++next;
       bounds.add(position[v]);
     }
@@ -150,7 +162,7 @@ void FlowCoherence::apply(const TriangleMesh& surface, const CurvatureField& cur
   std::vector<double> field = flow.smoothed_field;
   field.resize(surface.positions.size(), 0.0);
   const bool first = !has_previous_;
-  blend(surface, flow, field);
+  blend(surface, flow, field, flow.shading_normal);
   if (!first) label_flow_field(surface, curvature.area, std::move(field), flow);
   remember(curvature, flow);
 }

@@ -21,6 +21,12 @@
 // with a continuous field a value hovering at the threshold moves a boundary by a fraction of a
 // triangle, not a label by a vertex.
 //
+// The shading normals that choose the toon bands (flow_regions.hpp) are blended the same way,
+// symmetrically with `normal_blend`, and normalised: a band edge on settling water then moves
+// with the water rather than with the mesh's sub-cell noise, which each frame draws afresh
+// (the noise's spread falls by sqrt((1 − b)/(1 + b)), to 0.58 for b = 0.5), while a wave that
+// moves a cell a frame lags by b/(1 − b) = 1 frame at most.
+//
 // Flicker is measured as the share of free-surface area (mixed Voronoi areas) whose label
 // differs from its closest predecessor's.
 #pragma once
@@ -38,6 +44,7 @@ namespace toonwater {
 struct CoherenceOptions {
   double blend = 0.8;       // weight of the carried-over (already blended) field: lag b/(1 − b) frames
   double rise_blend = 0.5;  // the same where the field grows (same sign, larger magnitude)
+  double normal_blend = 0.5;  // the same for the shading normals
   double max_distance = 2.0;  // in median edge lengths: farther vertices have no predecessor
 };
 
@@ -45,6 +52,7 @@ struct CoherenceOptions {
 struct FlowFrame {
   std::vector<Vec3> positions;
   std::vector<double> field;  // s̃: blended, before the specks are faded
+  std::vector<Vec3> shading_normal;  // blended
   std::vector<std::int8_t> label;
   double edge_length = 0.0;
 };
@@ -54,9 +62,10 @@ class FlowCoherence {
   explicit FlowCoherence(CoherenceOptions options = {}) : options_(options) {}
 
   // The two halves, around label_flow_field (find_flow_regions calls them when given this):
-  // blends `field`, this frame's s before fading, with the frames seen before; then, once
-  // `flow` is labelled, remembers the frame and measures its flicker.
-  void blend(const TriangleMesh& surface, const FlowRegions& flow, std::vector<double>& field);
+  // blends `field`, this frame's s before fading, and `shading_normal` with the frames seen
+  // before; then, once `flow` is labelled, remembers the frame and measures its flicker.
+  void blend(const TriangleMesh& surface, const FlowRegions& flow, std::vector<double>& field,
+             std::vector<Vec3>& shading_normal);
   void remember(const CurvatureField& curvature, const FlowRegions& flow);
 
   // Both, for a frame labelled on its own: replaces flow.field, flow.label and the counts by

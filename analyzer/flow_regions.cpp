@@ -346,7 +346,7 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topo
                                         flow.normal_noise);
 
   flow.smoothed_field = field;
-  if (coherence) coherence->blend(mesh, flow, field);
+  if (coherence) coherence->blend(mesh, flow, field, flow.shading_normal);
   label_flow_field(mesh, curvature.area, std::move(field), flow);
   if (coherence) coherence->remember(curvature, flow);
   return flow;
