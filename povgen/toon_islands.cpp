@@ -141,8 +141,8 @@ std::size_t merge_toon_islands(const SceneMesh& mesh, const Vec3& eye,
   std::vector<int> label(n);
   for (std::size_t v = 0; v < n; ++v) label[v] = class_of(uv[v]);
 
-  // Each vertex's third of its faces' area as the camera sees it (none where it faces away: the
-  // back of a sheet or a drop is hidden by its front), in scene units and in pixels.
+  // Each vertex's third of its faces' area, and in pixels that area as the camera sees it (none
+  // where it faces away: the back of a sheet or a drop is hidden by its front).
   std::vector<double> area(n, 0.0), pixels(n, 0.0);
   for (const Triangle& t : mesh.triangles) {
     const Vec3& a = mesh.positions[t[0]];
@@ -153,8 +153,7 @@ std::size_t merge_toon_islands(const SceneMesh& mesh, const Vec3& eye,
     const Vec3 view = eye - mesh.positions[v];
     const double distance = view.norm(), width = pixel_width[v];
     const double facing = distance > 0.0 ? std::max(0.0, mesh.normals[v].dot(view)) / distance : 1.0;
-    area[v] *= facing;
-    pixels[v] = width > 0.0 ? area[v] / (width * width) : 0.0;
+    pixels[v] = width > 0.0 ? area[v] * facing / (width * width) : 0.0;
   }
   const double edge = median_edge_length(mesh.positions, mesh.triangles);
   std::vector<double> min_area(static_cast<std::size_t>(ridge) + 1, 0.0);

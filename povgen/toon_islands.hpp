@@ -24,10 +24,10 @@
 // takes the band most of its neighbours outside the region have, so that no sliver of another
 // band lines the region.
 //
-// An island's size is its area as the camera sees it, the sum over its vertices of
-// area · max(0, n·view), with `view` the direction to the camera, and in pixels that over w², w
-// the width of a pixel at the vertex: a patch seen edge-on (on a tank's wall seen from above) is
-// a sliver in the picture whatever its area, and one facing away is hidden by the water in front
+// An island's area is its own: the smoothing's scale is the data's, not the picture's. Its size
+// in pixels is the sum over its vertices of area · max(0, n·view) / w², with `view` the
+// direction to the camera and w the width of a pixel at the vertex: a patch seen edge-on is a
+// sliver in the picture whatever its area, and one facing away is hidden by the water in front
 // of it (a sheet's underside, by the sheet).
 #pragma once
 
