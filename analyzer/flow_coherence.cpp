@@ -85,6 +85,7 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
     const PointGrid* const previous_surface = grid ? &*grid : nullptr;
     const double blend = options_.blend, rise_blend = options_.rise_blend;
     const double normal_blend = options_.normal_blend;
+    const double normal_change_limit = options_.normal_noise_multiple * flow.normal_noise;
     std::size_t next = chunk_begin[chunk];
     Box3 bounds = Box3::of_no_points();  // in a local: in the vector, each update would wait for a store
     for (std::size_t v = begin; v < end; ++v) {
@@ -100,10 +101,12 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
         const double b = before * now > 0 && std::abs(now) > std::abs(before) ? rise_blend : blend;
         s[v] = (1 - b) * now + b * before;
         // Undefined normals (zero) are neither blended nor blended into.
-        if (normals_before && shading_normal[v].squaredNorm() > 0.5 &&
+        if (normals_before && normal_change_limit > 0.0 && shading_normal[v].squaredNorm() > 0.5 &&
             previous_.shading_normal[p].squaredNorm() > 0.5) {
-          const Vec3 mixed =
-              (1 - normal_blend) * shading_normal[v] + normal_blend * previous_.shading_normal[p];
+          const Vec3& normal_before = previous_.shading_normal[p];
+          const double change = (shading_normal[v] - normal_before).norm() / normal_change_limit;
+          const double b = normal_blend * std::max(0.0, 1.0 - change * change);
+          const Vec3 mixed = (1 - b) * shading_normal[v] + b * normal_before;
           if (mixed.squaredNorm() > 0.0) shading_normal[v] = mixed.normalized();
         }
       }

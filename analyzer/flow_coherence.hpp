@@ -21,11 +21,14 @@
 // with a continuous field a value hovering at the threshold moves a boundary by a fraction of a
 // triangle, not a label by a vertex.
 //
-// The shading normals that choose the toon bands (flow_regions.hpp) are blended the same way,
-// symmetrically with `normal_blend`, and normalised: a band edge on settling water then moves
-// with the water rather than with the mesh's sub-cell noise, which each frame draws afresh
-// (the noise's spread falls by sqrt((1 − b)/(1 + b)), to 0.58 for b = 0.5), while a wave that
-// moves a cell a frame lags by b/(1 − b) = 1 frame at most.
+// The shading normals that choose the toon bands (flow_regions.hpp) are blended the same way
+// where they change by no more than the noise, and normalised: ñ = (1 − b) n + b ñ_prev with
+// b = normal_blend · max(0, 1 − (|n − ñ_prev| / (z σ))²), σ the frame's normal noise floor and
+// z = normal_noise_multiple. A band edge on settling water then moves with the water rather
+// than with the mesh's sub-cell noise, which each frame draws afresh (for b = 0.5 the noise's
+// spread falls by sqrt((1 − b)/(1 + b)) = 0.58), while a wave that moves, turning the normals by
+// more than the noise does, is taken as it is: a bow wave running into calm water is not
+// averaged with the calm water it runs into.
 //
 // Flicker is measured as the share of free-surface area (mixed Voronoi areas) whose label
 // differs from its closest predecessor's.
@@ -44,7 +47,8 @@ namespace toonwater {
 struct CoherenceOptions {
   double blend = 0.8;       // weight of the carried-over (already blended) field: lag b/(1 − b) frames
   double rise_blend = 0.5;  // the same where the field grows (same sign, larger magnitude)
-  double normal_blend = 0.5;  // the same for the shading normals
+  double normal_blend = 0.5;  // the same for the shading normals, where they change by noise only
+  double normal_noise_multiple = 3.0;  // z: a change of z noise floors is motion, not blended
   double max_distance = 2.0;  // in median edge lengths: farther vertices have no predecessor
 };
 

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include <cstdio>
@@ -192,6 +193,54 @@ TEST(FlowCoherence, TravellingWaveRegionsFollowTheWave) {
       EXPECT_GT(coherent, last + 0.05 * edge) << "frozen at frame " << frame;
     }
     last = coherent;
+  }
+}
+
+// Root mean square of |a − b| over the free surface's vertices (`weight` picks them).
+double rms_difference(const std::vector<Vec3>& a, const std::vector<Vec3>& b,
+                      const std::vector<std::uint8_t>& on_surface) {
+  double sum = 0.0;
+  int count = 0;
+  for (std::size_t v = 0; v < a.size(); ++v)
+    if (on_surface[v]) sum += (a[v] - b[v]).squaredNorm(), ++count;
+  return std::sqrt(sum / std::max(count, 1));
+}
+
+// The shading normals are carried over the jitter a frame draws afresh, and not over a wave's
+// motion: on still swells under jitter the carried normals lie nearer the jitter-free ones than
+// each frame's own do; on swells moving an edge length a frame they stay each frame's own (the
+// previous frame's are farther from them than the jitter is).
+TEST(FlowCoherence, ShadingNormalsAreCarriedOverTheNoiseButNotOverTheMotion) {
+  const int n = 81;
+  const double edge = 2.0 / (n - 1), jitter = 4e-4;
+  {
+    FlowCoherence coherence;
+    const Analysis clean = analyze_frame(wave_frame(n, 0.0, 0.0, 1));
+    double raw = 0.0, carried = 0.0;
+    for (int frame = 0; frame < 8; ++frame) {
+      Analysis a = analyze_frame(wave_frame(n, 0.0, jitter, 50 + frame));
+      const std::vector<Vec3> own = a.flow.shading_normal;
+      coherence.apply(a.surface, a.curvature, a.flow);
+      if (frame < 3) continue;  // the carried normals settle over the first frames
+      raw += rms_difference(own, clean.flow.shading_normal, a.flow.free_surface);
+      carried += rms_difference(a.flow.shading_normal, clean.flow.shading_normal, a.flow.free_surface);
+    }
+    EXPECT_LT(carried, 0.85 * raw);
+  }
+  {
+    FlowCoherence coherence;
+    std::vector<Vec3> before;
+    for (int frame = 0; frame < 6; ++frame) {
+      Analysis a = analyze_frame(wave_frame(n, -0.3 + edge * frame, jitter, 70 + frame));
+      const std::vector<Vec3> own = a.flow.shading_normal;
+      coherence.apply(a.surface, a.curvature, a.flow);
+      if (frame > 0) {
+        EXPECT_LT(rms_difference(a.flow.shading_normal, own, a.flow.free_surface),
+                  0.25 * rms_difference(own, before, a.flow.free_surface))
+            << "frame " << frame;
+      }
+      before = own;
+    }
   }
 }
 
