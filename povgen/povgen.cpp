@@ -12,7 +12,6 @@
 #include "analyzer/vertex_normals.hpp"
 #include "analyzer/weld.hpp"
 #include "povgen/axes.hpp"
-#include "povgen/toon_islands.hpp"
 #include "povgen/frame_cache.hpp"
 #include "povgen/mesh2_writer.hpp"
 #include "povgen/scene_directory.hpp"
@@ -21,6 +20,7 @@
 #include "povgen/shell_culling.hpp"
 #include "povgen/simplify.hpp"
 #include "povgen/stroke_writer.hpp"
+#include "povgen/toon_islands.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -173,13 +173,13 @@ std::vector<TextureCoordinate> water_coordinates(const PreparedSurface& surface,
                                                  const LightGeometry& light,
                                                  const SceneLayout& layout) {
   std::vector<TextureCoordinate> uv = texture_coordinates(surface, light);
-  if (!surface.view_values.empty()) return uv;  // a curvature view shows the values as they are
   const SceneConfig& config = *layout.config;
+  // A curvature view shows the values as they are; min_patch = 0 keeps every patch.
+  if (!surface.view_values.empty() || !(config.water.min_patch > 0.0)) return uv;
   const auto [t_bright, t_medium] = water_thresholds(layout);
   ToonLimits limits{{band_coordinate(t_medium), band_coordinate(t_bright)}, std::nullopt};
   if (!surface.flow_field.empty() && config.flow.style != FlowStyle::lines)
     limits.flow = {flow_coordinate(-1.0), flow_coordinate(1.0)};
-  if (!(config.water.min_patch > 0.0)) return uv;
   IslandLimits island;
   island.radius_pixels = config.water.min_patch;
   merge_toon_islands(surface.mesh, layout.camera.location,

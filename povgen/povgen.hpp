@@ -71,7 +71,7 @@ PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* f
 std::vector<TextureCoordinate> texture_coordinates(const PreparedSurface& surface,
                                                    const LightGeometry& light);
 // The water's, as a frame is written for the scene's camera: its toon bands without the
-// islands too small to draw (band_islands.hpp).
+// islands too small to draw (toon_islands.hpp).
 std::vector<TextureCoordinate> water_coordinates(const PreparedSurface& surface,
                                                  const LightGeometry& light,
                                                  const SceneLayout& layout);
