@@ -143,12 +143,18 @@ double view_range(const CurvatureRanges& ranges, WaterShading shading) {
 
 double water_line(const SceneMesh& water, const Vec3& lo, const Vec3& hi) {
   const Vec3 grow = 0.25 * (hi - lo);
+  const double x0 = lo.x() - grow.x(), x1 = hi.x() + grow.x(), z0 = lo.z() - grow.z(), z1 = hi.z() + grow.z();
+  // Faces, not vertices: a simplified calm surface is a few large faces whose corners all lie
+  // outside a small object's footprint.
   std::vector<double> heights;
-  for (std::size_t v = 0; v < water.positions.size(); ++v) {
-    const Vec3& p = water.positions[v];
-    if (water.normals[v].y() > free_surface_min_up_component && p.x() >= lo.x() - grow.x() && p.x() <= hi.x() + grow.x() &&
-        p.z() >= lo.z() - grow.z() && p.z() <= hi.z() + grow.z())
-      heights.push_back(p.y());
+  for (const Triangle& t : water.triangles) {
+    const Vec3 &a = water.positions[t[0]], &b = water.positions[t[1]], &c = water.positions[t[2]];
+    const Vec3 normal = water.normals[t[0]] + water.normals[t[1]] + water.normals[t[2]];
+    if (!(normal.y() > free_surface_min_up_component * normal.norm())) continue;
+    if (std::max({a.x(), b.x(), c.x()}) < x0 || std::min({a.x(), b.x(), c.x()}) > x1 ||
+        std::max({a.z(), b.z(), c.z()}) < z0 || std::min({a.z(), b.z(), c.z()}) > z1)
+      continue;
+    heights.push_back((a.y() + b.y() + c.y()) / 3.0);
   }
   if (heights.empty()) return lo.y() - (hi - lo).norm() - 1.0;
   const auto middle = heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2);
@@ -333,6 +339,7 @@ struct SceneRun {
   std::vector<Box> object_box;
   std::vector<KeepOutBox> keep_out;  // each object with its shell (shell_culling.hpp)
   std::vector<bool> submerged;
+  std::vector<double> contact_depth;  // each object's, in scene units (Obj_NAME_contact)
   double view_range = 0;
   std::optional<MapView> map_view;
   MapRanges map_ranges;
@@ -554,6 +561,14 @@ void write_object(SceneRun& run, std::size_t i, const fs::path& path, long frame
   // The object with its shell: the water's shell faces keep away from it to be dropped.
   const double grow = offsets.empty() ? 0.0 : *std::max_element(offsets.begin(), offsets.end());
   run.object_box[i] = {s.mesh.min, s.mesh.max};
+  // The contact line is as wide as the outline: half of it on each side of the water.
+  run.contact_depth[i] = 0.0;
+  if (!offsets.empty()) {
+    std::vector<double> sorted = offsets;
+    const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+    std::nth_element(sorted.begin(), middle, sorted.end());
+    run.contact_depth[i] = 0.5 * *middle;
+  }
   run.keep_out[i] = {s.mesh.min.array() - grow, s.mesh.max.array() + grow};
 }
 
@@ -567,18 +582,18 @@ bool refracts(const SceneRun& run) {
   return run.config.water.shading == WaterShading::toon && run.config.water.transmit > 0;
 }
 
-// Per frame, each outlined object's water line (see ObjectPlacement) when the water refracts.
-std::string water_lines(SceneRun& run, const SceneMesh* frame_water) {
+// Per frame, each object's water (see ObjectPlacement) when the water refracts.
+std::string object_waters(SceneRun& run, const SceneMesh* frame_water) {
   std::string text;
-  if (!refracts(run) || !run.config.outline.enabled) return text;
+  if (!refracts(run)) return text;
   for (std::size_t i = 0; i < run.objects.size(); ++i) {
     const ObjectConfig& oc = *run.objects[i].placement.config;
-    if (!oc.outline) continue;
     const SceneRun::Box& b = run.object_box[i];
     const double line = frame_water ? water_line(*frame_water, b.min, b.max)
                                     : b.min.y() - (b.max - b.min).norm() - 1.0;
     run.submerged[i] = run.submerged[i] || line > b.min.y();
-    text += water_line_declaration(oc.name, line);
+    text += object_water_declaration(oc.name, frame_water && frame_water->closed ? frame_water : nullptr,
+                                     line, run.contact_depth[i]);
   }
   return text;
 }
@@ -588,7 +603,7 @@ void write_empty_frame(SceneRun& run, long frame, long written_frame, const std:
   if (run.water.frames.size() == 1) throw InputError(why);
   run.report.empty_frames.push_back(why);
   write_animated_objects(run, frame, written_frame);
-  run.write(water_include_name(written_frame), empty_water_include() + water_lines(run, nullptr));
+  run.write(water_include_name(written_frame), empty_water_include() + object_waters(run, nullptr));
 }
 
 // The water include of one frame that has water.
@@ -644,7 +659,7 @@ void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long writt
   const std::string text = mesh_include(s, "Water", uv, offsets,
                                         textures ? &*textures : nullptr,
                                         shell_faces.empty() ? nullptr : &shell_faces) +
-                           water_lines(run, &s.mesh);
+                           object_waters(run, &s.mesh);
   run.report.write_seconds += seconds_since(start);
   run.write(water_include_name(written_frame), text);
 }
@@ -722,6 +737,7 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   run.object_box.resize(run.objects.size());
   run.keep_out.resize(run.objects.size());
   run.submerged.assign(run.objects.size(), false);
+  run.contact_depth.assign(run.objects.size(), 0.0);
   run.object_mesh.resize(run.objects.size());
 
   if (!request.maps_dir.empty() && fs::is_directory(request.maps_dir))

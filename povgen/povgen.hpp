@@ -88,8 +88,9 @@ std::string mesh_include(const PreparedSurface& surface, const std::string& pref
                          const std::vector<bool>* shell_faces = nullptr);
 
 // The height (POV-Ray's y) of the water line around an object whose box is [lo, hi] in a
-// frame: the median height of the free-surface vertices (n·y > 0.5) over the object's
-// footprint in x and z (grown by a quarter of its size); below the object where no water is.
+// frame: the median height of the centroids of the free-surface faces (n·y > 0.5) that reach
+// over the object's footprint in x and z (grown by a quarter of its size); below the object
+// where no water is.
 double water_line(const SceneMesh& water, const Vec3& lo, const Vec3& hi);
 
 struct PovgenRequest {

@@ -4,6 +4,7 @@
 
 #include "povgen/axes.hpp"
 #include "povgen/povgen.hpp"
+#include "povgen/seen_through_water.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -38,6 +39,8 @@ std::string vec(const Vec3& v) { return triple("", v.x(), v.y(), v.z()); }
 // them into the linear values it computes with (assumed_gamma 1.0), and the PNG it writes is
 // sRGB again, so a flat band shows exactly the configured colour.
 std::string rgb(const Color& c) { return triple("srgb ", c[0], c[1], c[2]); }
+// A colour computed in POV-Ray's linear values (seen_through_water.hpp), possibly outside [0, 1].
+std::string linear_rgb(const Color& c) { return triple("rgb ", c[0], c[1], c[2]); }
 
 Color times(const Color& a, const Color& b) { return {a[0] * b[0], a[1] * b[1], a[2] * b[2]}; }
 
@@ -211,8 +214,28 @@ std::string water_line_id(const std::string& object_name) {
   return std::string("Obj_").append(object_name).append("_water_line");
 }
 
-std::string water_line_declaration(const std::string& object_name, double height) {
-  return "#declare " + water_line_id(object_name) + " = " + num(height) + ";\n";
+std::string object_water_id(const std::string& object_name) {
+  return std::string("Obj_").append(object_name).append("_water");
+}
+
+std::string object_contact_id(const std::string& object_name) {
+  return std::string("Obj_").append(object_name).append("_contact");
+}
+
+std::string object_water_declaration(const std::string& object_name, const SceneMesh* closed_water,
+                                     double line_height, double contact) {
+  std::string s = "#declare " + water_line_id(object_name) + " = " + num(line_height) + ";\n";
+  s += "#declare " + object_water_id(object_name) + " = ";
+  // The closed mesh inside a box around it: POV-Ray refuses a textured object (the water's
+  // faces carry their textures) in an object pattern, but not CSG holding one.
+  if (closed_water) {
+    const Vec3 margin = Vec3::Constant(0.01 * closed_water->diagonal() + 1e-6);
+    s += "intersection { object { Water_mesh } box { " + vec(closed_water->min - margin) + ", " +
+         vec(closed_water->max + margin) + " } }\n";
+  } else {
+    s += "plane { y, " + num(line_height) + " }\n";
+  }
+  return s + "#declare " + object_contact_id(object_name) + " = " + num(contact) + ";\n";
 }
 
 CameraReach camera_reach(const SceneLayout& l, const Vec3& min, const Vec3& max) {
@@ -356,27 +379,50 @@ std::string scene_pov(const SceneLayout& l) {
     s += "object { Toon_outline_shell(Water_shell, " + rgb(c.outline.color) + ")" +
          (reflects ? " no_reflection }\n" : " }\n");
 
+  // Under the water: colours that show through its surface as a cartoon draws them.
+  const WaterSurfaceLook look = water_surface_look(c);
+  const Color gain{w.ka + w.kd * c.light.color[0], w.ka + w.kd * c.light.color[1],
+                   w.ka + w.kd * c.light.color[2]};
+  const Color line_under_water =
+      seen_through_water(linear_from_srgb(c.outline.color), {1, 1, 1}, look.brightest, look);
   for (const ObjectPlacement& o : l.objects) {
     const ObjectConfig& oc = *o.config;
     const bool outline = c.outline.enabled && oc.outline;
     const bool hidden_in_water = reflects && oc.reflection != ReflectionTarget::concrete;
-    s += "\n// Object " + oc.name + "\nobject {\n  " + mesh_id(oc.name) +
-         "\n  texture {\n    Toon_object_bands(" + rgb(oc.color) + ", " + num(w.t_bright) + ", " +
-         num(w.t_medium) + ")\n    " + finish(c, false) + "\n  }\n";
+    const bool in_water = refracts && o.submerged;
+    const std::string in_air = "Toon_object_bands(" + rgb(oc.color) + ", " + num(w.t_bright) +
+                               ", " + num(w.t_medium) + ")\n    " + finish(c, false);
+    s += "\n// Object " + oc.name + "\nobject {\n  " + mesh_id(oc.name) + "\n  texture {\n    ";
+    if (in_water) {
+      // The object's three bands (Toon_object_bands), tinted, as they show through the water.
+      const Color tint = linear_from_srgb(submerged_tint(oc.color, w.medium));
+      std::string under = "Toon_bands(";
+      for (const double share : {1.0, 0.6, 0.3}) {
+        const Color band{share * tint[0] * gain[0], share * tint[1] * gain[1], share * tint[2] * gain[2]};
+        under += linear_rgb(seen_through_water(band, gain, look.calm, look)) + ", ";
+      }
+      under += num(w.t_bright) + ", " + num(w.t_medium) + ", 0)\n    " + finish(c, false);
+      s += "Toon_in_water(" + object_water_id(oc.name) + ", " + object_contact_id(oc.name) +
+           ",\n    texture { " + in_air + " },\n    texture { " + under +
+           " },\n    texture { pigment { color " + rgb(c.outline.color) + " } " + flat_finish() +
+           " },\n    texture { pigment { color " + linear_rgb(line_under_water) + " } " +
+           flat_finish() + " })\n  }\n";
+    } else {
+      s += in_air + "\n  }\n";
+    }
     if (hidden_in_water) s += "  no_reflection\n";
     s += "}\n";
     if (outline) {
-      const std::string shell =
-          "object { Toon_outline_shell(" + shell_id(oc.name) + ", " + rgb(c.outline.color) + ")";
+      const std::string shell = "object { Toon_outline_shell(" + shell_id(oc.name) + ", ";
       const std::string tail =
           reflects && oc.reflection == ReflectionTarget::none ? " no_reflection }\n" : " }\n";
-      if (refracts && o.submerged) {
+      if (in_water) {
         const std::string line = water_line_id(oc.name);
-        s += shell + " clipped_by { plane { -y, -" + line + " } }" + tail;
-        s += shell + " clipped_by { plane { y, " + line + " } } interior { ior " + num(w.ior) +
-             " }" + tail;
+        s += shell + rgb(c.outline.color) + ") clipped_by { plane { -y, -" + line + " } }" + tail;
+        s += shell + linear_rgb(line_under_water) + ") clipped_by { plane { y, " + line +
+             " } } interior { ior " + num(w.ior) + " }" + tail;
       } else {
-        s += shell + tail;
+        s += shell + rgb(c.outline.color) + ")" + tail;
       }
     } else if (reflects && oc.reflection == ReflectionTarget::abstract) {
       s += "object { Toon_silhouette(" + mesh_id(oc.name) + ", " + rgb(c.outline.color) + ") }\n";

@@ -21,10 +21,13 @@ namespace toonwater::povgen {
 struct ObjectPlacement {
   const ObjectConfig* config = nullptr;
   bool animated = false;   // one mesh per frame
-  // Below its water line in some frame. Then, when the water refracts, its shell is drawn as
-  // two copies clipped at the frame's water line (Obj_NAME_water_line, declared in each
-  // water include): the part under it with the water's ior (else the shell's inside acts as an
-  // air bubble), the part above without (else the rim rays bend back onto the object).
+  // Below its water line in some frame. Then, when the water refracts, the object is drawn
+  // apart in the frame's water and out of it (object_water_declaration): its texture in the
+  // water tinted as seen through the surface, with a contact line along the surface
+  // (seen_through_water.hpp, Toon_in_water), and its shell as two copies cut at the water
+  // line: the part under it with the water's ior (else the shell's inside acts as an air
+  // bubble) and a line colour seen through the surface, the part above without (else the rim
+  // rays bend back onto the object).
   bool submerged = false;
 };
 
@@ -77,10 +80,17 @@ double calm_light(const SceneLayout& layout);
 constexpr double band_noise_multiple = 3.0;
 std::pair<double, double> water_thresholds(const SceneLayout& layout);
 
-// The identifier of an object's water line in a frame (a number: its height in POV-Ray's y),
-// and its declaration in the frame's water include.
+// An object's water in a frame, declared in the frame's water include when the water refracts:
+// Obj_NAME_water_line, the height of the water's surface around the object (water_line in
+// povgen.hpp), where its shell is cut in two; Obj_NAME_water, an object whose inside is the
+// water around the object (the frame's `closed_water` mesh, Water_mesh, else the half-space
+// under the water line), where its texture changes; and Obj_NAME_contact, how deep the
+// contact line reaches on each side of the water's surface (scene units; 0: none).
 std::string water_line_id(const std::string& object_name);
-std::string water_line_declaration(const std::string& object_name, double height);
+std::string object_water_id(const std::string& object_name);
+std::string object_contact_id(const std::string& object_name);
+std::string object_water_declaration(const std::string& object_name, const SceneMesh* closed_water,
+                                     double line_height, double contact);
 
 // Texture identifiers of a closed volume's faces: free surface, walls and floor.
 inline constexpr const char* kWaterSurfaceTexture = "Water_surface_texture";

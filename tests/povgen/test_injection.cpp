@@ -188,10 +188,16 @@ void expect_only_generated_code(const fs::path& scene) {
       } else {
         ASSERT_EQ(entry.path().extension(), ".inc") << "unexpected file " << name;
         if (hash != std::string::npos) {
-          static const std::regex water_line(R"(#declare [A-Za-z0-9_]+_water_line = -?[0-9.]+(e[-+]?[0-9]+)?;)");
+          // An object's water (object_water_declaration): numbers and fixed words only.
+          static const std::string number = R"(-?[0-9.]+(e[-+]?[0-9]+)?)";
+          static const std::string vector = "<" + number + ", " + number + ", " + number + ">";
+          static const std::regex water_line("#declare [A-Za-z0-9_]+_(water_line|contact) = " + number + ";");
+          static const std::regex water("#declare [A-Za-z0-9_]+_water = (plane \\{ y, " + number +
+                                        " \\}|intersection \\{ object \\{ Water_mesh \\} box \\{ " +
+                                        vector + ", " + vector + " \\} \\})");
           EXPECT_TRUE(hash == 0 && (wraps_identifier(line, "#declare ", "_mesh = mesh2 {") ||
                                     wraps_identifier(line, "#declare ", "_shell = mesh2 {") ||
-                                    std::regex_match(line, water_line)))
+                                    std::regex_match(line, water_line) || std::regex_match(line, water)))
               << name << ": " << line;
         }
         EXPECT_EQ(line.find('"'), std::string::npos) << name << ": " << line;

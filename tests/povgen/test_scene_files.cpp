@@ -224,14 +224,21 @@ TEST(PovgenScene, FullSceneHasEveryFeature) {
         "Toon_silhouette(Obj_kite_mesh", "phong 0.5", "max_trace_level 10"})
     EXPECT_NE(g.pov.find(present), std::string::npos) << present;
   // The ball crosses the water line: its shell is split there, the part under it with the
-  // water's ior; the kite (above) has no shell at all.
-  EXPECT_NE(g.pov.find("Toon_outline_shell(Obj_ball_shell, srgb <0, 0, 0>) clipped_by { plane "
-                       "{ y, Obj_ball_water_line } } interior { ior 1.33 }"),
+  // water's ior and a line colour seen through the surface (negative: it takes away the
+  // surface's own colour); its texture changes in the water, with a contact line. The kite
+  // (above) has no shell at all.
+  EXPECT_NE(g.pov.find("Toon_outline_shell(Obj_ball_shell, rgb <-"), std::string::npos);
+  EXPECT_NE(g.pov.find(") clipped_by { plane { y, Obj_ball_water_line } } interior { ior 1.33 }"),
             std::string::npos);
   EXPECT_NE(g.pov.find("Toon_outline_shell(Obj_ball_shell, srgb <0, 0, 0>) clipped_by { plane "
                        "{ -y, -Obj_ball_water_line } } no_reflection }"),
             std::string::npos);
+  EXPECT_NE(g.pov.find("Toon_in_water(Obj_ball_water, Obj_ball_contact,"), std::string::npos);
+  EXPECT_EQ(g.pov.find("Toon_in_water(Obj_kite"), std::string::npos);
   EXPECT_NE(g.water_inc.find("#declare Obj_ball_water_line = "), std::string::npos);
+  EXPECT_NE(g.water_inc.find("#declare Obj_ball_water = intersection { object { Water_mesh } box {"),
+            std::string::npos);
+  EXPECT_NE(g.water_inc.find("#declare Obj_ball_contact = "), std::string::npos);
   // A see-through closed volume: free surface and body have their own textures.
   EXPECT_NE(g.pov.find("#declare Water_surface_texture"), std::string::npos);
   EXPECT_NE(g.water_inc.find("texture_list { 2, texture { Water_surface_texture }, texture { "
