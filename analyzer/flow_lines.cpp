@@ -61,7 +61,8 @@ Contour level_contour(const TriangleMesh& mesh, const FlowRegions& flow, double 
   return contour;
 }
 
-// Width factor along an open stroke: rises linearly from 0 at each end over taper_length.
+}  // namespace
+
 void set_taper(FlowLine& line, double taper_length) {
   const std::size_t n = line.points.size();
   line.taper.assign(n, 1.0);
@@ -75,6 +76,8 @@ void set_taper(FlowLine& line, double taper_length) {
     line.taper[i] = ramp > 0.0 ? std::clamp(to_end / ramp, 0.0, 1.0) : 0.0;
   }
 }
+
+namespace {
 
 void chain(const Contour& contour, std::int8_t sign, double taper_length,
            std::vector<FlowLine>& lines) {

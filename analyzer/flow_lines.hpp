@@ -28,6 +28,10 @@ struct FlowLine {
   std::vector<double> taper;            // per point, in [0, 1]: width factor (0 at an open end)
 };
 
+// The width factor along an open line: rising linearly from 0 at each end over taper_length,
+// or over half the line when it is shorter; 1 all along a closed one.
+void set_taper(FlowLine& line, double taper_length);
+
 // Contours of flow.field at +1 and −1 over the free surface. `taper_length` in scene units.
 std::vector<FlowLine> trace_flow_lines(const TriangleMesh& mesh, const FlowRegions& flow,
                                        double taper_length);

@@ -364,7 +364,7 @@ const Section<FlowConfig>& flow_section() {
            Keyword<FlowStyle>{{{"regions", FlowStyle::regions},
                                {"lines", FlowStyle::lines},
                                {"regions+lines", FlowStyle::regions_and_lines}}},
-           "filled regions, strokes along their contours, or both"),
+           "filled regions, strokes (along narrow crests, around wide regions), or both"),
        key("line_width", &C::line_width, Number{0.1, 100.0}, "stroke width in pixels"),
        key("line_color", &C::line_color, Colour{}, "stroke colour",
            "region colours (\"lines\"), outline colour (\"regions+lines\")"),

@@ -91,7 +91,7 @@ PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow,
   if (shading == WaterShading::toon) {
     if (flow->style != FlowStyle::regions) {
       // Strokes taper over 3 % of the scene's size: resolution-free, like the field.
-      out.flow_lines = trace_flow_lines(a.surface, a.flow, 0.03 * a.flow.scale_length);
+      out.flow_lines = flow_strokes(a.surface, a.flow, 0.03 * a.flow.scale_length);
       for (FlowLine& line : out.flow_lines)
         for (Vec3& p : line.points) p = to_povray(p, up);
     }

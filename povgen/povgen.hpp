@@ -13,7 +13,7 @@
 #include "analyzer/affine_transform.hpp"
 #include "analyzer/analysis.hpp"
 #include "analyzer/flow_coherence.hpp"
-#include "analyzer/flow_lines.hpp"
+#include "analyzer/flow_strokes.hpp"
 #include "analyzer/maps/map_planner.hpp"
 #include "povgen/config.hpp"
 #include "povgen/mesh2_writer.hpp"

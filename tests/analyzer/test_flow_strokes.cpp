@@ -1,0 +1,86 @@
+// Flow strokes (analyzer/flow_strokes.hpp): one tapered stroke along a narrow region's crest,
+// the contour around a wide one.
+#include "analyzer/flow_strokes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace toonwater::test {
+namespace {
+
+// A flat n × n grid of unit cells in z = 0, with a flow field s(x, y) on every vertex.
+struct Grid {
+  TriangleMesh mesh;
+  FlowRegions flow;
+};
+Grid grid(int n, const std::function<double(double, double)>& s) {
+  Grid g;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      g.mesh.positions.emplace_back(i, j, 0.0);
+      const double v = s(i, j);
+      g.flow.field.push_back(v);
+      g.flow.label.push_back(v >= 1 ? FlowLabel::ridge : v <= -1 ? FlowLabel::valley : FlowLabel::none);
+      g.flow.free_surface.push_back(1);
+      g.flow.shading_normal.emplace_back(0, 0, 1);
+    }
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i, b = a + 1, c = a + n, d = c + 1;
+      g.mesh.triangles.push_back({a, b, d});
+      g.mesh.triangles.push_back({a, d, c});
+    }
+  return g;
+}
+
+// A ridge three cells wide and thirty long, and a valley disc of radius 4.
+TEST(FlowStrokes, ANarrowCrestIsOneTaperedStrokeAlongItsMiddleAndAWideRegionKeepsItsContour) {
+  const Grid g = grid(41, [](double x, double y) {
+    if (x >= 5 && x <= 35 && std::abs(y - 20) <= 1) return 2.0 - std::abs(y - 20);
+    if (std::hypot(x - 20, y - 7) <= 4) return -2.0;
+    return 0.0;
+  });
+  const std::vector<FlowLine> lines = flow_strokes(g.mesh, g.flow, 3.0);
+  ASSERT_EQ(lines.size(), 2u);
+  int strokes = 0, contours = 0;
+  for (const FlowLine& line : lines) {
+    if (line.sign == FlowLabel::ridge) {
+      ++strokes;
+      EXPECT_FALSE(line.closed);
+      double lo = 1e9, hi = -1e9;
+      for (const Vec3& p : line.points) {
+        EXPECT_NEAR(p.y(), 20.0, 0.25) << "off the crest at x = " << p.x();
+        EXPECT_NEAR(p.z(), 0.0, 1e-12) << "smoothing leaves the surface's plane";
+        lo = std::min(lo, p.x()), hi = std::max(hi, p.x());
+      }
+      EXPECT_LE(lo, 6.0);
+      EXPECT_GE(hi, 34.0);
+      EXPECT_EQ(line.taper.front(), 0.0);
+      EXPECT_EQ(line.taper.back(), 0.0);
+      EXPECT_EQ(line.taper[line.taper.size() / 2], 1.0);
+    } else {
+      ++contours;
+      EXPECT_TRUE(line.closed);
+      for (const Vec3& p : line.points) EXPECT_NEAR(std::hypot(p.x() - 20, p.y() - 7), 4.0, 1.0);
+    }
+  }
+  EXPECT_EQ(strokes, 1);
+  EXPECT_EQ(contours, 1);
+}
+
+// The field is strongest along y = 21 in a region from y = 19 to 21: the stroke keeps to it.
+TEST(FlowStrokes, TheStrokeFollowsWhereTheFieldIsStrongest) {
+  const Grid g = grid(41, [](double x, double y) {
+    if (x >= 5 && x <= 35 && y >= 19 && y <= 21) return y == 21 ? 4.0 : 1.2;
+    return 0.0;
+  });
+  const std::vector<FlowLine> lines = flow_strokes(g.mesh, g.flow, 3.0);
+  ASSERT_EQ(lines.size(), 1u);
+  int on_crest = 0;
+  for (const Vec3& p : lines[0].points) on_crest += std::abs(p.y() - 21.0) < 0.5;
+  EXPECT_GE(on_crest, 0.8 * static_cast<double>(lines[0].points.size()));
+}
+
+}  // namespace
+}  // namespace toonwater::test
