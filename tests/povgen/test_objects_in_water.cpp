@@ -362,5 +362,40 @@ TEST(ObjectsInWater, ABallAcrossTheSurfaceHasAContactLine) {
   EXPECT_GE(lined, 0.8 * samples) << lined << " of " << samples << " points of the contact circle";
 }
 
+// A crown: a thin ring of water standing 0.5 high out of a still tank, seen from above and
+// in front. Its front half stands in front of the water inside the ring: along the picture of
+// its crest there, within 2.5 px, a line at least a quarter darker than without outlines, along
+// at least 80 % of it.
+TEST(WaterSilhouettes, ACrownInFrontOfTheWaterIsInkedAlongItsCrest) {
+  ScratchDir dir;
+  const double ring = 0.6, height = 0.5;
+  write_obj(dir / "crown.obj", make_tank(121, 1.5, 1.0, [&](double x, double z) {
+              return height * std::exp(-std::pow((std::hypot(x, z) - ring) / 0.04, 2));
+            }));
+  const std::vector<std::string> water{"--water", (dir / "crown.obj").string()};
+  std::vector<std::string> plain = water;
+  plain.insert(plain.end(), {"--set", "outline.enabled=false"});
+  const Image with = render(dir / "lined", water), without = render(dir / "plain", plain);
+  const Projection camera = camera_projection();
+  int samples = 0, lined = 0;
+  for (int k = 0; k < 90; ++k) {
+    const double phi = std::numbers::pi * (k + 0.5) / 90;
+    double x = 0, y = 0;
+    if (!camera.at(Vec3(ring * std::cos(phi), height, ring * std::sin(phi)), x, y)) continue;
+    ++samples;
+    bool darker = false;
+    for (int dy = -3; dy <= 3 && !darker; ++dy)
+      for (int dx = -3; dx <= 3 && !darker; ++dx) {
+        const int u = static_cast<int>(std::floor(x)) + dx, v = static_cast<int>(std::floor(y)) + dy;
+        if (u < 0 || v < 0 || u >= kWidth || v >= kHeight) continue;
+        if (std::hypot(u + 0.5 - x, v + 0.5 - y) > 2.5) continue;
+        darker = luminance(with.at(u, v)) <= 0.75 * luminance(without.at(u, v));
+      }
+    lined += darker;
+  }
+  ASSERT_GT(samples, 80);
+  EXPECT_GE(lined, 0.8 * samples) << lined << " of " << samples << " points of the crown's front crest";
+}
+
 }  // namespace
 }  // namespace toonwater::test
