@@ -23,10 +23,11 @@ struct Contour {
   std::vector<std::array<std::int32_t, 2>> segments;             // crossing pairs
 };
 
-Contour level_contour(const TriangleMesh& mesh, const FlowRegions& flow, double level) {
+Contour level_contour(const TriangleMesh& mesh, std::span<const double> field,
+                      std::span<const std::uint8_t> free_surface, double level) {
   Contour contour;
   std::unordered_map<std::uint64_t, std::int32_t> crossing_of_edge;
-  const auto& s = flow.field;
+  const auto& s = field;
   auto inside = [&](std::int32_t v) { return level > 0 ? s[v] >= level : s[v] <= level; };
   auto crossing = [&](std::int32_t a, std::int32_t b) {
     const auto [it, added] =
@@ -40,7 +41,7 @@ Contour level_contour(const TriangleMesh& mesh, const FlowRegions& flow, double 
     return it->second;
   };
   for (const Triangle& t : mesh.triangles) {
-    if (!flow.free_surface[t[0]] || !flow.free_surface[t[1]] || !flow.free_surface[t[2]]) continue;
+    if (!free_surface[t[0]] || !free_surface[t[1]] || !free_surface[t[2]]) continue;
     const int in = inside(t[0]) + inside(t[1]) + inside(t[2]);
     if (in == 0 || in == 3) continue;
     std::array<std::int32_t, 2> ends{};
@@ -125,13 +126,14 @@ void chain(const Contour& contour, std::int8_t sign, double taper_length,
 
 }  // namespace
 
-std::vector<FlowLine> trace_flow_lines(const TriangleMesh& mesh, const FlowRegions& flow,
+std::vector<FlowLine> trace_flow_lines(const TriangleMesh& mesh, std::span<const double> field,
+                                       std::span<const std::uint8_t> free_surface,
                                        double taper_length) {
   std::vector<FlowLine> lines;
-  if (flow.field.size() != mesh.positions.size() || flow.free_surface.size() != mesh.positions.size())
+  if (field.size() != mesh.positions.size() || free_surface.size() != mesh.positions.size())
     return lines;
   for (const std::int8_t sign : {std::int8_t{FlowLabel::ridge}, std::int8_t{FlowLabel::valley}})
-    chain(level_contour(mesh, flow, static_cast<double>(sign)), sign, taper_length, lines);
+    chain(level_contour(mesh, field, free_surface, static_cast<double>(sign)), sign, taper_length, lines);
   return lines;
 }
 

@@ -17,6 +17,7 @@
 #include "analyzer/mesh.hpp"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace toonwater {
@@ -32,8 +33,10 @@ struct FlowLine {
 // or over half the line when it is shorter; 1 all along a closed one.
 void set_taper(FlowLine& line, double taper_length);
 
-// Contours of flow.field at +1 and −1 over the free surface. `taper_length` in scene units.
-std::vector<FlowLine> trace_flow_lines(const TriangleMesh& mesh, const FlowRegions& flow,
+// Contours of a flow field s (flow_regions.hpp: FlowRegions::field) at +1 and −1 over the free
+// surface (FlowRegions::free_surface). `taper_length` in scene units.
+std::vector<FlowLine> trace_flow_lines(const TriangleMesh& mesh, std::span<const double> field,
+                                       std::span<const std::uint8_t> free_surface,
                                        double taper_length);
 
 }  // namespace toonwater

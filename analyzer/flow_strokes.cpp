@@ -111,7 +111,7 @@ std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const FlowRegions& 
   // the shortest paths.
 
   std::vector<FlowLine> lines;
-  FlowRegions wide = flow;  // the field with the narrow regions taken out, for their contours
+  std::vector<double> wide = flow.field;  // the narrow regions taken out, for the contours
   for (const RegionGraph& g : graphs) {
     std::vector<std::int32_t> previous;
     auto length_only = [](double length, std::int32_t, std::int32_t) { return length; };
@@ -142,13 +142,13 @@ std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const FlowRegions& 
       line.points.push_back(mesh.positions[path[i]]);
       normal.push_back(flow.shading_normal.size() == n ? flow.shading_normal[path[i]] : Vec3::Zero());
     }
-    for (std::int32_t v : g.vertices) wide.field[v] = 0.0;
+    for (std::int32_t v : g.vertices) wide[v] = 0.0;
     if (line.points.size() < 2) continue;
     smooth_in_tangent_planes(line.points, normal);
     set_taper(line, taper_length);
     lines.push_back(std::move(line));
   }
-  std::vector<FlowLine> contours = trace_flow_lines(mesh, wide, taper_length);
+  std::vector<FlowLine> contours = trace_flow_lines(mesh, wide, flow.free_surface, taper_length);
   lines.insert(lines.end(), std::make_move_iterator(contours.begin()),
                std::make_move_iterator(contours.end()));
   return lines;

@@ -381,8 +381,7 @@ std::string scene_pov(const SceneLayout& l) {
 
   // Under the water: colours that show through its surface as a cartoon draws them.
   const WaterSurfaceLook look = water_surface_look(c);
-  const Color gain{w.ka + w.kd * c.light.color[0], w.ka + w.kd * c.light.color[1],
-                   w.ka + w.kd * c.light.color[2]};
+  const Color& gain = look.gain;
   const Color line_under_water =
       seen_through_water(linear_from_srgb(c.outline.color), {1, 1, 1}, look.brightest, look);
   for (const ObjectPlacement& o : l.objects) {

@@ -23,9 +23,9 @@ WaterSurfaceLook water_surface_look(const SceneConfig& config) {
   const Color medium = linear_from_srgb(w.medium), bright = linear_from_srgb(w.bright);
   const Color sky = linear_from_srgb(w.sky.value_or(w.bright));
   for (int c = 0; c < 3; ++c) {
-    const double gain = w.ka + w.kd * config.light.color[c];
-    look.calm[c] = gain * medium[c];
-    look.brightest[c] = gain * bright[c];
+    look.gain[c] = w.ka + w.kd * config.light.color[c];
+    look.calm[c] = look.gain[c] * medium[c];
+    look.brightest[c] = look.gain[c] * bright[c];
     look.reflected[c] = w.reflection * sky[c];
   }
   return look;

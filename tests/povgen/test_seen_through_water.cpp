@@ -27,6 +27,7 @@ TEST(SeenThroughWater, TheComposedPixelIsTheColourWanted) {
     config.water.transmit = transmit;
     const povgen::WaterSurfaceLook look = povgen::water_surface_look(config);
     const Color gain{0.2 + 0.8 * 1.0, 0.2 + 0.8 * 0.9, 0.2 + 0.8 * 0.8};
+    for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(look.gain[c], gain[c]);
     const Color wanted = povgen::linear_from_srgb(povgen::submerged_tint({0.92, 0.45, 0.18}, config.water.medium));
     const Color x = povgen::seen_through_water(wanted, gain, look.calm, look);
     const Color pixel = composed(x, gain, look.calm, look);
