@@ -101,14 +101,14 @@ std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const FlowRegions& 
   for (const Triangle& t : mesh.triangles)
     for (int c = 0; c < 3; ++c) {
       const int a = t[c], b = t[(c + 1) % 3];
-      if (a > b || graph_of[a] < 0 || graph_of[a] != graph_of[b]) continue;  // each edge once
+      if (graph_of[a] < 0 || graph_of[a] != graph_of[b]) continue;
       RegionGraph& g = graphs[graph_of[a]];
       const double length = (mesh.positions[a] - mesh.positions[b]).norm();
       g.next[index_in_graph[a]].emplace_back(index_in_graph[b], length);
       g.next[index_in_graph[b]].emplace_back(index_in_graph[a], length);
     }
-  // An edge inside a mesh is met from both its faces: the duplicate neighbours do no harm to
-  // the shortest paths.
+  // An edge inside the mesh is met from both its faces and is listed twice: the duplicate
+  // neighbours do no harm to the shortest paths, and an edge on the mesh's border is met once.
 
   std::vector<FlowLine> lines;
   std::vector<double> wide = flow.field;  // the narrow regions taken out, for the contours

@@ -82,5 +82,21 @@ TEST(FlowStrokes, TheStrokeFollowsWhereTheFieldIsStrongest) {
   EXPECT_GE(on_crest, 0.8 * static_cast<double>(lines[0].points.size()));
 }
 
+// A crest one vertex wide along the border of an open surface: its edges belong to one face
+// each, and still join it into one stroke.
+TEST(FlowStrokes, ACrestAlongTheSurfacesBorderIsOneStroke) {
+  const Grid g = grid(41, [](double x, double y) { return y == 40 && x >= 5 && x <= 35 ? 2.0 : 0.0; });
+  const std::vector<FlowLine> lines = flow_strokes(g.mesh, g.flow, 3.0);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_FALSE(lines[0].closed);
+  double lo = 1e9, hi = -1e9;
+  for (const Vec3& p : lines[0].points) {
+    EXPECT_NEAR(p.y(), 40.0, 1e-9) << "a contour around the crest, not a stroke along it";
+    lo = std::min(lo, p.x()), hi = std::max(hi, p.x());
+  }
+  EXPECT_LE(lo, 6.0);
+  EXPECT_GE(hi, 34.0);
+}
+
 }  // namespace
 }  // namespace toonwater::test
