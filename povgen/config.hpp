@@ -129,7 +129,7 @@ struct FlowConfig {
   std::optional<Color> line_color;  // default: the region colours (lines), the outline colour (both)
   Color ridge_color{1.0, 1.0, 1.0};
   Color valley_color{0.02, 0.06, 0.22};
-  bool coherence = true;                   // carry regions from frame to frame (flow_coherence.hpp)
+  bool coherence = true;                   // carry regions and strokes from frame to frame (flow_coherence.hpp, stroke_persistence.hpp)
   Estimator estimator = Estimator::one_ring;  // curvature estimator (analysis.hpp)
 };
 

@@ -370,7 +370,7 @@ const Section<FlowConfig>& flow_section() {
            "region colours (\"lines\"), outline colour (\"regions+lines\")"),
        key("ridge_color", &C::ridge_color, Colour{}, "ridge regions' colour"),
        key("valley_color", &C::valley_color, Colour{}, "valley regions' colour"),
-       key("coherence", &C::coherence, Boolean{}, "carry regions from frame to frame"),
+       key("coherence", &C::coherence, Boolean{}, "carry regions and strokes from frame to frame"),
        key("estimator", &C::estimator,
            Keyword<Estimator>{{{"one-ring", Estimator::one_ring}, {"jet", Estimator::jet}}},
            "curvature estimator")},

@@ -74,7 +74,7 @@ std::optional<AnalyzeOptions> water_analysis(const SceneConfig& config, Axis up,
 }
 
 PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow,
-                                WaterShading shading) {
+                                WaterShading shading, StrokePersistence* persistence) {
   const auto start = Clock::now();
   PreparedSurface out;
   if (!flow) {
@@ -91,7 +91,11 @@ PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow,
   if (shading == WaterShading::toon) {
     if (flow->style != FlowStyle::regions) {
       // Strokes taper over 3 % of the scene's size: resolution-free, like the field.
-      out.flow_lines = flow_strokes(a.surface, a.flow, 0.03 * a.flow.scale_length);
+      const double taper_length = 0.03 * a.flow.scale_length;
+      out.flow_lines = flow_strokes(a.surface, a.flow, taper_length);
+      if (persistence)
+        out.flow_lines =
+            persistence->update(a.surface, a.flow, std::move(out.flow_lines), taper_length);
       for (FlowLine& line : out.flow_lines)
         for (Vec3& p : line.points) p = to_povray(p, up);
     }
@@ -338,6 +342,7 @@ struct SceneRun {
   };
   std::vector<Box> object_box;
   std::vector<KeepOutBox> keep_out;  // each object with its shell (shell_culling.hpp)
+  StrokePersistence strokes;         // the flow strokes carried from frame to frame
   std::vector<bool> submerged;
   std::vector<double> contact_depth;  // each object's, in scene units (Obj_NAME_contact)
   double view_range = 0;
@@ -372,9 +377,11 @@ struct SceneRun {
     report.analysis_seconds += f.analysis_seconds;
     return f;
   }
-  // A frame with water, prepared for the scene.
-  PreparedSurface prepare(SourceFrame& f) const {
-    return f.analysis ? prepare_surface(std::move(*f.analysis), request.up, plan.flow, plan.shading)
+  // A frame with water, prepared for the scene; a sequence's frames in order, so that the
+  // strokes persist where the flow is coherent.
+  PreparedSurface prepare(SourceFrame& f) {
+    return f.analysis ? prepare_surface(std::move(*f.analysis), request.up, plan.flow, plan.shading,
+                                        plan.frames.coherent ? &strokes : nullptr)
                       : prepare_surface(geometry_analysis(std::move(f.mesh)), request.up, nullptr);
   }
 };

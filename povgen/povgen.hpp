@@ -13,6 +13,7 @@
 #include "analyzer/affine_transform.hpp"
 #include "analyzer/analysis.hpp"
 #include "analyzer/flow_coherence.hpp"
+#include "analyzer/stroke_persistence.hpp"
 #include "analyzer/flow_strokes.hpp"
 #include "analyzer/maps/map_planner.hpp"
 #include "povgen/config.hpp"
@@ -58,9 +59,11 @@ AnalyzeOptions analysis_options(const FlowConfig& flow, Axis up, WaterShading sh
 // The scene's surface from an analysis: with `flow`, its curvature normals and, as `shading`
 // asks, the flow field (and lines) or the per-vertex K or H of a curvature view; without,
 // angle-weighted normals of the welded, oriented surface (the analysis then needs no more
-// than weld, topology and orientation).
+// than weld, topology and orientation). With `persistence` (a sequence's frames in order), the
+// flow strokes persist from frame to frame (stroke_persistence.hpp).
 PreparedSurface prepare_surface(Analysis analysis, Axis up, const FlowConfig* flow,
-                                WaterShading shading = WaterShading::toon);
+                                WaterShading shading = WaterShading::toon,
+                                StrokePersistence* persistence = nullptr);
 // The same from a mesh, analysed here: with `coherence`, the field is made coherent with the
 // frames it saw before (a sequence's frames in order).
 PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,

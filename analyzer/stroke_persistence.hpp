@@ -1,0 +1,64 @@
+// Flow strokes that persist from frame to frame.
+//
+// Each frame's strokes are traced afresh (flow_strokes.hpp) from a field whose crests wander
+// by up to a cell with the simulation's noise, so a stroke traced through the vertices jumps by
+// an edge where the water barely moves, and one whose region fades vanishes at once. As lines
+// are faded in and out by strength in DeCarlo et al., "Interactive rendering of suggestive
+// contours with temporal coherence" (NPAR 2004), and carried from frame to frame in Kalnins et
+// al., "Coherent stylized silhouettes" (SIGGRAPH 2003), the strokes of a frame are made from
+// the last frame's:
+//
+// 1. Carry: each point of the last frame's strokes moves onto the new free surface along the
+//    shading normal of its closest free-surface vertex, found within `carry_distance` median
+//    edge lengths; a point with none (the water has left) is dropped, splitting its stroke.
+// 2. Match: a fresh stroke takes the carried stroke of its sign that shares the most with it,
+//    the larger of the shares of either's points within `match_distance` edge lengths of the
+//    other, when that is at least `min_shared`; each carried stroke is taken once.
+// 3. Hold still: each point q of a matched stroke moves towards its closest point c on the
+//    carried one by b·(c − q), b = hold_blend · max(0, 1 − (|c − q| / (z·e))²), z =
+//    `noise_distance` and e the edge length. A crest traced an edge away by noise stays where
+//    it was drawn; one that moves further, as a travelling wave does, is followed as traced.
+// 4. Fade: a stroke's strength s sets its drawn width (taper · s). A new stroke starts at
+//    1/fade_frames and a matched one gains 1/fade_frames a frame up to 1; the parts of a
+//    carried stroke that no stroke of this frame comes within `match_distance` of are kept
+//    where the water took them, losing 1/fade_frames a frame until they are gone. Strokes thus
+//    thin out where they were rather than disappear, and thicken where they appear.
+#pragma once
+
+#include "analyzer/flow_lines.hpp"
+#include "analyzer/flow_regions.hpp"
+#include "analyzer/mesh.hpp"
+
+#include <vector>
+
+namespace toonwater {
+
+struct StrokePersistenceOptions {
+  double carry_distance = 3.0;  // in median edge lengths: farther, a point has no water under it
+  double match_distance = 3.0;  // in median edge lengths: a point this near another stroke is shared
+  double min_shared = 0.5;      // share of points near the other stroke for a match
+  double noise_distance = 2.0;  // z: in median edge lengths, a move below z·e is noise
+  double hold_blend = 0.9;      // weight of the carried stroke where the move is noise
+  int fade_frames = 3;          // frames to fade in or out
+};
+
+class StrokePersistence {
+ public:
+  explicit StrokePersistence(StrokePersistenceOptions options = {}) : options_(options) {}
+
+  // This frame's strokes (flow_strokes on `mesh` and `flow`), made persistent with the frames
+  // before: the strokes to draw, their taper times their strength. `taper_length` as given to
+  // flow_strokes (a piece kept from a carried stroke tapers anew).
+  std::vector<FlowLine> update(const TriangleMesh& mesh, const FlowRegions& flow,
+                               std::vector<FlowLine> fresh, double taper_length);
+
+ private:
+  struct Stroke {
+    FlowLine line;  // its taper: the shape at full strength
+    double strength = 0.0;
+  };
+  StrokePersistenceOptions options_;
+  std::vector<Stroke> strokes_;
+};
+
+}  // namespace toonwater

@@ -1,0 +1,146 @@
+// Strokes that persist from frame to frame (analyzer/stroke_persistence.hpp): held still where
+// the traced crest only jitters, followed where it travels, faded in and out where they were.
+#include "analyzer/stroke_persistence.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace toonwater::test {
+namespace {
+
+// A flat 41 × 21 grid of unit cells in z = 0 (shifted by `dx`), all free surface, normals up.
+struct Water {
+  TriangleMesh mesh;
+  FlowRegions flow;
+};
+Water flat_water(double dx = 0.0) {
+  Water w;
+  const int nx = 41, ny = 21;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      w.mesh.positions.emplace_back(i + dx, j, 0.0);
+      w.flow.free_surface.push_back(1);
+      w.flow.shading_normal.emplace_back(0, 0, 1);
+    }
+  for (int j = 0; j + 1 < ny; ++j)
+    for (int i = 0; i + 1 < nx; ++i) {
+      const int a = j * nx + i, b = a + 1, c = a + nx, d = c + 1;
+      w.mesh.triangles.push_back({a, b, d});
+      w.mesh.triangles.push_back({a, d, c});
+    }
+  w.flow.median_edge_length = 1.0;
+  return w;
+}
+
+constexpr double kTaper = 3.0;
+
+// A ridge stroke along x from x0 to x1 at height y, a point every edge.
+FlowLine crest(double y, double x0 = 5, double x1 = 35) {
+  FlowLine line;
+  line.sign = FlowLabel::ridge;
+  for (double x = x0; x <= x1 + 1e-9; x += 1.0) line.points.emplace_back(x, y, 0.0);
+  set_taper(line, kTaper);
+  return line;
+}
+
+double widest(const FlowLine& line) { return *std::max_element(line.taper.begin(), line.taper.end()); }
+
+double mean_y(const FlowLine& line) {
+  double sum = 0;
+  for (const Vec3& p : line.points) sum += p.y();
+  return sum / static_cast<double>(line.points.size());
+}
+
+TEST(StrokePersistence, ACrestTracedAnEdgeAwayByNoiseIsHeldWhereItWasDrawn) {
+  const Water w = flat_water();
+  StrokePersistence persistence;
+  double before = 0;
+  for (int frame = 0; frame < 12; ++frame) {
+    const double traced = 10.0 + (frame % 2 ? 0.8 : -0.8);  // jumps 1.6 edges every frame
+    const std::vector<FlowLine> drawn = persistence.update(w.mesh, w.flow, {crest(traced)}, kTaper);
+    ASSERT_EQ(drawn.size(), 1u) << "frame " << frame;
+    const double y = mean_y(drawn[0]);
+    if (frame >= 4) {
+      EXPECT_LT(std::abs(y - before), 0.4) << "frame " << frame << ": the stroke jumps with the noise";
+    }
+    before = y;
+  }
+}
+
+TEST(StrokePersistence, ATravellingCrestIsFollowedAsOneStroke) {
+  const Water w = flat_water();
+  for (const double speed : {1.5, 2.5}) {  // edges a frame: below and beyond the noise distance
+    StrokePersistence persistence;
+    for (int frame = 0; frame < 7; ++frame) {
+      const double traced = 3.0 + speed * frame;
+      const std::vector<FlowLine> drawn =
+          persistence.update(w.mesh, w.flow, {crest(traced)}, kTaper);
+      ASSERT_EQ(drawn.size(), 1u) << "speed " << speed << ", frame " << frame
+                                  << ": the stroke breaks or leaves a trail";
+      EXPECT_LE(traced - mean_y(drawn[0]), 1.0) << "lags an edge behind: speed " << speed << ", frame " << frame;
+      EXPECT_GE(traced - mean_y(drawn[0]), -1e-12);
+      if (speed > StrokePersistenceOptions{}.noise_distance) {
+        EXPECT_NEAR(mean_y(drawn[0]), traced, 1e-12) << "a move beyond the noise is taken as traced";
+      }
+    }
+  }
+}
+
+TEST(StrokePersistence, AStrokeFadesInAndThinsOutWhereItWas) {
+  const Water w = flat_water();
+  StrokePersistence persistence;
+  const int fade = StrokePersistenceOptions{}.fade_frames;
+  for (int frame = 0; frame < fade + 1; ++frame) {
+    const std::vector<FlowLine> drawn = persistence.update(w.mesh, w.flow, {crest(10)}, kTaper);
+    ASSERT_EQ(drawn.size(), 1u);
+    EXPECT_NEAR(widest(drawn[0]), std::min(1.0, (frame + 1.0) / fade), 1e-12) << "frame " << frame;
+  }
+  for (int gone = 1; gone < fade; ++gone) {
+    const std::vector<FlowLine> drawn = persistence.update(w.mesh, w.flow, {}, kTaper);
+    ASSERT_EQ(drawn.size(), 1u) << gone << " frames after its crest went";
+    EXPECT_NEAR(widest(drawn[0]), 1.0 - static_cast<double>(gone) / fade, 1e-12);
+    EXPECT_NEAR(mean_y(drawn[0]), 10.0, 1e-12);
+    EXPECT_EQ(drawn[0].points.size(), crest(10).points.size());
+  }
+  EXPECT_TRUE(persistence.update(w.mesh, w.flow, {}, kTaper).empty());
+}
+
+TEST(StrokePersistence, ThePartOfAStrokeItsSuccessorNoLongerCoversFadesOnItsOwn) {
+  const Water w = flat_water();
+  StrokePersistence persistence;
+  for (int frame = 0; frame < 3; ++frame) persistence.update(w.mesh, w.flow, {crest(10)}, kTaper);
+  const std::vector<FlowLine> drawn =
+      persistence.update(w.mesh, w.flow, {crest(10, 5, 20)}, kTaper);
+  ASSERT_EQ(drawn.size(), 2u);
+  EXPECT_NEAR(widest(drawn[0]), 1.0, 1e-12);
+  const FlowLine& rest = drawn[1];
+  EXPECT_NEAR(widest(rest), 1.0 - 1.0 / StrokePersistenceOptions{}.fade_frames, 1e-12);
+  EXPECT_GT(rest.points.front().x(), 20.0 + StrokePersistenceOptions{}.match_distance - 1e-9);
+  EXPECT_NEAR(rest.points.back().x(), 35.0, 1e-12);
+  EXPECT_EQ(rest.taper.front(), 0.0) << "the cut end tapers";
+}
+
+TEST(StrokePersistence, AStrokeWhoseWaterHasGoneIsNotKept) {
+  StrokePersistence persistence;
+  const Water here = flat_water(), elsewhere = flat_water(100.0);
+  for (int frame = 0; frame < 3; ++frame) persistence.update(here.mesh, here.flow, {crest(10)}, kTaper);
+  EXPECT_TRUE(persistence.update(elsewhere.mesh, elsewhere.flow, {}, kTaper).empty());
+}
+
+TEST(StrokePersistence, StrokesOfTheOtherSignAreNeitherMatchedNorCovering) {
+  const Water w = flat_water();
+  StrokePersistence persistence;
+  for (int frame = 0; frame < 3; ++frame) persistence.update(w.mesh, w.flow, {crest(10)}, kTaper);
+  FlowLine trough = crest(10);
+  trough.sign = FlowLabel::valley;
+  const std::vector<FlowLine> drawn = persistence.update(w.mesh, w.flow, {trough}, kTaper);
+  ASSERT_EQ(drawn.size(), 2u);
+  EXPECT_EQ(drawn[0].sign, FlowLabel::valley);
+  EXPECT_NEAR(widest(drawn[0]), 1.0 / StrokePersistenceOptions{}.fade_frames, 1e-12);
+  EXPECT_EQ(drawn[1].sign, FlowLabel::ridge);
+}
+
+}  // namespace
+}  // namespace toonwater::test
