@@ -1,10 +1,13 @@
-// AtomicFileWriter: writes ".NAME.tmp-PID-N" beside the target, closes it (checking every
+// AtomicFileWriter: writes ".NAME.tmp-…" (temporary_name.hpp) beside the target, with the
+// target's owner, group and mode when it replaces one, closes it (checking every
 // step), then rename(2)s it over the target, which POSIX makes atomic within one file system —
 // hence the temporary file lives in the target's own directory. There is no fsync: the guarantee
 // is against failed and interrupted runs, not against power loss, and syncing large outputs would
 // cost more than the rest of the run. Writers in progress list their temporary file in a fixed
 // table that a signal handler can read (remove_temporaries_on_signals).
 #include "common/atomic_file.hpp"
+
+#include "common/temporary_name.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -13,6 +16,7 @@
 
 #include <atomic>
 #include <charconv>
+#include <functional>
 #include <cerrno>
 #include <cstring>
 #include <mutex>
@@ -132,22 +136,15 @@ std::vector<BatchFile> batch_files;
   throw OutputError(path.string() + ": " + what + ": " + std::generic_category().message(error));
 }
 
-// Creates a new temporary file beside `path`; returns its descriptor and sets `temporary`.
+// Creates a new temporary file beside `path` (temporary_name.hpp); returns its descriptor and
+// sets `temporary`.
 int create_temporary(const fs::path& path, fs::path& temporary) {
-  static std::atomic<unsigned> counter{0};
   const fs::path directory = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  // At most 100 characters of the target's name, so that the temporary name stays within the
-  // file system's limit (255) whatever the target's name. Built by appending: GCC 12 misreports
-  // "." + string (-Wrestrict).
-  std::string prefix = ".";
-  prefix += path.filename().string().substr(0, 100);
-  prefix += ".tmp-" + std::to_string(::getpid()) + "-";
   for (;;) {
-    temporary = directory / (prefix + std::to_string(counter++));
+    temporary = directory / temporary_name(path.filename().string());
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd >= 0) return fd;
-    // A name left by an earlier process with the same pid: try the next one.
-    if (errno != EEXIST)
+    if (errno != EEXIST)  // a random name taken already: try another
       throw_output_error(path, "cannot create a temporary file in " + directory.string(), errno);
   }
 }
@@ -183,6 +180,19 @@ fs::path follow_links(fs::path path) {
   throw OutputError(path.string() + ": too many levels of symbolic links");
 }
 
+// Gives the new file `fd` the owner, group and permission bits of the file it replaces, as a
+// careful editor does. Best effort: a user who may not give the file its owner (only root may)
+// or group (one they are not in) keeps what they can, and a setgid or setuid bit goes with a
+// group or owner that could not be kept.
+void keep_access(const struct stat& replaced, int fd) {
+  mode_t mode = replaced.st_mode & 07777;
+  if (::fchown(fd, replaced.st_uid, replaced.st_gid) != 0) {
+    mode &= ~static_cast<mode_t>(S_ISUID);
+    if (::fchown(fd, static_cast<uid_t>(-1), replaced.st_gid) != 0) mode &= ~static_cast<mode_t>(S_ISGID);
+  }
+  ::fchmod(fd, mode);
+}
+
 bool write_all(int fd, std::string_view contents) {
   while (!contents.empty()) {
     const ssize_t n = ::write(fd, contents.data(), contents.size());
@@ -216,6 +226,7 @@ AtomicFileWriter::AtomicFileWriter(fs::path path) : name_(path), path_(std::move
   const HandledSignalsBlocked blocked;
   fd_ = create_temporary(path_, temporary_);
   slot_ = track(temporary_);
+  if (S_ISREG(status.st_mode)) keep_access(status, fd_);
 }
 
 AtomicFileWriter::~AtomicFileWriter() {
@@ -311,21 +322,17 @@ void OutputBatch::commit() {
   RenamesUninterrupted::end_deferred();
 }
 
-void remove_stale_temporaries(const fs::path& directory) {
+void remove_stale_temporaries(const fs::path& directory,
+                              const std::function<bool(const fs::path&)>& recover) {
   std::error_code ec;
   const fs::path listed = directory.empty() ? fs::path(".") : directory;
-  for (const auto& entry : fs::directory_iterator(listed, ec)) {
-    const std::string name = entry.path().filename().string();
-    const std::size_t tmp = name.rfind(".tmp-");
-    if (name.size() < 2 || name[0] != '.' || tmp == std::string::npos || tmp == 0) continue;
-    std::string_view rest = std::string_view(name).substr(tmp + 5);
-    rest = rest.substr(0, rest.find('-'));  // the PID, before an AtomicFileWriter's counter
-    pid_t pid = 0;
-    const auto [end, error] = std::from_chars(rest.data(), rest.data() + rest.size(), pid);
-    if (error != std::errc{} || end != rest.data() + rest.size() || pid <= 0) continue;
-    if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+  std::vector<fs::path> stale;
+  for (const auto& entry : fs::directory_iterator(listed, ec))
+    if (is_stale_temporary(entry.path().filename().string())) stale.push_back(entry.path());
+  for (const fs::path& entry : stale) {
     std::error_code ignored;
-    fs::remove_all(entry.path(), ignored);
+    if (recover && fs::is_directory(fs::symlink_status(entry, ignored)) && !recover(entry)) continue;
+    fs::remove_all(entry, ignored);
   }
 }
 

@@ -1,5 +1,6 @@
 // Writes a file so that readers only ever see the old or the complete new content: the data goes
 // to a temporary file in the same directory, which is renamed over the target once complete.
+// The new file keeps the owner, group and permissions of the one it replaces.
 //
 // Where the output goes: "-" is standard output, and so are /dev/stdout, /dev/stderr,
 // /dev/fd/N and /proc/self/fd/N (the open descriptor itself); a symbolic link is followed to
@@ -8,6 +9,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
@@ -80,11 +82,14 @@ class NewDirectories {
 // Replaces `path` with `contents` atomically (AtomicFileWriter in one piece).
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents);
 
-// Removes the temporary files and directories in `directory` that processes which no longer
-// exist left behind (killed by SIGKILL, say): names ".NAME.tmp-PID" or ".NAME.tmp-PID-N", as
-// AtomicFileWriter, povgen and render make them. Those of running processes stay. Best effort:
-// what cannot be listed or removed is left as it is.
-void remove_stale_temporaries(const std::filesystem::path& directory);
+// Removes the temporary files and directories in `directory` that toonwater's processes which
+// no longer exist left behind (killed by SIGKILL, say): only entries whose names prove them
+// toonwater's, made on this machine (is_stale_temporary, temporary_name.hpp). Those of running
+// processes and of other machines stay. `recover`, when given, is called first for each stale
+// directory: one it returns false for stays. Best effort: what cannot be listed or removed is
+// left as it is.
+void remove_stale_temporaries(const std::filesystem::path& directory,
+                              const std::function<bool(const std::filesystem::path&)>& recover = {});
 
 // Installs handlers for SIGINT, SIGTERM and SIGHUP that delete the temporary files of the
 // AtomicFileWriters in progress, then let the signal end the process as it would have: an

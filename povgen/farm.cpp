@@ -1,5 +1,7 @@
 #include "povgen/farm.hpp"
 
+#include "common/temporary_name.hpp"
+
 #include "common/atomic_file.hpp"
 #include "analyzer/mesh_reader.hpp"
 
@@ -79,7 +81,8 @@ void remove_task_leftovers(const fs::path& dir) {
   std::vector<fs::path> leftovers;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name.rfind(".render-", 0) == 0 && name.find(".tmp-") != std::string::npos &&
+    std::string made_for;
+    if (is_own_temporary(name, &made_for) && made_for.starts_with("render-") &&
         entry.is_directory(ec))
       leftovers.push_back(entry.path());
   }

@@ -62,7 +62,9 @@ std::vector<FrameFailure> missing_frames(const std::filesystem::path& dir, const
                                          const std::vector<long>& frames,
                                          const std::string& no_log_reason);
 
-// Removes the hidden temporary directories of tasks that were killed (they hold no finished image).
+// Removes the hidden temporary directories of render tasks that were killed (they hold no
+// finished image), once the farm's tasks have ended: only directories whose names prove them a
+// toonwater render's (temporary_name.hpp), on whichever host they were made.
 void remove_task_leftovers(const std::filesystem::path& dir);
 
 struct CommandOutput {

@@ -1,6 +1,7 @@
 #include "povgen/render.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/temporary_name.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "povgen/scene_directory.hpp"
 
@@ -242,12 +243,11 @@ void render_range(const RangeRun& run, const std::vector<long>& frames, const Fr
   std::size_t next = 0;
   while (next < frames.size() && !stop_requested(request.stop)) {
     const long first = frames[next], last = frames.back();
-    const std::string work_name = ".render-" + std::to_string(first) + "-" + std::to_string(last) +
-                                  ".tmp-" + std::to_string(::getpid());
+    const std::string work_name =
+        temporary_name("render-" + std::to_string(first) + "-" + std::to_string(last));
     const fs::path work = run.dir / work_name, log = work / "render.log";
     std::error_code ec;
-    fs::remove_all(work, ec);
-    fs::create_directory(work, ec);
+    if (!fs::create_directory(work, ec) && !ec) ec = std::make_error_code(std::errc::file_exists);
     if (ec) {
       for (std::size_t i = next; i < frames.size(); ++i)
         done(frames[i], "cannot create " + work.string() + ": " + ec.message());

@@ -1,6 +1,7 @@
 #include "povgen/scene_directory.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/temporary_name.hpp"
 
 #include <fcntl.h>
 #include <stdio.h>
@@ -9,6 +10,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cerrno>
 #include <fstream>
 #include <iterator>
@@ -103,6 +105,54 @@ void move_entries(const fs::path& from, const fs::path& to, Keep keep) {
   }
 }
 
+// Where a forced run keeps the files its scene replaces until every file is in place.
+constexpr const char* replaced_aside = ".replaced";
+
+// A killed run's staging directory of the scene `target`, as a later run finds it. Killed just
+// after the swap, it holds the earlier scene with the files povgen did not write (a user's, or
+// rendered images) still to be moved back: they go into the target now (the marker inside tells
+// them from povgen's). Whether it may then be removed: not while it holds one that could not
+// be moved (the target has a file of that name); it stays for the user to look at.
+bool recover_user_files(const fs::path& stale, const fs::path& target) {
+  std::error_code ec;
+  if (!fs::is_directory(target, ec)) return true;
+  const std::string marker = read_marker(stale);
+  if (marker.empty()) return true;  // not a scene: a staging directory before its marker
+  move_entries(stale, target, [&](const std::string& n) { return !written_by_povgen(n, marker); });
+  for (const auto& entry : fs::directory_iterator(stale, ec))
+    if (!written_by_povgen(entry.path().filename().string(), marker)) return false;
+  return !ec;
+}
+
+// The first file of the new scene in `staging` whose name the target scene holds as a file
+// povgen did not write (per `target_marker`): a clash the new scene must not resolve by
+// replacing a user's file. Empty when there is none.
+fs::path clashing_file(const fs::path& staging, const fs::path& target,
+                       const std::string& target_marker) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(staging, ec)) {
+    const std::string name = entry.path().filename().string();
+    std::error_code missing;
+    if (fs::symlink_status(target / name, missing).type() == fs::file_type::not_found) continue;
+    if (!written_by_povgen(name, target_marker)) return target / name;
+  }
+  if (ec) fail(staging, "cannot list the directory", ec.value());
+  return {};
+}
+
+// Gives `directory` the permission bits (setgid included) and group of `like`, as a careful
+// editor keeps a file's: the new scene directory replaces the earlier one with its access.
+// Best effort: a group the user is not in stays the user's.
+void copy_access(const fs::path& like, const fs::path& directory) {
+  struct stat status {};
+  if (::stat(like.c_str(), &status) != 0) return;
+  if (::chown(directory.c_str(), static_cast<uid_t>(-1), status.st_gid) != 0) {
+    // Not a member of that group: the mode alone, without a setgid bit for a foreign group.
+    status.st_mode &= ~static_cast<mode_t>(S_ISGID);
+  }
+  ::chmod(directory.c_str(), status.st_mode & 07777);
+}
+
 }  // namespace
 
 SceneDirectory::SceneDirectory(fs::path target, bool force) : target_(normalised(target)) {
@@ -137,9 +187,13 @@ SceneDirectory::SceneDirectory(fs::path target, bool force) : target_(normalised
         merge_into_target_ = true;
       }
     }
-    remove_stale_temporaries(parent);
-    staging_ = parent / ("." + name + ".tmp-" + std::to_string(::getpid()));
-    fs::remove_all(staging_, ec);
+    // A killed run's staging directory of this scene gives back what it holds of the user's.
+    remove_stale_temporaries(parent, [&](const fs::path& stale) {
+      std::string made_for;
+      return !is_own_temporary(stale.filename().string(), &made_for) || made_for != name ||
+             recover_user_files(stale, target_);
+    });
+    staging_ = parent / temporary_name(name);
     if (!fs::create_directory(staging_, ec) || ec) {
       const int error = ec.value();
       staging_.clear();
@@ -168,25 +222,57 @@ void SceneDirectory::release() {
 void SceneDirectory::commit() {
   std::error_code ec;
   write_file_atomically(staging_ / scene_marker, marker_listing(staging_));
+  const bool target_exists = fs::exists(target_, ec);
+  const std::string target_marker = target_exists ? read_marker(target_) : std::string();
+  if (target_exists && !merge_into_target_) {
+    const fs::path clash = clashing_file(staging_, target_, target_marker);
+    if (!clash.empty())
+      fail(clash, "is not a file toonwater povgen wrote, and the new scene has a file of that "
+                  "name; rename or move it (nothing was replaced)");
+  }
   if (merge_into_target_) {
-    // Forced into a directory of other files: each scene file replaces its namesake only.
+    // Forced into a directory of other files: the files are moved in one by one (scene.pov
+    // last), each namesake they replace kept aside in the staging directory until all are in;
+    // if one cannot be moved, the others are taken out again and the namesakes put back.
     std::vector<fs::path> files;
     for (const auto& entry : fs::directory_iterator(staging_, ec)) files.push_back(entry.path());
     if (ec) fail(staging_, "cannot list the directory", ec.value());
     std::stable_partition(files.begin(), files.end(),
                           [](const fs::path& p) { return p.filename() != "scene.pov"; });
-    for (const fs::path& file : files) {
-      fs::rename(file, target_ / file.filename(), ec);
-      if (ec) fail(target_ / file.filename(), "cannot move into place", ec.value());
+    const fs::path aside = staging_ / replaced_aside;
+    std::vector<std::uint8_t> replaced(files.size(), 0);
+    auto undo = [&](std::size_t moved) {
+      std::error_code ignored;
+      for (std::size_t j = 0; j < moved; ++j) {
+        fs::rename(target_ / files[j].filename(), files[j], ignored);
+        if (replaced[j]) fs::rename(aside / files[j].filename(), target_ / files[j].filename(), ignored);
+      }
+    };
+    for (std::size_t i = 0; i < files.size(); ++i) {
+      const fs::path destination = target_ / files[i].filename();
+      std::error_code missing;
+      if (fs::symlink_status(destination, missing).type() != fs::file_type::not_found) {
+        if (!fs::exists(aside)) fs::create_directory(aside, ec);
+        if (!ec) fs::rename(destination, aside / files[i].filename(), ec);
+        replaced[i] = !ec;
+      }
+      if (!ec) fs::rename(files[i], destination, ec);
+      if (!ec) continue;
+      const int error = ec.value();
+      if (replaced[i]) fs::rename(aside / files[i].filename(), destination, missing);
+      replaced[i] = 0;
+      undo(i);
+      fail(destination, "cannot move into place (nothing was replaced)", error);
     }
-  } else if (!fs::exists(target_, ec)) {
+  } else if (!target_exists) {
     if (::rename(staging_.c_str(), target_.c_str()) != 0) fail(target_, "cannot create", errno);
   } else {
+    copy_access(target_, staging_);
     if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) != 0) {
       // A file system without the exchange: two renames, between which DIR is briefly absent.
       const int error = errno;
       if (error != EINVAL && error != ENOSYS) fail(target_, "cannot replace the directory", error);
-      const fs::path old = staging_.string() + "-old";
+      const fs::path old = target_.parent_path() / temporary_name(target_.filename().string());
       if (::rename(target_.c_str(), old.c_str()) != 0)
         fail(target_, "cannot replace the directory", errno);
       if (::rename(staging_.c_str(), target_.c_str()) != 0) {
@@ -196,10 +282,17 @@ void SceneDirectory::commit() {
       }
       staging_ = old;
     }
-    // staging_ now holds the earlier scene: keep what povgen did not write there.
-    const std::string earlier_marker = read_marker(staging_);
+    // staging_ now holds the earlier scene: keep what povgen did not write there (a run killed
+    // here leaves them to the next, recover_user_files).
     move_entries(staging_, target_,
-                 [&](const std::string& n) { return !written_by_povgen(n, earlier_marker); });
+                 [&](const std::string& n) { return !written_by_povgen(n, target_marker); });
+    for (const auto& entry : fs::directory_iterator(staging_, ec))
+      if (!written_by_povgen(entry.path().filename().string(), target_marker)) {
+        // One could not be moved back: the earlier scene stays whole for a later run to
+        // recover, rather than lose it.
+        staging_.clear();
+        return;
+      }
   }
   fs::remove_all(staging_, ec);
   staging_.clear();

@@ -1,18 +1,23 @@
 // A scene directory replaced whole or not at all. povgen writes a new scene into a hidden
-// sibling ".NAME.tmp-PID" and, once every file is complete, swaps it with DIR in one
+// sibling (temporary_name.hpp) and, once every file is complete, swaps it with DIR in one
 // rename(2) (renameat2 RENAME_EXCHANGE): a reader sees the earlier scene or the new one, never a
-// mix, and a failed, interrupted or killed run leaves the earlier scene exactly as it was (a
-// killed run's sibling is removed by the next run, remove_stale_temporaries).
+// mix, and a failed, interrupted or killed run leaves the earlier scene exactly as it was. The
+// new directory takes the earlier one's permissions, group and setgid bit.
 //
 // DIR/.toonwater-scene marks a directory povgen wrote. povgen refuses to write into a non-empty
 // directory without it (a user's own directory, "/", a home directory) unless forced; forced,
-// it moves its files into DIR one by one (each rename atomic, scene.pov last) and leaves every
-// other file there alone. A sibling lock file ".NAME.lock" (flock) keeps two runs from writing
-// one directory at once: the second fails at once with a clear error.
+// it moves its files into DIR one by one (each rename atomic, scene.pov last), replacing their
+// namesakes, and leaves every other file there alone; if one cannot be moved, the others are
+// taken out again and the namesakes put back. A sibling lock file
+// ".NAME.lock" (flock) keeps two runs from writing one directory at once: the second fails at
+// once with a clear error.
 //
 // Files in an earlier scene directory that povgen did not write (rendered images, logs, a
-// user's notes) are moved into the new one, unless the new scene has a file of that name. The
-// marker lists the files povgen wrote, so a user's file is kept whatever its name.
+// user's notes) are moved into the new one. The marker lists the files povgen wrote, so a
+// user's file is known whatever its name; a new scene with a file of the same name as one of
+// them (an object named "mine" beside a hand-written obj_mine.inc) is an error, before
+// anything is replaced. A run killed after the swap leaves those files in the hidden sibling;
+// the next run moves them back before it removes the sibling.
 #pragma once
 
 #include <filesystem>

@@ -6,6 +6,7 @@
 
 #include "corpus/analytic_surfaces.hpp"
 #include "common/atomic_file.hpp"
+#include "common/temporary_name.hpp"
 #include "analyzer/obj_writer.hpp"
 #include "report/report_csv.hpp"
 #include "report/report_markdown.hpp"
@@ -60,9 +61,13 @@ ReportResult write_report(const ReportOptions& options) {
   auto progress = [&](const std::string& line) {
     if (options.progress) options.progress(line);
   };
-  const fs::path work = options.out_dir / "work";
-  fs::create_directories(work);
-  // Scratch meshes and scenes go, whether the run succeeds or throws.
+  // Scratch meshes and scenes go in a directory of the run's own, made fresh beside the
+  // report (a user's DIR/work is no concern of it), and go whether the run succeeds or throws.
+  fs::create_directories(options.out_dir);
+  remove_stale_temporaries(options.out_dir);  // of report runs that were killed
+  const fs::path work = options.out_dir / temporary_name("report-work");
+  if (!fs::create_directory(work))
+    throw OutputError(work.string() + ": cannot create the report's work directory: it exists");
   struct RemoveOnExit {
     fs::path path;
     ~RemoveOnExit() {

@@ -1,6 +1,7 @@
 // Atomic writes: the target gets exactly the new content; on failure the target is untouched,
 // the error names it, and no temporary file is left behind.
 #include "common/atomic_file.hpp"
+#include "common/temporary_name.hpp"
 
 #include "tests/support/test_support.hpp"
 
@@ -20,6 +21,7 @@ namespace fs = std::filesystem;
 using test::entries;
 using test::read_text;
 using test::ScratchDir;
+using test::temporary_name_of_a_gone_process;
 using test::write_text;
 
 // The OutputError message of writing `contents` to `path`, or "" when it succeeds.
@@ -157,16 +159,26 @@ TEST(AtomicFile, LinksAreWrittenThroughAndStaleTemporariesRemoved) {
   EXPECT_TRUE(fs::is_symlink(dir / "link.csv"));
   EXPECT_EQ(read_text(dir / "target.csv"), "new");
 
+  // Removed: a killed run's temporary. Kept: this process's, a user's file that looks like a
+  // temporary (no valid check), and names whose name or fields were changed after the check.
+  const std::string stale = temporary_name_of_a_gone_process("out.csv");
+  const std::string live = temporary_name("out.csv");
   const pid_t gone = ::fork();
   if (gone == 0) ::_exit(0);
   ::waitpid(gone, nullptr, 0);
-  const std::string stale = ".out.csv.tmp-" + std::to_string(gone) + "-3";
-  const std::string live = ".out.csv.tmp-" + std::to_string(::getpid()) + "-3";
-  write_text(dir / stale, "left by a killed run");
-  write_text(dir / live, "this process's");
+  const std::string look_alike = ".out.csv.tmp-" + std::to_string(gone) + "-3";
+  std::string renamed = stale;
+  renamed.replace(1, 3, "abc");  // ".abc.csv.tmp-…": the check was made for another name
+  std::string foreign = temporary_name_of_a_gone_process("out.csv");
+  foreign.replace(foreign.find(".tmp-") + 5, 8, "00000000");  // the host's hash changed
+  for (const std::string& name : {stale, live, look_alike, renamed, foreign})
+    write_text(dir / name, "something");
   remove_stale_temporaries(dir.path());
   EXPECT_FALSE(fs::exists(dir / stale));
   EXPECT_TRUE(fs::exists(dir / live));
+  EXPECT_TRUE(fs::exists(dir / look_alike)) << "a user's file is not a temporary";
+  EXPECT_TRUE(fs::exists(dir / renamed));
+  EXPECT_TRUE(fs::exists(dir / foreign));
 }
 
 TEST(AtomicFile, PathWithoutFileNameIsRejected) {

@@ -3,6 +3,7 @@
 // line and the documented exit code (cli/exit_codes.hpp).
 #include "analyzer/obj_writer.hpp"
 #include "cli/exit_codes.hpp"
+#include "common/temporary_name.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -29,6 +30,7 @@ namespace fs = std::filesystem;
 namespace exit_code = cli::exit_code;
 using test::read_text;
 using test::ScratchDir;
+using test::temporary_name_of_a_gone_process;
 using test::write_text;
 
 struct Outcome {
@@ -326,6 +328,65 @@ TEST_F(HostileCli, ARerunKeepsAUsersFilesEvenWithNamesLikePovgensOwn) {
   EXPECT_FALSE(has(marker, "water_0099")) << marker;
 }
 
+TEST_F(HostileCli, ANewSceneFileNamedLikeAUsersFileIsAnErrorNotAReplacement) {
+  write_text(at("w.obj"), grid_obj());
+  write_text(at("mine.obj"), grid_obj());
+  ASSERT_EQ(toonwater({"povgen", "--water", "w.obj", "--out", "scene"}).exit_code, 0);
+  write_text(at("scene/obj_mine.inc"), "my object");
+  const std::string scene_before = read_text(at("scene/scene.pov"));
+  const Outcome r = toonwater({"povgen", "--water", "w.obj", "--object", "mine.obj", "--out", "scene"});
+  EXPECT_EQ(r.exit_code, exit_code::output_failed) << r.err;
+  EXPECT_TRUE(has(r.err, "scene/obj_mine.inc: is not a file toonwater povgen wrote")) << r.err;
+  EXPECT_TRUE(has(r.err, "nothing was replaced")) << r.err;
+  EXPECT_EQ(read_text(at("scene/obj_mine.inc")), "my object");
+  EXPECT_EQ(read_text(at("scene/scene.pov")), scene_before) << "the earlier scene stays";
+  for (const std::string& name : names(dir_.path())) EXPECT_FALSE(has(name, ".tmp-")) << name;
+}
+
+TEST_F(HostileCli, ARunKilledAfterTheSwapLosesNoneOfTheUsersFiles) {
+  // What a povgen killed just after swapping the directories leaves: the new scene in place,
+  // the earlier one in the hidden sibling with the user's files not yet moved back.
+  write_text(at("w.obj"), grid_obj());
+  ASSERT_EQ(toonwater({"povgen", "--water", "w.obj", "--out", "scene"}).exit_code, 0);
+  const fs::path stranded = at(temporary_name_of_a_gone_process("scene"));
+  fs::create_directory(stranded);
+  write_text(stranded / ".toonwater-scene",
+             "toonwater povgen scene directory\n.toonwater-scene\nscene.pov\nwater.inc\n");
+  write_text(stranded / "scene.pov", "the earlier scene");
+  for (int i = 0; i < 200; ++i) write_text(stranded / ("frame_" + std::to_string(i) + ".png"), "png");
+  write_text(stranded / "notes.txt", "notes");
+  // And one whose user's file cannot go back: the new scene has a file of its name.
+  const fs::path clashing = at(temporary_name_of_a_gone_process("scene"));
+  fs::create_directory(clashing);
+  write_text(clashing / ".toonwater-scene", "toonwater povgen scene directory\n.toonwater-scene\n");
+  write_text(clashing / "scene.ini", "the user's, listed as no file of povgen's");
+
+  const Outcome r = toonwater({"povgen", "--water", "w.obj", "--out", "scene"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_text(at("scene/notes.txt")), "notes");
+  for (int i = 0; i < 200; ++i) EXPECT_TRUE(fs::exists(at("scene/frame_" + std::to_string(i) + ".png"))) << i;
+  EXPECT_NE(read_text(at("scene/scene.pov")), "the earlier scene");
+  EXPECT_FALSE(fs::exists(stranded)) << "recovered, then removed";
+  EXPECT_EQ(read_text(clashing / "scene.ini"), "the user's, listed as no file of povgen's")
+      << "a file that cannot go back stays where it is";
+}
+
+TEST_F(HostileCli, ARerunKeepsTheSceneDirectorysModeGroupAndSetgidBit) {
+  write_text(at("w.obj"), grid_obj());
+  ASSERT_EQ(toonwater({"povgen", "--water", "w.obj", "--out", "scene"}).exit_code, 0);
+  ASSERT_EQ(::chmod(at("scene").c_str(), 02750), 0);
+  ASSERT_EQ(toonwater({"povgen", "--water", "w.obj", "--out", "scene"}).exit_code, 0);
+  struct stat status {};
+  ASSERT_EQ(::stat(at("scene").c_str(), &status), 0);
+  EXPECT_EQ(status.st_mode & 07777, 02750u);
+  // A file replaced keeps its mode too.
+  ASSERT_EQ(toonwater({"analyze", "w.obj", "--csv", "out.csv"}).exit_code, 0);
+  ASSERT_EQ(::chmod(at("out.csv").c_str(), 0640), 0);
+  ASSERT_EQ(toonwater({"analyze", "w.obj", "--csv", "out.csv"}).exit_code, 0);
+  ASSERT_EQ(::stat(at("out.csv").c_str(), &status), 0);
+  EXPECT_EQ(status.st_mode & 07777, 0640u);
+}
+
 TEST_F(HostileCli, SceneDirectoryBehindALinkIsReplacedAndTheLinkStays) {
   write_text(at("w.obj"), grid_obj());
   fs::create_directory(at("real"));
@@ -574,27 +635,40 @@ TEST_F(HostileCli, FrameRangesOutsideTheSequenceAreRefused) {
 
 // ---- 11. temporaries of killed runs ----
 
-TEST_F(HostileCli, LaterRunsRemoveTemporariesOfKilledRuns) {
+TEST_F(HostileCli, LaterRunsRemoveTemporariesOfKilledRunsAndNothingElse) {
   write_sequence(2);
   ASSERT_EQ(toonwater({"povgen", "--water", "water_####.obj", "--out", "scene"}).exit_code, 0);
-  const std::string dead = std::to_string(gone_pid());
-  const std::string alive = std::to_string(::getpid());
-  fs::create_directory(at("scene/.render-1.tmp-" + dead));
-  write_text(at("scene/.render-1.tmp-" + dead + "/frame_1.png"), "partial");
-  fs::create_directory(at("scene/.render-0.tmp-" + alive));
-  fs::create_directory(at(".scene.tmp-" + dead));
-  write_text(at(".scene.tmp-" + dead + "/water_0000.inc"), "partial");
-  write_text(at(".out.csv.tmp-" + dead + "-0"), "partial");
-  write_text(at(".out.csv.tmp-" + alive + "-0"), "in progress");
+  const std::string dead_render = temporary_name_of_a_gone_process("render-1-1");
+  const std::string live_render = temporary_name("render-0-0");
+  const std::string dead_scene = temporary_name_of_a_gone_process("scene");
+  const std::string dead_csv = temporary_name_of_a_gone_process("out.csv");
+  const std::string live_csv = temporary_name("out.csv");
+  fs::create_directory(at("scene/" + dead_render));
+  write_text(at("scene/" + dead_render + "/frame_1.png"), "partial");
+  fs::create_directory(at("scene/" + live_render));
+  fs::create_directory(at(dead_scene));
+  write_text(at(dead_scene + "/water_0000.inc"), "partial");
+  write_text(at(dead_csv), "partial");
+  write_text(at(live_csv), "in progress");
+  // A user's entries named like the temporaries of a process that is gone: theirs, kept.
+  const std::string gone = std::to_string(gone_pid());
+  const std::vector<std::string> users = {"scene/.render-1.tmp-" + gone, ".scene.tmp-" + gone,
+                                          ".out.csv.tmp-" + gone + "-0", ".notes.tmp-" + gone};
+  for (const std::string& name : users) {
+    fs::create_directory(at(name));
+    write_text(at(name + "/mine.txt"), "mine");
+  }
 
   EXPECT_EQ(toonwater({"render", "scene"}, {{"TOONWATER_POVRAY", fake_povray("exit 1")}}).exit_code,
             exit_code::povray_failed);
-  EXPECT_FALSE(fs::exists(at("scene/.render-1.tmp-" + dead)));
-  EXPECT_TRUE(fs::exists(at("scene/.render-0.tmp-" + alive))) << "a running process's";
+  EXPECT_FALSE(fs::exists(at("scene/" + dead_render)));
+  EXPECT_TRUE(fs::exists(at("scene/" + live_render))) << "a running process's";
   ASSERT_EQ(toonwater({"povgen", "--water", "water_####.obj", "--out", "scene"}).exit_code, 0);
-  EXPECT_FALSE(fs::exists(at(".scene.tmp-" + dead)));
-  EXPECT_FALSE(fs::exists(at(".out.csv.tmp-" + dead + "-0")));
-  EXPECT_TRUE(fs::exists(at(".out.csv.tmp-" + alive + "-0")));
+  EXPECT_FALSE(fs::exists(at(dead_scene)));
+  EXPECT_FALSE(fs::exists(at(dead_csv)));
+  EXPECT_TRUE(fs::exists(at(live_csv)));
+  for (const std::string& name : users)
+    EXPECT_EQ(read_text(at(name + "/mine.txt")), "mine") << name;
 }
 
 // ---- 12. messages and exit codes ----

@@ -42,9 +42,16 @@ double number(const std::string& text) {
 TEST(Report, QuickRunHasFiniteNumbersAndErrorsFallingOnRegularMeshes) {
   ScratchDir dir;
   const std::filesystem::path data = shared_dir().empty() ? dir.path() : shared_dir() / "data";
+  // A user's own DIR/work is no concern of the report's: it stays as it was.
+  std::filesystem::create_directories(dir / "out" / "work");
+  write_text(dir / "out" / "work" / "mine.txt", "mine");
   const CommandResult r = run_toonwater(
       {"report", "--quick", "--out", (dir / "out").string(), "--data", data.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read_text(dir / "out" / "work" / "mine.txt"), "mine");
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "out"))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos)
+        << entry.path() << ": the work directory is left behind";
 
   const std::vector<Row> study = read_csv(read_text(dir / "out" / "curvature_errors.csv"));
   ASSERT_EQ(study.front(), (Row{"surface", "sampling", "method", "vertices", "rms_K", "max_K",

@@ -1,5 +1,8 @@
 #include "tests/support/test_support.hpp"
 
+#include "common/temporary_name.hpp"
+
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -51,6 +54,26 @@ void write_text(const fs::path& path, const std::string& text) {
 fs::path shared_dir() {
   const fs::path dir = TOONWATER_SHARED_DIR;
   return fs::is_directory(dir / "data") ? dir : fs::path{};
+}
+
+std::string temporary_name_of_a_gone_process(const std::string& name) {
+  int fds[2];
+  if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
+  const pid_t child = ::fork();
+  if (child == 0) {
+    const std::string made = temporary_name(name);
+    const ssize_t written = ::write(fds[1], made.data(), made.size());
+    ::_exit(written == static_cast<ssize_t>(made.size()) ? 0 : 1);
+  }
+  ::close(fds[1]);
+  std::string made;
+  char buf[512];
+  for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;) made.append(buf, static_cast<std::size_t>(n));
+  ::close(fds[0]);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  if (made.empty()) throw std::runtime_error("the child made no name");
+  return made;
 }
 
 }  // namespace toonwater::test

@@ -31,4 +31,8 @@ void write_text(const std::filesystem::path& path, const std::string& text);
 // ../shared beside the project root, or an empty path when it is absent.
 std::filesystem::path shared_dir();
 
+// A temporary name of `name` (common/temporary_name.hpp) as a process that has since ended
+// made it: what a killed run leaves behind.
+std::string temporary_name_of_a_gone_process(const std::string& name);
+
 }  // namespace toonwater::test
