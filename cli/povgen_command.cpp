@@ -3,6 +3,7 @@
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 #include "cli/transform_options.hpp"
+#include "cli/stop_signals.hpp"
 #include "cli/validators.hpp"
 
 #include "common/atomic_file.hpp"
@@ -23,8 +24,6 @@
 namespace toonwater::cli {
 namespace {
 
-std::atomic<bool> povgen_stop_requested{false};
-void request_povgen_stop(int) { povgen_stop_requested = true; }
 
 struct PovgenArgs {
   std::string water;
@@ -56,9 +55,8 @@ void run_povgen(const PovgenArgs& args) {
 
   request.maps_dir = args.maps;
 
-  // Ctrl-C stops between frames; the scene directory is then left as it was.
-  std::signal(SIGINT, request_povgen_stop);
-  std::signal(SIGTERM, request_povgen_stop);
+  // A stop signal stops between frames; the scene directory is then left as it was.
+  const std::atomic<bool>* stop = stop_on_signals();
   // Each pass's progress is timed from its own start, so the time left is the pass's.
   FrameProgress shown("povgen");
   auto pass_start = std::chrono::steady_clock::now(), last_update = pass_start;
@@ -73,14 +71,16 @@ void run_povgen(const PovgenArgs& args) {
   };
   povgen::PovgenReport r;
   try {
-    r = povgen::generate_scene(config, request, progress, &povgen_stop_requested);
+    r = povgen::generate_scene(config, request, progress, stop);
   } catch (...) {
     shown.finish_line();
     throw;
   }
   // From here on a signal ends the run at once (removing any temporary file), as before povgen.
   remove_temporaries_on_signals();
-  if (povgen_stop_requested) throw InterruptedError(args.out + ": interrupted");
+  // A signal that came after the last frame's check found the scene complete and in place.
+  if (stop->load())
+    std::fprintf(stderr, "povgen: the stop signal came once the scene was complete; it is in place\n");
   for (const std::string& empty : r.empty_frames)
     std::fprintf(stderr, "povgen: warning: %s; that frame shows no water\n", empty.c_str());
   std::fprintf(stderr,

@@ -3,6 +3,7 @@
 #include "cli/render_farm.hpp"
 
 #include "cli/progress.hpp"
+#include "cli/stop_signals.hpp"
 #include "cli/validators.hpp"
 #include "povgen/render.hpp"
 
@@ -17,8 +18,6 @@
 namespace toonwater::cli {
 namespace {
 
-std::atomic<bool> stop_requested{false};
-extern "C" void request_stop(int) { stop_requested = true; }
 
 struct RenderArgs {
   std::string dir;
@@ -36,11 +35,9 @@ void run_render(const RenderArgs& args, bool force) {
   // The POV-Ray executable: TOONWATER_POVRAY when set (a path or a name on PATH), else povray.
   if (const char* povray = std::getenv("TOONWATER_POVRAY"); povray && *povray)
     request.povray = povray;
-  // Ctrl-C or SIGTERM stops the running povray processes and removes their partial output;
-  // frames already rendered stay.
-  request.stop = &stop_requested;
-  std::signal(SIGINT, request_stop);
-  std::signal(SIGTERM, request_stop);
+  // A stop signal stops the running povray processes and removes their partial output; frames
+  // already rendered stay.
+  request.stop = stop_on_signals();
   FrameProgress shown("render");
   auto progress = [&](std::size_t done, std::size_t total, double elapsed) {
     shown.update(done, total, elapsed);

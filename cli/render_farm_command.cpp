@@ -1,6 +1,7 @@
 // toonwater render DIR --on slurm|parallel ... and --status: the render farm options of `render`;
 // toonwater render-task DIR --frames A-B: what each farm task runs (hidden).
 #include "cli/render_farm.hpp"
+#include "cli/stop_signals.hpp"
 #include "cli/validators.hpp"
 
 #include "analyzer/mesh_reader.hpp"
@@ -17,9 +18,6 @@
 
 namespace toonwater::cli {
 namespace {
-
-std::atomic<bool> task_stop_requested{false};
-extern "C" void request_task_stop(int) { task_stop_requested = true; }
 
 // The tasks run this very executable, by its absolute path (the same on every host of a farm).
 std::string own_executable() {
@@ -75,6 +73,8 @@ bool run_render_on_farm(const std::string& dir, const std::string& frames, const
   request.force = farm.force;
   if (farm.frames_per_task) request.frames_per_task = farm.frames_per_task;
   request.toonwater = own_executable();
+  // A stop signal stops the farm's tasks (GNU parallel's, or the Slurm job with scancel).
+  request.stop = stop_on_signals();
 
   povgen::FarmReport r;
   if (farm.on == "slurm") {
@@ -119,9 +119,7 @@ void add_render_task_command(CLI::App& app) {
     request.scene_dir = *dir;
     request.frames = povgen::parse_frame_range(*frames, "--frames");
     // Slurm ends a cancelled or preempted task with SIGTERM: povray is stopped, nothing partial stays.
-    request.stop = &task_stop_requested;
-    std::signal(SIGINT, request_task_stop);
-    std::signal(SIGTERM, request_task_stop);
+    request.stop = stop_on_signals();
     char host[256] = "?";
     ::gethostname(host, sizeof host - 1);
     std::fprintf(stderr, "render-task: frames %s of %s on %s\n", frames->c_str(), dir->c_str(), host);

@@ -3,6 +3,7 @@
 #include "common/temporary_name.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/child_process.hpp"
 #include "analyzer/mesh_reader.hpp"
 
 #include <fcntl.h>
@@ -102,8 +103,10 @@ CommandOutput run_command(const std::vector<std::string>& argv) {
   std::vector<char*> args;
   for (auto& a : copies) args.push_back(a.data());
   args.push_back(nullptr);
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid == 0) {
+    prepare_child_process(parent);
     const int null = ::open("/dev/null", O_RDONLY);
     if (null >= 0) ::dup2(null, STDIN_FILENO);
     ::dup2(out_pipe[1], STDOUT_FILENO);

@@ -8,6 +8,7 @@
 
 #include "povgen/render.hpp"
 
+#include <atomic>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -22,6 +23,7 @@ struct FarmRequest {
   bool force = false;                // render frames that already have an image
   long frames_per_task = 10;
   std::string toonwater;             // the executable the tasks run (the same path on every host)
+  const std::atomic<bool>* stop = nullptr;  // set: stop the tasks and throw InterruptedError
 };
 
 struct FarmReport {

@@ -1,9 +1,11 @@
 #include "povgen/farm_parallel.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/child_process.hpp"
 #include "analyzer/mesh_reader.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -57,9 +59,11 @@ FarmReport render_on_parallel(const FarmRequest& request, const ParallelOptions&
     for (auto& a : copies) args.push_back(a.data());
     args.push_back(nullptr);
     const std::string log_s = log.string();
+    const pid_t parent = ::getpid();
     const pid_t pid = ::fork();
     if (pid < 0) throw OutputError("cannot start '" + shell_command(argv) + "': fork failed");
     if (pid == 0) {
+      prepare_child_process(parent);
       const int fd = ::open(log_s.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
       const int null = ::open("/dev/null", O_RDONLY);
       if (fd < 0 || null < 0) ::_exit(126);
@@ -74,15 +78,32 @@ FarmReport render_on_parallel(const FarmRequest& request, const ParallelOptions&
                std::to_string(frames.size()) + " frame(s) started");
     std::string last_line;
     int status = 0;
+    // A stop: GNU parallel takes a first SIGTERM as "start no new job" and a second as "stop
+    // the running ones" (its --termseq); SIGKILL if it is still there 30 s on.
+    int terms_sent = 0;
+    auto kill_deadline = std::chrono::steady_clock::time_point::max();
     for (;;) {
+      if (request.stop && request.stop->load()) {
+        if (terms_sent < 2) {
+          ::kill(pid, SIGTERM);
+          if (++terms_sent == 2) kill_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+        } else if (std::chrono::steady_clock::now() > kill_deadline) {
+          ::kill(pid, SIGKILL);
+        }
+      }
       const pid_t r = ::waitpid(pid, &status, WNOHANG);
       if (r < 0 && errno != EINTR) throw OutputError("lost GNU parallel: " + std::string(strerror(errno)));
+      if (r == pid && terms_sent > 0)
+        throw InterruptedError(dir.string() + ": interrupted: GNU parallel and its tasks were "
+                               "stopped; the frames rendered so far are kept");
       const std::string line = "GNU parallel: " + std::to_string(count_images(dir, scene, frames)) +
                                "/" + std::to_string(frames.size()) + " frames";
       if (progress && line != last_line) progress(line);
       last_line = line;
       if (r == pid) break;
-      std::this_thread::sleep_for(std::chrono::duration<double>(options.poll_seconds));
+      // Polled more often while stopping, so that the second SIGTERM follows the first.
+      std::this_thread::sleep_for(terms_sent ? std::chrono::duration<double>(0.1)
+                                             : std::chrono::duration<double>(options.poll_seconds));
     }
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     std::ifstream log_in(log);

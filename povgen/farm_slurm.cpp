@@ -81,9 +81,18 @@ std::string submit(const fs::path& dir, const std::vector<FrameRange>& tasks, in
 // Waits until no task of `job_id` is left in the queue, reporting progress as it changes.
 void wait_for_job(const std::string& job_id, const fs::path& dir, const SceneFrames& scene,
                   const std::vector<long>& frames, const SlurmOptions& options,
-                  const FarmProgressFn& progress) {
+                  const FarmProgressFn& progress, const std::atomic<bool>* stop) {
   std::string last_line;
   for (;;) {
+    if (stop && stop->load()) {
+      // scancel sends the tasks SIGTERM: each stops POV-Ray and leaves nothing partial.
+      const CommandOutput cancel = run_command({"scancel", job_id});
+      if (cancel.status != 0)
+        throw OutputError(dir.string() + ": interrupted, but 'scancel " + job_id +
+                          "' failed: " + cancel.err);
+      throw InterruptedError(dir.string() + ": interrupted: slurm job " + job_id +
+                             " cancelled; the frames rendered so far are kept");
+    }
     const QueueCounts q = query_queue(job_id);
     const std::string line = "slurm job " + job_id + ": " +
                              std::to_string(count_images(dir, scene, frames)) + "/" +
@@ -115,7 +124,7 @@ FarmReport render_on_slurm(const FarmRequest& request, const SlurmOptions& optio
       progress("slurm job " + report.job_id + ": " + std::to_string(tasks.size()) +
                " task(s) over " + std::to_string(frames.size()) + " frame(s) submitted");
     if (!options.wait) return report;
-    wait_for_job(report.job_id, dir, scene, frames, options, progress);
+    wait_for_job(report.job_id, dir, scene, frames, options, progress, request.stop);
 
     // Tasks that ended without all their images: once more, over the missing frames only.
     std::vector<long> missing;
@@ -130,7 +139,7 @@ FarmReport render_on_slurm(const FarmRequest& request, const SlurmOptions& optio
         progress("slurm job " + report.job_id + ": " + std::to_string(missing.size()) +
                  " frame(s) missing after the tasks ended; resubmitted as job " + retry_id +
                  " (" + std::to_string(retry.size()) + " task(s))");
-      wait_for_job(retry_id, dir, scene, frames, options, progress);
+      wait_for_job(retry_id, dir, scene, frames, options, progress, request.stop);
     }
     remove_task_leftovers(dir);
   }

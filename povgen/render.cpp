@@ -1,6 +1,7 @@
 #include "povgen/render.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/child_process.hpp"
 #include "common/temporary_name.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "povgen/scene_directory.hpp"
@@ -109,9 +110,11 @@ int run_povray(const fs::path& dir, const std::vector<std::string>& args, const 
   for (auto& a : copies) argv.push_back(a.data());
   argv.push_back(nullptr);
   const std::string dir_s = dir.string(), log_s = log.string();
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) return -1;
   if (pid == 0) {
+    prepare_child_process(parent);
     const int fd = ::open(log_s.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd < 0) ::_exit(cannot_write_log);
     if (::chdir(dir_s.c_str()) != 0) ::_exit(cannot_enter_directory);

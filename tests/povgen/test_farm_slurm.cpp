@@ -4,7 +4,14 @@
 // reason, where this machine cannot run Slurm.
 #include "tests/povgen/farm_test_util.hpp"
 
+#include "povgen/farm.hpp"
+
 #include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -100,6 +107,48 @@ TEST_F(SlurmFarm, NoWaitPrintsTheJobIdAndStatusReportsProgressToTheEnd) {
   }
   EXPECT_NE(status.find("finished: 6/6 frames"), std::string::npos) << status;
   expect_frames_like(scene, reference());
+}
+
+TEST_F(SlurmFarm, SigtermCancelsTheJobAndExitsInterrupted) {
+  const fs::path scene = copy_scene("stopped");
+  // POV-Ray on PATH that runs for a minute (sbatch passes the environment to the tasks).
+  const fs::path bin = work_ / "bin", started = work_ / "started";
+  fs::create_directories(bin);
+  write_text(bin / "povray", "#!/bin/sh\ntouch '" + started.string() + "'\nexec sleep 60\n");
+  fs::permissions(bin / "povray", fs::perms::owner_all);
+  const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  const fs::path log = work_ / "render.log";
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::setenv("PATH", (bin.string() + ":" + path).c_str(), 1);
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, STDERR_FILENO);
+    ::dup2(fd, STDOUT_FILENO);
+    std::string exe = TOONWATER_EXECUTABLE, render = "render", dir = scene.string(), on = "--on",
+                slurm = "slurm";
+    char* argv[] = {exe.data(), render.data(), dir.data(), on.data(), slurm.data(), nullptr};
+    ::execv(exe.c_str(), argv);
+    ::_exit(127);
+  }
+  for (int i = 0; i < 6000 && !fs::exists(started); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_TRUE(fs::exists(started)) << read_text(log);
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  const std::string output = read_text(log);
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << WTERMSIG(status) << "\n" << output;
+  EXPECT_EQ(WEXITSTATUS(status), 4) << output;
+  EXPECT_NE(output.find("cancelled"), std::string::npos) << output;
+  const std::size_t at = output.find("slurm job ");
+  ASSERT_NE(at, std::string::npos) << output;
+  const std::string job = output.substr(at + 10, output.find(':', at) - at - 10);
+  bool gone = false;
+  for (int i = 0; i < 300 && !gone; ++i) {
+    gone = povgen::run_command({"squeue", "-h", "-j", job}).out.find_first_not_of(" \n") == std::string::npos;
+    if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_TRUE(gone) << "slurm job " << job << " still queued or running";
 }
 
 TEST_F(SlurmFarm, ATaskKilledMidFrameLeavesNoPartialImageAndIsResubmitted) {

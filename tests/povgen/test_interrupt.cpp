@@ -1,4 +1,4 @@
-// Nothing lost: `toonwater povgen` and `toonwater render` interrupted by SIGINT or SIGTERM in the
+// Nothing lost: `toonwater povgen` and `toonwater render` interrupted by SIGINT, SIGTERM or SIGHUP in the
 // middle of a sequence stop with the "interrupted" exit code and leave no temporary or partial
 // file and no povray process behind. povgen leaves the scene directory exactly as it was (none
 // in a fresh place, the earlier complete scene otherwise); render keeps the images it finished.
@@ -19,6 +19,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -252,10 +253,135 @@ TEST_P(Interrupt, RenderStopsPovrayAndLeavesOnlyWholeImages) {
   expect_whole_images();
 }
 
-INSTANTIATE_TEST_SUITE_P(Signals, Interrupt, ::testing::Values(SIGINT, SIGTERM),
+INSTANTIATE_TEST_SUITE_P(Signals, Interrupt, ::testing::Values(SIGINT, SIGTERM, SIGHUP),
                          [](const ::testing::TestParamInfo<int>& signal) {
-                           return signal.param == SIGINT ? "SIGINT" : "SIGTERM";
+                           return signal.param == SIGINT    ? "SIGINT"
+                                  : signal.param == SIGTERM ? "SIGTERM"
+                                                            : "SIGHUP";
                          });
+
+// A scene of frame_count small frames in `dir`/scene, for render.
+fs::path small_scene(const fs::path& dir) {
+  const fs::path pattern = make_sequence(dir, 12);
+  const fs::path out = dir / "scene";
+  const CommandResult made = run_toonwater({"povgen", "--water", pattern.string(), "--out",
+                                            out.string(), "--set", "render.width=48", "--set",
+                                            "render.height=36"});
+  EXPECT_EQ(made.exit_code, 0) << made.output;
+  return out;
+}
+
+bool eventually_no_process_in(const fs::path& dir) {
+  for (int i = 0; i < 200; ++i) {
+    if (!process_runs_in(dir)) return true;
+    std::this_thread::sleep_for(50ms);
+  }
+  return false;
+}
+
+TEST(InterruptOutright, ARenderKilledBySigkillLeavesNoPovrayRunningAndTheNextRunCleansUp) {
+  ScratchDir dir;
+  const fs::path out = small_scene(dir.path());
+  // A POV-Ray that would run for a minute, telling its process id.
+  const fs::path povray = dir / "slow-povray", pid_file = dir / "povray.pid";
+  write_text(povray, "#!/bin/sh\necho $$ > '" + pid_file.string() + "'\nexec sleep 60\n");
+  fs::permissions(povray, fs::perms::owner_all);
+  ::setenv("TOONWATER_POVRAY", povray.c_str(), 1);
+  {
+    Background run({"render", out.string(), "--jobs", "1"}, dir / "killed.log");
+    ::unsetenv("TOONWATER_POVRAY");
+    for (int i = 0; i < 1000 && !(fs::exists(pid_file) && fs::file_size(pid_file) > 1); ++i)
+      std::this_thread::sleep_for(10ms);
+    ASSERT_TRUE(fs::exists(pid_file)) << run.output();
+    run.signal(SIGKILL);
+    EXPECT_EQ(run.wait(), 128 + SIGKILL);
+  }
+  const pid_t povray_pid = std::stoi(read_text(pid_file));
+  // Gone, or a zombie waiting for whichever process adopted it to reap it.
+  auto ended = [&] {
+    if (::kill(povray_pid, 0) != 0) return true;
+    const std::string stat = read_text("/proc/" + std::to_string(povray_pid) + "/stat");
+    const std::size_t close = stat.rfind(')');
+    return close != std::string::npos && close + 2 < stat.size() && stat[close + 2] == 'Z';
+  };
+  bool gone = false;
+  for (int i = 0; i < 200 && !gone; ++i) {
+    gone = ended();
+    if (!gone) std::this_thread::sleep_for(50ms);
+  }
+  EXPECT_TRUE(gone) << "POV-Ray (pid " << povray_pid << ") outlived a render killed outright";
+  const CommandResult again = run_toonwater({"render", out.string()});
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(leftovers(out), std::vector<std::string>{}) << "the killed run's temporaries";
+}
+
+TEST(InterruptOutright, ARenderOnGnuParallelStopsItsTasksOnSigterm) {
+  if (::system("parallel --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "GNU parallel is not installed";
+  ScratchDir dir;
+  const fs::path out = small_scene(dir.path());
+  // POV-Ray on PATH that runs for a minute, each telling its process id.
+  const fs::path bin = dir / "bin", pids = dir / "pids";
+  fs::create_directories(bin);
+  fs::create_directories(pids);
+  write_text(bin / "povray", "#!/bin/sh\necho $$ > '" + pids.string() + "/'$$\nexec sleep 60\n");
+  fs::permissions(bin / "povray", fs::perms::owner_all);
+  write_text(dir / "hosts", ":\n");
+  const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  ::setenv("PATH", (bin.string() + ":" + path).c_str(), 1);
+  int code = 0;
+  std::string output;
+  {
+    Background run({"render", out.string(), "--on", "parallel", "--hosts", (dir / "hosts").string(),
+                    "--frames-per-task", "5"},
+                   dir / "farm.log");
+    ::setenv("PATH", path.c_str(), 1);
+    for (int i = 0; i < 3000 && fs::is_empty(pids); ++i) std::this_thread::sleep_for(10ms);
+    ASSERT_FALSE(fs::is_empty(pids)) << run.output();
+    run.signal(SIGTERM);
+    code = run.wait(120s);
+    output = run.output();
+  }
+  EXPECT_EQ(code, 4) << output;
+  EXPECT_NE(output.find("interrupted"), std::string::npos) << output;
+  for (const auto& entry : fs::directory_iterator(pids)) {
+    const pid_t pid = std::stoi(entry.path().filename().string());
+    bool gone = false;
+    for (int i = 0; i < 200 && !gone; ++i) {
+      gone = ::kill(pid, 0) != 0 ||
+             read_text("/proc/" + std::to_string(pid) + "/stat").find(") Z") != std::string::npos;
+      if (!gone) std::this_thread::sleep_for(50ms);
+    }
+    EXPECT_TRUE(gone) << "a task's POV-Ray (pid " << pid << ") outlived the stopped farm";
+  }
+}
+
+TEST(InterruptOutright, ARenderWhoseStandardErrorIsAClosedPipeFinishesItsWork) {
+  ScratchDir dir;
+  const fs::path out = small_scene(dir.path());
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  ::close(fds[0]);  // nobody reads: every write to stderr raises SIGPIPE
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::dup2(fds[1], STDERR_FILENO);
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, STDOUT_FILENO);
+    std::string exe = TOONWATER_EXECUTABLE, render = "render", scene = out.string();
+    char* argv[] = {exe.data(), render.data(), scene.data(), nullptr};
+    ::execv(exe.c_str(), argv);
+    ::_exit(127);
+  }
+  ::close(fds[1]);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_TRUE(eventually_no_process_in(out));
+  std::size_t pngs = 0;
+  for (const auto& entry : fs::directory_iterator(out)) pngs += entry.path().extension() == ".png";
+  EXPECT_EQ(pngs, static_cast<std::size_t>(frame_count));
+  EXPECT_EQ(leftovers(out), std::vector<std::string>{});
+}
 
 }  // namespace
 }  // namespace toonwater::test
