@@ -152,7 +152,8 @@ using readers::SourceFile;
 // only if the kernel returns a part in pieces): the copy and the first touch of the buffer's
 // pages are the cost, and they split over the cores.
 std::unique_ptr<char[]> load_file(const SourceFile& file, std::size_t& size) {
-  const int fd = ::open(file.name.c_str(), O_RDONLY | O_CLOEXEC);
+  // Non-blocking: a FIFO would otherwise wait for a writer before the check below refuses it.
+  const int fd = ::open(file.name.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) fail_errno(file, "cannot open", errno);
   struct Closer {
     int fd;
@@ -162,6 +163,14 @@ std::unique_ptr<char[]> load_file(const SourceFile& file, std::size_t& size) {
   struct stat info {};
   if (::fstat(fd, &info) != 0) fail_errno(file, "cannot read", errno);
   if (!S_ISREG(info.st_mode)) readers::fail(file, "is not a regular file");
+  // The file is read whole: one larger than the machine's memory (a sparse file, a disk image)
+  // is refused here rather than left to the allocator or the kernel's OOM killer.
+  const std::uint64_t memory = static_cast<std::uint64_t>(::sysconf(_SC_PHYS_PAGES)) *
+                               static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+  if (memory > 0 && static_cast<std::uint64_t>(info.st_size) > memory)
+    readers::fail(file, "is " + std::to_string(static_cast<std::uint64_t>(info.st_size) >> 30) +
+                            " GiB, more than this machine's memory (" +
+                            std::to_string(memory >> 30) + " GiB); no mesh file is that large");
   size = static_cast<std::size_t>(info.st_size);
   auto bytes = std::make_unique_for_overwrite<char[]>(size);
   constexpr std::size_t min_part_bytes = std::size_t{1} << 20;

@@ -53,6 +53,11 @@ SceneConfig load_config(const ConfigSources& sources) {
   fs::path config_dir = fs::current_path();
   if (sources.file) {
     try {
+      // Only a regular file: a FIFO would block the run, a device never end.
+      std::error_code ec;
+      const fs::file_status status = fs::status(*sources.file, ec);
+      if (fs::exists(status) && !fs::is_regular_file(status))
+        throw ConfigError(sources.file->string() + ": is not a regular file");
       std::ifstream in(*sources.file, std::ios::binary);
       const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
       if (!in) throw ConfigError(sources.file->string() + ": cannot read the file");

@@ -1,5 +1,7 @@
 #include "povgen/config_schema.hpp"
 
+#include "povgen/mesh2_writer.hpp"
+
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -130,10 +132,12 @@ struct Colour {
 
 struct Vector {
   Vec3 read(const toml::node& node, const std::string& key) const {
-    const auto t = read_triple(node, key, -1e30, 1e30, type());
+    // Within what a POV-Ray scene takes (mesh2_writer.hpp): a camera beyond it would put the
+    // outline shells, sized by the distance to it, out of reach too.
+    const auto t = read_triple(node, key, -largest_scene_coordinate, largest_scene_coordinate, type());
     return {t[0], t[1], t[2]};
   }
-  std::string type() const { return "a vector [x, y, z] of finite numbers"; }
+  std::string type() const { return "a vector [x, y, z] of numbers between -1e18 and 1e18"; }
   std::string show(const Vec3& v) const { return show_triple(v.x(), v.y(), v.z()); }
 };
 

@@ -20,6 +20,33 @@ namespace toonwater::povgen {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Frames missing because GNU parallel could not log in to a host (ssh exits 255: an unknown
+// or unreachable host, refused keys) are an output failure of the farm (exit 3), not POV-Ray's
+// (5): the hosts named, from the job log's Host and Exitval columns.
+void throw_if_hosts_unreachable(const fs::path& joblog, const fs::path& dir,
+                                const SceneFrames& scene, const std::vector<long>& frames) {
+  if (count_images(dir, scene, frames) == frames.size()) return;
+  std::ifstream in(joblog);
+  std::string line, unreachable;
+  std::getline(in, line);  // the header
+  while (std::getline(in, line)) {
+    std::vector<std::string> columns;
+    std::istringstream fields(line);
+    for (std::string column; std::getline(fields, column, '\t');) columns.push_back(column);
+    if (columns.size() < 7 || columns[6] != "255") continue;
+    if (unreachable.find(" " + columns[1] + ",") == std::string::npos) unreachable += " " + columns[1] + ",";
+  }
+  if (unreachable.empty()) return;
+  unreachable.pop_back();
+  throw OutputError(dir.string() + ": GNU parallel could not run tasks on" + unreachable +
+                    " (ssh exit status 255: unknown or unreachable host, or login refused); see " +
+                    joblog.string());
+}
+
+}  // namespace
+
 FarmReport render_on_parallel(const FarmRequest& request, const ParallelOptions& options,
                               const FarmProgressFn& progress) {
   const auto start = std::chrono::steady_clock::now();
@@ -118,6 +145,7 @@ FarmReport render_on_parallel(const FarmRequest& request, const ParallelOptions&
       throw OutputError("'" + shell_command(argv) + "' failed (exit status " +
                         std::to_string(code) + "): " + message);
     remove_task_leftovers(dir);
+    throw_if_hosts_unreachable(farm / "parallel.joblog", dir, scene, frames);
   }
   report.failures = missing_frames(
       dir, scene, frames,

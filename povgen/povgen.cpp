@@ -786,6 +786,10 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
       if (!run.objects[i].placement.animated)
         write_object(run, i, run.objects[i].sequence.frames.begin()->second, 0);
     write_frames(run, cache ? &*cache : nullptr, progress, stop);
+    // A sequence without water anywhere has nothing to show or frame, as a single empty file.
+    if (run.report.frames > 0 && run.report.empty_frames.size() == run.report.frames)
+      throw InputError(request.water_pattern + ": no frame of the sequence holds any water (" +
+                       run.report.empty_frames.front() + ")");
     if (cache) {
       run.report.cached_frames = cache->size();
       run.report.spilled_frames = cache->spilled();

@@ -153,6 +153,17 @@ fs::path checked_scene_dir(const fs::path& scene_dir) {
   return dir;
 }
 
+// Render writes images and logs into the scene directory: one it cannot write (read-only, a
+// read-only mount, another user's) is an output failure found before any POV-Ray starts, not
+// a failure of every frame.
+void check_writable(const fs::path& dir) {
+  const fs::path probe = dir / temporary_name("render-probe");
+  std::error_code ec;
+  if (!fs::create_directory(probe, ec) && !ec) ec = std::make_error_code(std::errc::file_exists);
+  if (ec) throw OutputError(dir.string() + ": cannot write into the scene directory: " + ec.message());
+  fs::remove(probe, ec);
+}
+
 // Whether `image` is a whole PNG file: it ends with the IEND chunk, which a PNG writer writes
 // last (an empty chunk: length 0, type IEND, its CRC). A file still being written ends elsewhere.
 bool is_whole_png(const fs::path& image) {
@@ -419,6 +430,7 @@ RenderReport render_frames(const RenderRequest& request, const RenderProgressFn&
   const std::vector<long> requested = requested_frames(run.dir, run.ini, request.frames);
   const std::vector<long> frames =
       request.skip_rendered ? frames_without_image(run.dir, run.ini, requested) : requested;
+  if (!frames.empty()) check_writable(run.dir);
   const std::vector<std::vector<long>> ranges = split_into_ranges(frames, request.jobs);
   // With gaps (frames that have their image) there can be more ranges than processes: each
   // process takes the next range when it is done.
@@ -456,6 +468,7 @@ RenderReport render_frames_in_one_process(const RenderRequest& request,
   run.ini = read_ini_frames(run.dir / "scene.ini");
   run.threads = povray_threads(1);
   const std::vector<long> frames = requested_frames(run.dir, run.ini, request.frames);
+  if (!frames.empty()) check_writable(run.dir);
   RunReport report(frames.size(), progress);
   render_range(run, frames, [&](long frame, const std::string& failure) { report.done(frame, failure); });
   if (stop_requested(request.stop))

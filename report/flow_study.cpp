@@ -196,7 +196,7 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
   povgen::Sequence sequence = povgen::find_sequence(pattern, fs::current_path());
   if (frames)
     std::erase_if(sequence.frames, [&](const auto& f) { return f.first < frames->first || f.first > frames->last; });
-  if (sequence.frames.empty()) throw std::runtime_error(pattern + ": no frame in the range");
+  if (sequence.frames.empty()) throw InputError(pattern + ": no frame in the range");
   // The overhead camera and the picture size from the first frame: cells of the median edge.
   const TriangleMesh first = read_mesh(sequence.frames.begin()->second).mesh;
   Vec3 min = first.positions.front(), max = min;

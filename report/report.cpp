@@ -12,6 +12,9 @@
 #include "report/report_markdown.hpp"
 #include "report/report_plots.hpp"
 
+#include <exception>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <utility>
 
@@ -55,6 +58,23 @@ std::vector<PipelineInput> pipeline_inputs(const ReportOptions& options, const f
   return inputs;
 }
 
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (!in && !in.eof()) throw OutputError(path.string() + ": cannot read");
+  return bytes;
+}
+
+// The plot's place when the render quality could not be measured: the reason, in words.
+std::string not_measured_svg(const std::string& reason) {
+  std::string text;
+  for (const char c : reason.substr(0, 200))
+    text += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
+  return "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"40\">"
+         "<text x=\"10\" y=\"25\" font-family=\"sans-serif\" font-size=\"12\">Not measured: " +
+         text + "</text></svg>\n";
+}
+
 }  // namespace
 
 ReportResult write_report(const ReportOptions& options) {
@@ -91,11 +111,16 @@ ReportResult write_report(const ReportOptions& options) {
     const fs::path scene = work / ("scene_" + std::to_string(result.pipeline.size()));
     result.pipeline.push_back(time_pipeline(input, scene, width, height));
   }
+  // A part that fails (POV-Ray missing or failing) is reported as not measured, the rest still
+  // reports, and the run then ends with that part's error: the exit code says that not all was
+  // measured. Sample data that is absent is only noted: it is optional.
+  std::exception_ptr first_failure;
   progress("render quality: presets and reference render of the " + inputs.front().name);
   try {
     result.render_quality = measure_render_quality(work / "scene_0", width, height);
-  } catch (const std::exception& e) {  // POV-Ray missing or failing: the rest still reports
+  } catch (const std::exception& e) {
     result.render_quality_failure = e.what();
+    first_failure = std::current_exception();
   }
 
   progress("flow criteria: analytic ripples");
@@ -111,22 +136,33 @@ ReportResult write_report(const ReportOptions& options) {
       // A quick run measures frames 10–15 (the wake at its busiest) at 2 pixels a cell.
       std::optional<povgen::FrameRange> frames;
       if (options.size == ReportSize::quick) frames = povgen::FrameRange{10, 15};
+      // The pictures go to the work directory first, and into DIR with the other outputs.
       result.flow_sequence = run_sequence_flow_study(fs::absolute(wake_frames).string(), Axis::z,
-                                                     work, options.out_dir, pixels_per_cell,
+                                                     work, work, pixels_per_cell,
                                                      {FlowCriterion::mean, FlowCriterion::paper}, frames);
     } catch (const std::exception& e) {
       result.flow_sequence_failure = e.what();
+      if (!first_failure) first_failure = std::current_exception();
     }
+  }
+
+  // Every output at once (OutputBatch): DIR holds the earlier report or this one, never a mix.
+  // A part not measured still replaces its files, with what was (not) measured, so that no
+  // earlier run's numbers stand beside this run's report.
+  OutputBatch batch;
+  for (SequenceFlowStudy& study : result.flow_sequence) {
+    const fs::path picture = options.out_dir / study.picture.filename();
+    write_file_atomically(picture, read_bytes(study.picture));
+    study.picture = picture;
   }
   write_file_atomically(options.out_dir / "flow_ripples.csv", ripple_csv(result.ripples));
   write_file_atomically(options.out_dir / "curvature_errors.csv", study_csv(result.study));
   write_file_atomically(options.out_dir / "pipeline.csv", pipeline_csv(result.pipeline));
-  if (result.render_quality) {
-    write_file_atomically(options.out_dir / "render_quality.csv",
-                          render_quality_csv(*result.render_quality));
-    write_file_atomically(options.out_dir / "render_error.svg",
-                          render_quality_plot(*result.render_quality));
-  }
+  write_file_atomically(options.out_dir / "render_quality.csv",
+                        render_quality_csv(result.render_quality.value_or(RenderQualityResult{})));
+  write_file_atomically(options.out_dir / "render_error.svg",
+                        result.render_quality ? render_quality_plot(*result.render_quality)
+                                              : not_measured_svg(result.render_quality_failure));
   for (const std::string& sampling : study_samplings)
     for (bool mean : {true, false})
       write_file_atomically(options.out_dir / error_plot_name(sampling, mean),
@@ -143,6 +179,8 @@ ReportResult write_report(const ReportOptions& options) {
   run.pixels_per_cell = pixels_per_cell;
   run.data_dir = options.data_dir;
   write_file_atomically(options.out_dir / "report.md", report_markdown(result, run));
+  batch.commit();
+  if (first_failure) std::rethrow_exception(first_failure);
   return result;
 }
 

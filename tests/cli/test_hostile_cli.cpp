@@ -754,6 +754,71 @@ TEST_F(HostileCli, FileNamesInErrorsCannotBreakTheLineOrReachTheTerminal) {
   EXPECT_TRUE(has(toonwater({"analyze", newline_name}).err, "a?b.obj")) << "the name, made printable";
 }
 
+TEST_F(HostileCli, RenderIntoASceneDirectoryItCannotWriteIsAnOutputFailure) {
+  write_text(at("w.obj"), grid_obj());
+  std::vector<std::string> args{"povgen", "--water", "w.obj", "--out", "scene"};
+  args.insert(args.end(), small.begin(), small.end());
+  ASSERT_EQ(toonwater(args).exit_code, 0);
+  ASSERT_EQ(::chmod(at("scene").c_str(), 0555), 0);
+  write_text(at("render.log"), "");
+  ASSERT_EQ(::chmod(at("render.log").c_str(), 0666), 0);
+  // As a user the mode binds (root writes anyway): nobody, when this runs as root.
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    if (::geteuid() == 0 && (::setgid(65534) != 0 || ::setuid(65534) != 0)) ::_exit(120);
+    const int log = ::open(at("render.log").c_str(), O_WRONLY | O_TRUNC);
+    ::dup2(log, STDERR_FILENO);
+    ::dup2(log, STDOUT_FILENO);
+    std::string exe = TOONWATER_EXECUTABLE, render = "render", scene = at("scene").string();
+    char* argv[] = {exe.data(), render.data(), scene.data(), nullptr};
+    ::execv(exe.c_str(), argv);
+    ::_exit(127);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ::chmod(at("scene").c_str(), 0755);
+  ASSERT_TRUE(WIFEXITED(status));
+  if (WEXITSTATUS(status) == 120) GTEST_SKIP() << "cannot become another user to test this";
+  const std::string err = read_text(at("render.log"));
+  EXPECT_EQ(WEXITSTATUS(status), exit_code::output_failed) << err;
+  EXPECT_TRUE(has(err, "scene: cannot write into the scene directory")) << err;
+}
+
+TEST_F(HostileCli, FifosHugeFilesFarCamerasAndWaterlessSequencesAreBadInputNamed) {
+  write_text(at("w.obj"), grid_obj());
+  // A FIFO as a mesh or a configuration: refused at once, not waited on.
+  ASSERT_EQ(::mkfifo(at("fifo.obj").c_str(), 0644), 0);
+  ASSERT_EQ(::mkfifo(at("fifo.toml").c_str(), 0644), 0);
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"analyze", "fifo.obj"},
+           {"povgen", "--water", "w.obj", "--config", "fifo.toml", "--out", "scene"}}) {
+    const Outcome r = toonwater(args);
+    EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
+    EXPECT_TRUE(has(r.err, "fifo.")) << r.err;
+    EXPECT_TRUE(has(r.err, "is not a regular file")) << r.err;
+  }
+  // A sparse file larger than the machine's memory: refused by its size, not a crash (exit 1).
+  {
+    std::ofstream big(at("big.obj"));
+  }
+  fs::resize_file(at("big.obj"), std::uintmax_t{1} << 43);  // 8 TiB, sparse
+  Outcome r = toonwater({"analyze", "big.obj"});
+  EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
+  EXPECT_TRUE(has(r.err, "big.obj: is ")) << r.err;
+  // A camera beyond what a scene takes: the key named.
+  r = toonwater({"povgen", "--water", "w.obj", "--out", "scene", "--set",
+                 "camera.location=[1e30,0,0]", "--set", "camera.look_at=[0,0,0]"});
+  EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
+  EXPECT_TRUE(has(r.err, "camera.location")) << r.err;
+  // A sequence whose every frame is empty cannot be drawn, like a single empty file.
+  write_text(at("empty_0001.obj"), "# nothing\n");
+  write_text(at("empty_0002.obj"), "# nothing\n");
+  r = toonwater({"povgen", "--water", "empty_####.obj", "--out", "scene"});
+  EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
+  EXPECT_TRUE(has(r.err, "no frame of the sequence holds any water")) << r.err;
+  EXPECT_FALSE(fs::exists(at("scene")));
+}
+
 TEST_F(HostileCli, MeshesBeyondWhatAPovraySceneTakesAreBadInput) {
   // Finite, but beyond the fixed-point positions of mesh2: before, an internal error (exit 1).
   write_text(at("w.obj"), grid_obj());

@@ -157,6 +157,15 @@ TEST_F(FarmScene, ParallelRetriesATaskKilledMidFrameAndLeavesNoPartialImage) {
   expect_frames_like(scene, reference());
 }
 
+TEST_F(FarmScene, AHostGnuParallelCannotReachIsAnOutputFailureNamingIt) {
+  const fs::path scene = copy_scene("unreachable");
+  write_text(work_ / "hosts", "nosuchhost.invalid\n");
+  const CommandResult r = run_toonwater({"render", scene.string(), "--on", "parallel", "--hosts",
+                                         (work_ / "hosts").string(), "--frames-per-task", "3"});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("could not run tasks on nosuchhost.invalid"), std::string::npos) << r.output;
+}
+
 TEST_F(FarmScene, FramesWithAnImageAreSkippedUnlessForced) {
   const fs::path scene = copy_scene("resume");
   for (int f : {1, 2, 3, 5}) fs::copy_file(reference() / frame_name(f), scene / frame_name(f));

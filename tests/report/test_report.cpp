@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <sstream>
 #include <string>
@@ -132,6 +133,28 @@ TEST(Report, QuickRunHasFiniteNumbersAndErrorsFallingOnRegularMeshes) {
   const std::string svg = read_text(dir / "out" / "error_H_jittered.svg");
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_GE(std::count(svg.begin(), svg.end(), '\n'), 20);
+}
+
+TEST(Report, APartThatFailsIsReportedAsNotMeasuredAndTheExitCodeSaysSo) {
+  ScratchDir dir;
+  const std::filesystem::path out = dir / "out", data = dir / "data";
+  // Sample data that is there but broken: the flow study fails, the rest is measured.
+  std::filesystem::create_directories(data / "mantaflow-wake");
+  for (int frame = 1; frame <= 15; ++frame) {
+    char name[32];
+    std::snprintf(name, sizeof name, "water_%04d.obj", frame);
+    write_text(data / "mantaflow-wake" / name, "v 0 0 nan\nf 1 1 1\n");
+  }
+  const CommandResult r =
+      run_toonwater({"report", "--quick", "--out", out.string(), "--data", data.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("water_0010.obj"), std::string::npos) << r.output;
+  const std::string report = read_text(out / "report.md");
+  EXPECT_NE(report.find("Not measured: "), std::string::npos);
+  EXPECT_NE(report.find("water_0010.obj"), std::string::npos) << "the report says why";
+  EXPECT_TRUE(std::filesystem::exists(out / "curvature_errors.csv")) << "the rest is written";
+  for (const auto& entry : std::filesystem::directory_iterator(out))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
 }
 
 TEST(SvgPlot, PlacesPointsOnLogAxesAndEscapesText) {
