@@ -1,5 +1,6 @@
 // toonwater analyze MESH [--csv FILE] [--ply FILE] [options]
 #include "cli/commands.hpp"
+#include "cli/progress.hpp"
 #include "cli/transform_options.hpp"
 #include "cli/validators.hpp"
 
@@ -60,7 +61,7 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
                "ridge %zu, valley %zu\n"
                "  time: read %.3f s, weld %.3f s, topology %.3f s, curvature %.3f s, "
                "flow %.3f s, write %.3f s\n",
-               mesh_path.c_str(), a.input_vertices, a.merged_vertices, a.surface.triangles.size(),
+               printable(mesh_path).c_str(), a.input_vertices, a.merged_vertices, a.surface.triangles.size(),
                t.boundary_vertices, t.nonmanifold_vertices, t.isolated_vertices,
                a.curvature.degenerate_faces, a.curvature.cap_faces, a.curvature.mollified_faces,
                a.curvature.intrinsic_flips, a.flipped_faces, a.curvature.extrapolated_vertices,
@@ -153,7 +154,7 @@ void run_analyze(const AnalyzeArgs& args) {
   }
   print_summary(args.mesh, analysis, read_seconds, seconds_since(start));
   if (map_ranges)
-    std::fprintf(stderr, "  maps in %s: colour ranges K \u00b1%.6g, H \u00b1%.6g\n", args.maps.c_str(),
+    std::fprintf(stderr, "  maps in %s: colour ranges K \u00b1%.6g, H \u00b1%.6g\n", printable(args.maps).c_str(),
                  map_ranges->gaussian, map_ranges->mean);
 }
 

@@ -1,6 +1,7 @@
 // toonwater: cartoon-style rendering of fluid-simulation output with POV-Ray.
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/progress.hpp"
 
 #include "common/atomic_file.hpp"
 #include "common/large_arrays.hpp"
@@ -18,6 +19,7 @@
 namespace {
 
 namespace exit_code = toonwater::cli::exit_code;
+using toonwater::cli::printable;
 
 // The message on one line whatever the file names in it hold: a newline or a terminal escape in
 // a name shows as '?' (other bytes, such as UTF-8 names, as they are).
@@ -28,12 +30,6 @@ int fail(std::string message, int code) {
   return code;
 }
 
-// A word the user typed, safe to print on one line: control and non-ASCII bytes as '?'.
-std::string printable(const std::string& word) {
-  std::string out;
-  for (const char c : word.substr(0, 400)) out += c >= ' ' && c <= '~' ? c : '?';
-  return word.size() > 400 ? out + "..." : out;
-}
 
 std::string subcommand_names(const CLI::App& app) {
   std::string names;

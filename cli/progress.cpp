@@ -1,5 +1,7 @@
 #include "cli/progress.hpp"
 
+#include "povgen/farm.hpp"
+
 #include <unistd.h>
 
 #include <cstdio>
@@ -22,6 +24,16 @@ void FrameProgress::update(std::size_t done, std::size_t total, double elapsed, 
 void FrameProgress::finish_line() {
   if (line_open_) std::fputc('\n', stderr);
   line_open_ = false;
+}
+
+std::string printable(const std::string& word) {
+  std::string out;
+  for (const char c : word.substr(0, 400)) out += c >= ' ' && c <= '~' ? c : '?';
+  return word.size() > 400 ? out + "..." : out;
+}
+
+std::string printable_shell_word(const std::string& word) {
+  return povgen::shell_quote(printable(word));
 }
 
 }  // namespace toonwater::cli

@@ -4,8 +4,16 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 
 namespace toonwater::cli {
+
+// A word the user typed (a path, an option), safe to print on one line: control and non-ASCII
+// bytes as '?', at most 400 bytes. Every message names paths through it.
+std::string printable(const std::string& word);
+
+// The same, quoted for a POSIX shell where it needs it, for a command line the user may paste.
+std::string printable_shell_word(const std::string& word);
 
 class FrameProgress {
  public:

@@ -1,5 +1,6 @@
 // toonwater render DIR --on slurm|parallel ... and --status: the render farm options of `render`;
 // toonwater render-task DIR --frames A-B: what each farm task runs (hidden).
+#include "cli/progress.hpp"
 #include "cli/render_farm.hpp"
 #include "cli/stop_signals.hpp"
 #include "cli/validators.hpp"
@@ -122,7 +123,8 @@ void add_render_task_command(CLI::App& app) {
     request.stop = stop_on_signals();
     char host[256] = "?";
     ::gethostname(host, sizeof host - 1);
-    std::fprintf(stderr, "render-task: frames %s of %s on %s\n", frames->c_str(), dir->c_str(), host);
+    std::fprintf(stderr, "render-task: frames %s of %s on %s\n", printable(*frames).c_str(),
+                 printable(*dir).c_str(), printable(host).c_str());
     const povgen::RenderReport r = povgen::render_frames_in_one_process(request, nullptr);
     report_failures(r.failures);
     std::fprintf(stderr, "render-task: %zu frame(s) rendered, %zu failed, %.2f s\n", r.rendered,

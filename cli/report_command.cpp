@@ -1,5 +1,6 @@
 // toonwater report [--out DIR] [--quick | --full] [--data DIR]
 #include "cli/commands.hpp"
+#include "cli/progress.hpp"
 #include "cli/validators.hpp"
 
 #include "images/image_codec.hpp"
@@ -35,7 +36,7 @@ void run_report(const ReportArgs& args) {
     std::fprintf(stderr, "report: %6.1f s  %s\n", elapsed, line.c_str());
   };
   report::write_report(options);
-  std::fprintf(stderr, "report: written to %s/report.md\n", args.out.c_str());
+  std::fprintf(stderr, "report: written to %s/report.md\n", printable(args.out).c_str());
 }
 
 }  // namespace

@@ -43,8 +43,12 @@ void run_simulate(const SimulateArgs& args) {
     shown.update(static_cast<std::size_t>(done), static_cast<std::size_t>(total),
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   };
+  // The frames are put in place together once every one is written: a run that fails or is
+  // interrupted half-way leaves the earlier frames, not a mix of two simulations.
   try {
+    OutputBatch batch;
     sim::simulate({args.scenario, args.frames, args.resolution}, sink, progress);
+    batch.commit();
   } catch (...) {
     shown.finish_line();
     throw;
@@ -54,7 +58,7 @@ void run_simulate(const SimulateArgs& args) {
   std::fprintf(stderr,
                "simulate: %s, %d frame(s), %zu water vertices a frame -> %s (%zu OBJ files, "
                "y up), %.2f s\n",
-               args.scenario.c_str(), args.frames, water_vertices, args.out.c_str(), files,
+               args.scenario.c_str(), args.frames, water_vertices, printable(args.out).c_str(), files,
                seconds);
 }
 

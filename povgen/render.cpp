@@ -53,6 +53,13 @@ SceneFrames read_ini_frames(const fs::path& ini) {
     if (line.rfind("Output_File_Name=\"", 0) == 0 && line.size() > 19 && line.back() == '"')
       f.output_name = line.substr(18, line.size() - 19);
   }
+  // Images go into the scene directory and nowhere else: an edited scene.ini that names a path
+  // ("../x", "/tmp/x", "sub/x") would have render publish, and replace, files outside it.
+  const std::string& name = f.output_name;
+  if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos ||
+      std::any_of(name.begin(), name.end(), [](unsigned char c) { return c < 32 || c == 127; }))
+    throw InputError(ini.string() + ": Output_File_Name must be a file name in the scene directory, "
+                                    "without a directory or control characters");
   f.animation = has_first && has_last;
   // An edited or foreign scene.ini: a range that renders nothing would be a false success, and
   // one of billions of frames would be planned (and its memory taken) before any is rendered.

@@ -852,6 +852,48 @@ TEST_F(HostileCli, RenderRefusesASceneIniWhoseFramesAreNoRange) {
   }
 }
 
+TEST_F(HostileCli, RenderRefusesAnOutputFileNameOutsideTheSceneDirectory) {
+  write_text(at("w_0001.obj"), grid_obj());
+  write_text(at("w_0002.obj"), grid_obj(0.01));
+  ASSERT_EQ(toonwater({"povgen", "--water", "w_####.obj", "--out", "scene"}).exit_code, 0);
+  const std::string ini = read_text(at("scene/scene.ini"));
+  ASSERT_TRUE(has(ini, "Output_File_Name=\"frame_\"")) << ini;
+  write_text(at("frame_1.png"), "mine, beside the scene");
+  for (const std::string name : {"../frame_", "/tmp/frame_", "sub/frame_", "..", "a\tb"}) {
+    std::string edited = ini;
+    edited.replace(edited.find("\"frame_\""), 8, "\"" + name + "\"");
+    write_text(at("scene/scene.ini"), edited);
+    const Outcome r = toonwater({"render", "scene"}, {{"TOONWATER_POVRAY", fake_povray("exit 0")}});
+    EXPECT_EQ(r.exit_code, exit_code::bad_input) << name << ": " << r.err;
+    EXPECT_TRUE(has(r.err, "scene.ini: Output_File_Name must be a file name in the scene directory"))
+        << r.err;
+  }
+  EXPECT_EQ(read_text(at("frame_1.png")), "mine, beside the scene");
+}
+
+TEST_F(HostileCli, SuccessMessagesShowPathsPrintableAndTheRenderHintQuoted) {
+  write_text(at("w.obj"), grid_obj());
+  const Outcome r = toonwater({"povgen", "--water", "w.obj", "--out", "my scene\x1b[2J"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(has(r.err, "\x1b")) << "a terminal escape reached the terminal";
+  EXPECT_TRUE(has(r.err, "render: cd 'my scene?[2J' && povray scene.ini")) << r.err;
+  const Outcome plain = toonwater({"povgen", "--water", "w.obj", "--out", "my scene"});
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_TRUE(has(plain.err, "(or: toonwater render 'my scene')")) << plain.err;
+}
+
+TEST_F(HostileCli, SimulateReplacesItsFramesAllAtOnce) {
+  ASSERT_EQ(toonwater({"simulate", "drop", "--frames", "3", "--resolution", "8", "--out", "sim"}).exit_code, 0);
+  const std::string first = read_text(at("sim/water_0001.obj"));
+  // The third frame's name taken by a directory: the run fails and no frame is replaced.
+  fs::remove(at("sim/water_0003.obj"));
+  fs::create_directory(at("sim/water_0003.obj"));
+  const Outcome r = toonwater({"simulate", "drop", "--frames", "3", "--resolution", "16", "--out", "sim"});
+  EXPECT_EQ(r.exit_code, exit_code::output_failed) << r.err;
+  EXPECT_EQ(read_text(at("sim/water_0001.obj")), first) << "a frame of the failed run is in place";
+  for (const std::string& name : names(at("sim"))) EXPECT_FALSE(has(name, ".tmp-")) << name;
+}
+
 TEST_F(HostileCli, RenderWritesIntoNoDirectoryPovgenDidNotWrite) {
   write_text(at("w.obj"), grid_obj());
   ASSERT_EQ(toonwater({"povgen", "--water", "w.obj", "--out", "scene"}).exit_code, 0);
