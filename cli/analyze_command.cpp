@@ -73,14 +73,13 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
                a.times.curvature, a.times.flow, write_seconds);
 }
 
-// Two names of one file: the same existing file, or the same path once made absolute.
+// Two names of one file: the same existing file (hard links included), or the same file to be
+// written once links are followed (output_target), whether it exists yet or not.
 bool same_file(const std::string& a, const std::string& b) {
   if (a == "-" || b == "-") return a == b;
   std::error_code ec;
   if (std::filesystem::equivalent(a, b, ec) && !ec) return true;
-  const auto canonical_a = std::filesystem::weakly_canonical(std::filesystem::absolute(a), ec);
-  const auto canonical_b = std::filesystem::weakly_canonical(std::filesystem::absolute(b), ec);
-  return !ec && canonical_a == canonical_b;
+  return output_target(a) == output_target(b);
 }
 
 // Refuses, before anything is read or written, an output that is the input or another output.
@@ -98,6 +97,13 @@ void check_outputs(const AnalyzeArgs& args) {
   }
   if (!args.maps.empty() && same_file(args.maps, args.mesh))
     throw InputError(args.maps + ": --maps names the input mesh");
+  if (args.maps.empty()) return;
+  const MapFiles maps = map_files(args.maps, frame_stem(args.mesh));
+  for (const auto& [option, path] : outputs)
+    for (const std::filesystem::path& map : {maps.exr, maps.gaussian_png, maps.mean_png, maps.label_png})
+      if (!path.empty() && same_file(path, map.string()))
+        throw InputError(path + ": given to both " + option + " and --maps (" +
+                         map.filename().string() + ")");
 }
 
 void run_analyze(const AnalyzeArgs& args) {

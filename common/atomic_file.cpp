@@ -359,6 +359,14 @@ void NewDirectories::remove_empty() const {
   for (const fs::path& directory : missing_) fs::remove(directory, ignored);  // only if empty
 }
 
+fs::path output_target(const fs::path& path) {
+  std::error_code ec;
+  const fs::path followed = fs::absolute(follow_links(path), ec);
+  if (ec) return path;
+  const fs::path directory = fs::weakly_canonical(followed.parent_path(), ec);
+  return ec ? followed.lexically_normal() : directory / followed.filename();
+}
+
 void write_file_atomically(const fs::path& path, std::string_view contents) {
   AtomicFileWriter file(path);
   file.write(contents);

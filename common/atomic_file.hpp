@@ -79,6 +79,11 @@ class NewDirectories {
   std::vector<std::filesystem::path> missing_;  // deepest first
 };
 
+// The file an AtomicFileWriter of `path` replaces, as one absolute name: symbolic links
+// followed (dangling ones too: the file they name is created), the directory made canonical.
+// Two outputs with the same target are one file, whatever their names.
+std::filesystem::path output_target(const std::filesystem::path& path);
+
 // Replaces `path` with `contents` atomically (AtomicFileWriter in one piece).
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents);
 

@@ -99,13 +99,17 @@ std::string frame_stem(const fs::path& frame) {
   return stem.string();
 }
 
+MapFiles map_files(const fs::path& dir, const std::string& stem) {
+  return {dir / (stem + ".exr"), dir / (stem + "_K.png"), dir / (stem + "_H.png"),
+          dir / (stem + "_label.png")};
+}
+
 MapFiles write_maps(const fs::path& dir, const std::string& stem, const TopDownMap& map,
                     const MapRanges& ranges) {
   std::error_code error;
   fs::create_directories(dir, error);
   if (error) throw OutputError("cannot create " + dir.string() + ": " + error.message());
-  MapFiles files{dir / (stem + ".exr"), dir / (stem + "_K.png"), dir / (stem + "_H.png"),
-                 dir / (stem + "_label.png")};
+  const MapFiles files = map_files(dir, stem);
   const ImageCodec& codec = image_codec();
   // The thread's exception is carried out through the future.
   auto exr = std::async(std::launch::async, [&] { write_exr(codec, files.exr, map, ranges); });

@@ -23,6 +23,9 @@ struct MapFiles {
   std::filesystem::path exr, gaussian_png, mean_png, label_png;
 };
 
+// The four files' names for a frame's `stem` in `dir`.
+MapFiles map_files(const std::filesystem::path& dir, const std::string& stem);
+
 // Rasterises `analysis.surface` over `view` and writes the four files. Creates `dir`.
 MapFiles write_maps(const std::filesystem::path& dir, const std::string& stem,
                     const Analysis& analysis, const MapView& view, const MapRanges& ranges);

@@ -450,6 +450,17 @@ TEST_F(HostileCli, AnOutputThatIsTheInputIsRefusedBeforeWriting) {
   const Outcome r = toonwater({"analyze", "w.obj", "--csv", "x", "--ply", "./x"});
   EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
   EXPECT_FALSE(fs::exists(at("x")));
+  // Two outputs that are one file through a link that leads to no file yet, or through a map's
+  // name: one would replace the other.
+  fs::create_symlink("out.csv", at("link.ply"));
+  Outcome linked = toonwater({"analyze", "w.obj", "--csv", "out.csv", "--ply", "link.ply"});
+  EXPECT_EQ(linked.exit_code, exit_code::bad_input) << linked.err;
+  EXPECT_TRUE(has(linked.err, "given to both --csv and --ply")) << linked.err;
+  EXPECT_FALSE(fs::exists(at("out.csv")));
+  linked = toonwater({"analyze", "w.obj", "--maps", "maps", "--csv", "maps/w_K.png"});
+  EXPECT_EQ(linked.exit_code, exit_code::bad_input) << linked.err;
+  EXPECT_TRUE(has(linked.err, "given to both --csv and --maps")) << linked.err;
+  EXPECT_FALSE(fs::exists(at("maps")));
 }
 
 TEST_F(HostileCli, SeveralOutputsAreAllWrittenOrNoneReplaced) {
