@@ -3,6 +3,7 @@
 #include "analyzer/mesh_reader.hpp"
 
 #include "analyzer/readers/readers.hpp"
+#include "analyzer/readers/vdb/level_set_module.hpp"
 #include "common/parallel.hpp"
 
 #include <fcntl.h>
@@ -208,11 +209,37 @@ std::string lowercase_extension(const std::filesystem::path& path) {
   return extension;
 }
 
+// An OpenVDB level set, meshed (readers/vdb/level_set_module.hpp): the module opens the file.
+InputMesh read_level_set(const SourceFile& file) {
+  struct stat info {};
+  if (::stat(file.name.c_str(), &info) != 0) fail_errno(file, "cannot open", errno);
+  if (!S_ISREG(info.st_mode)) readers::fail(file, "is not a regular file");
+  const LevelSetModule& module = level_set_module();
+  MeshedLevelSet meshed;
+  try {
+    meshed = module.mesh_level_set(file.name, "", 0.0);
+  } catch (const std::runtime_error& e) {
+    readers::fail(file, e.what());
+  }
+  for (const Vec3& p : meshed.mesh.positions)
+    if (!p.allFinite()) readers::fail(file, "grid '" + meshed.grid + "' meshes to a non-finite point");
+  InputMesh result;
+  result.polygon_count = meshed.mesh.triangles.size();
+  result.mesh = std::move(meshed.mesh);
+  return result;
+}
+
 }  // namespace
 
 InputMesh read_mesh(const std::filesystem::path& path) {
   SourceFile file{path.string(), {}};
   const std::string extension = lowercase_extension(path);
+  if (extension == ".vdb") {
+    InputMesh result = read_level_set(file);
+    if (result.mesh.triangles.empty())
+      throw EmptyMeshError(file.name + ": its level set has no zero crossing (no surface)");
+    return result;
+  }
   InputMesh (*read)(const SourceFile&) = nullptr;
   if (extension == ".obj") read = readers::read_obj;
   else if (extension == ".off") read = readers::read_off;
@@ -222,10 +249,10 @@ InputMesh read_mesh(const std::filesystem::path& path) {
     read = readers::read_bobj;
   else if (extension.empty())
     readers::fail(file, "has no extension to tell its format "
-                        "(expected .obj, .off, .ply, .stl or .bobj.gz)");
+                        "(expected .obj, .off, .ply, .stl, .bobj.gz or .vdb)");
   else
     readers::fail(file, "unknown mesh format " + readers::quote(extension) +
-                            " (expected .obj, .off, .ply, .stl or .bobj.gz)");
+                            " (expected .obj, .off, .ply, .stl, .bobj.gz or .vdb)");
 
   std::size_t size = 0;
   const std::unique_ptr<char[]> bytes = load_file(file, size);

@@ -6,6 +6,7 @@
 #include "common/atomic_file.hpp"
 #include "common/large_arrays.hpp"
 #include "analyzer/mesh_reader.hpp"
+#include "analyzer/readers/vdb/level_set_module.hpp"
 #include "images/image_codec.hpp"
 #include "povgen/config.hpp"
 #include "povgen/render.hpp"
@@ -104,6 +105,8 @@ int main(int argc, char** argv) {
     return fail(e.what(), exit_code::output_failed);
   } catch (const toonwater::povgen::PovrayError& e) {
     return fail(e.what(), exit_code::povray_failed);
+  } catch (const toonwater::LevelSetModuleError& e) {
+    return fail(e.what(), exit_code::incomplete_install);
   } catch (const toonwater::ImageModuleError& e) {
     return fail(e.what(), exit_code::incomplete_install);
   } catch (const std::filesystem::filesystem_error& e) {

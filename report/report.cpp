@@ -150,10 +150,10 @@ ReportResult write_report(const ReportOptions& options) {
   // A part not measured still replaces its files, with what was (not) measured, so that no
   // earlier run's numbers stand beside this run's report.
   OutputBatch batch;
-  for (SequenceFlowStudy& study : result.flow_sequence) {
-    const fs::path picture = options.out_dir / study.picture.filename();
-    write_file_atomically(picture, read_bytes(study.picture));
-    study.picture = picture;
+  for (SequenceFlowStudy& sequence : result.flow_sequence) {
+    const fs::path picture = options.out_dir / sequence.picture.filename();
+    write_file_atomically(picture, read_bytes(sequence.picture));
+    sequence.picture = picture;
   }
   write_file_atomically(options.out_dir / "flow_ripples.csv", ripple_csv(result.ripples));
   write_file_atomically(options.out_dir / "curvature_errors.csv", study_csv(result.study));

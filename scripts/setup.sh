@@ -11,6 +11,7 @@ packages=(
   libopenimageio-dev openimageio-tools fonts-dejavu-core
   povray
   libopenmesh-dev
+  libopenvdb-dev libboost-dev  # .vdb level sets (analyzer/readers/vdb); OpenVDB's headers include Boost
   libgtest-dev libbenchmark-dev
   clang-14 libclang-rt-14-dev  # fuzzing (scripts/fuzz.sh)
   slurm-wlm munge parallel     # render farms (render --on slurm|parallel) and their tests

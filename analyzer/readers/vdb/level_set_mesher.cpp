@@ -1,0 +1,109 @@
+// The OpenVDB side of level_set_module.hpp: choose a grid, mesh its zero level, orient it.
+#include "analyzer/readers/vdb/level_set_module.hpp"
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/VolumeToMesh.h>
+
+#include <mutex>
+
+namespace toonwater {
+namespace {
+
+bool is_scalar(const openvdb::GridBase& grid) {
+  return grid.isType<openvdb::FloatGrid>() || grid.isType<openvdb::DoubleGrid>();
+}
+
+std::string describe(const openvdb::GridBase& grid) {
+  return "'" + grid.getName() + "' (" + grid.valueType() + ", " +
+         openvdb::GridBase::gridClassToString(grid.getGridClass()) + ")";
+}
+
+// The grid to mesh among the file's (metadata only), by the rule of level_set_module.hpp.
+std::string choose_grid(const openvdb::GridPtrVec& grids, const std::string& wanted) {
+  auto find = [&](const std::string& name) -> const openvdb::GridBase* {
+    for (const auto& g : grids)
+      if (g && g->getName() == name) return g.get();
+    return nullptr;
+  };
+  std::string present;
+  for (const auto& g : grids) present += (present.empty() ? "" : ", ") + describe(*g);
+  if (present.empty()) present = "none";
+  if (!wanted.empty()) {
+    const openvdb::GridBase* g = find(wanted);
+    if (!g) throw std::runtime_error("no grid named '" + wanted + "'; its grids: " + present);
+    if (!is_scalar(*g))
+      throw std::runtime_error("grid " + describe(*g) + " is not a float or double grid");
+    return wanted;
+  }
+  for (const char* name : {"surface", "phi"})
+    if (const openvdb::GridBase* g = find(name); g && is_scalar(*g)) return name;
+  const openvdb::GridBase* only = nullptr;
+  for (const auto& g : grids) {
+    if (!is_scalar(*g) || g->getGridClass() != openvdb::GRID_LEVEL_SET) continue;
+    if (only)
+      throw std::runtime_error("more than one level-set grid; choose one with --grid; its grids: " +
+                               present);
+    only = g.get();
+  }
+  if (!only)
+    throw std::runtime_error("no level-set grid ('surface', 'phi' or one of class level set); "
+                             "its grids: " + present);
+  return only->getName();
+}
+
+template <class Grid>
+TriangleMesh mesh_zero_level(const Grid& grid, double adaptivity) {
+  std::vector<openvdb::Vec3s> points;
+  std::vector<openvdb::Vec3I> triangles;
+  std::vector<openvdb::Vec4I> quads;
+  openvdb::tools::volumeToMesh(grid, points, triangles, quads, 0.0, adaptivity);
+  TriangleMesh mesh;
+  mesh.positions.reserve(points.size());
+  for (const auto& p : points) mesh.positions.emplace_back(p.x(), p.y(), p.z());
+  mesh.triangles.reserve(triangles.size() + 2 * quads.size());
+  // volumeToMesh winds its polygons clockwise seen from outside (towards positive distance):
+  // reversed here, so that normals point out of the liquid.
+  auto add = [&](unsigned a, unsigned b, unsigned c) {
+    mesh.triangles.push_back({static_cast<std::int32_t>(a), static_cast<std::int32_t>(c),
+                              static_cast<std::int32_t>(b)});
+  };
+  for (const auto& t : triangles) add(t[0], t[1], t[2]);
+  for (const auto& q : quads) {
+    add(q[0], q[1], q[2]);
+    add(q[0], q[2], q[3]);
+  }
+  return mesh;
+}
+
+MeshedLevelSet mesh_level_set(const std::string& path, const std::string& wanted,
+                              double adaptivity) {
+  static std::once_flag initialised;
+  std::call_once(initialised, [] { openvdb::initialize(); });
+  try {
+    openvdb::io::File file(path);
+    file.open(false);
+    const openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();
+    MeshedLevelSet out;
+    out.grid = choose_grid(*grids, wanted);
+    const openvdb::GridBase::Ptr grid = file.readGrid(out.grid);
+    file.close();
+    out.voxel_size = grid->voxelSize()[0];
+    if (const auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(grid))
+      out.mesh = mesh_zero_level(*f, adaptivity);
+    else if (const auto d = openvdb::gridPtrCast<openvdb::DoubleGrid>(grid))
+      out.mesh = mesh_zero_level(*d, adaptivity);
+    return out;
+  } catch (const openvdb::Exception& e) {
+    throw std::runtime_error(e.what());
+  }
+}
+
+const LevelSetModule module{level_set_module_interface_version, mesh_level_set};
+
+}  // namespace
+}  // namespace toonwater
+
+extern "C" __attribute__((visibility("default"))) const toonwater::LevelSetModule*
+toonwater_level_set_module_entry() {
+  return &toonwater::module;
+}

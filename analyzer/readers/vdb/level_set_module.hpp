@@ -1,0 +1,51 @@
+// OpenVDB level sets read as meshes: the surface of a Houdini FLIP `surface` grid, Mantaflow's
+// liquid level set `phi`, or any signed-distance grid, meshed at its zero level with OpenVDB's
+// own mesher, tools::volumeToMesh (dual contouring on the grid's active voxels; `adaptivity` in
+// [0, 1] merges coplanar cells, 0 keeps every cell), its quads split into triangles and every
+// face oriented so that its normal points out of the liquid (towards positive distance).
+//
+// The grid: the one named, else "surface", else "phi", else the only float or double grid
+// whose class is level set; otherwise an error that lists the grids the file holds.
+//
+// Why a module: OpenVDB pulls in Boost, TBB, Blosc and more, which every run of the toonwater
+// program would otherwise load. Its implementation (level_set_mesher.cpp) is built into
+// toonwater-vdb.so, which the program loads from beside its executable when it first reads a
+// .vdb file (level_set_loader.cpp); tests link the same implementation statically
+// (level_set_linked.cpp). A program links exactly one of the two.
+#pragma once
+
+#include "analyzer/mesh.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace toonwater {
+
+struct MeshedLevelSet {
+  TriangleMesh mesh;      // world coordinates (the grid's transform applied)
+  std::string grid;       // the grid meshed
+  double voxel_size = 0;  // its voxel size along x
+};
+
+// Every function throws std::runtime_error with the reason (not naming the file) on failure.
+struct LevelSetModule {
+  int interface_version = 0;  // level_set_module_interface_version of the code that built it
+  MeshedLevelSet (*mesh_level_set)(const std::string& path, const std::string& grid,
+                                   double adaptivity) = nullptr;
+};
+
+inline constexpr int level_set_module_interface_version = 1;
+
+// The module is missing or unusable: the installation is incomplete.
+class LevelSetModuleError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The module, loaded on first use. Throws LevelSetModuleError when it cannot be loaded.
+const LevelSetModule& level_set_module();
+
+}  // namespace toonwater
+
+extern "C" const toonwater::LevelSetModule* toonwater_level_set_module_entry();

@@ -1,0 +1,106 @@
+// OpenVDB level sets read as meshes (analyzer/readers/vdb/level_set_module.hpp): which grid is
+// meshed, that the mesh is the level set's zero surface with its normals out of the liquid, and
+// the errors that name the grids a file holds.
+#include "analyzer/mesh_reader.hpp"
+#include "tests/support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/LevelSetSphere.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace toonwater::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+openvdb::FloatGrid::Ptr sphere(const std::string& name, double radius, const openvdb::Vec3f& centre,
+                               double voxel) {
+  openvdb::initialize();
+  auto grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(
+      static_cast<float>(radius), centre, static_cast<float>(voxel));
+  grid->setName(name);
+  return grid;
+}
+
+openvdb::FloatGrid::Ptr fog(const std::string& name) {
+  auto grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName(name);
+  grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+  grid->tree().setValue(openvdb::Coord(1, 2, 3), 1.0f);
+  return grid;
+}
+
+void write_vdb(const fs::path& path, const openvdb::GridPtrVec& grids) {
+  openvdb::io::File file(path.string());
+  file.write(grids);
+  file.close();
+}
+
+// The volume a closed mesh encloses, positive when its faces turn outward.
+double signed_volume(const TriangleMesh& mesh) {
+  double six_v = 0;
+  for (const Triangle& t : mesh.triangles)
+    six_v += mesh.positions[t[0]].dot(mesh.positions[t[1]].cross(mesh.positions[t[2]]));
+  return six_v / 6.0;
+}
+
+TEST(VdbReader, ASphereLevelSetIsItsZeroSurfaceFacingOut) {
+  ScratchDir dir;
+  const openvdb::Vec3f centre(0.3f, -0.2f, 0.5f);
+  write_vdb(dir / "ball.vdb", {sphere("surface", 1.0, centre, 0.05)});
+  const InputMesh read = read_mesh(dir / "ball.vdb");
+  ASSERT_GT(read.mesh.triangles.size(), 1000u);
+  const Vec3 c(centre.x(), centre.y(), centre.z());
+  for (const Vec3& p : read.mesh.positions) EXPECT_NEAR((p - c).norm(), 1.0, 0.01);
+  EXPECT_NEAR(signed_volume(read.mesh), 4.0 / 3.0 * std::numbers::pi, 0.02 * 4.0)
+      << "a negative volume: the faces turn into the liquid";
+}
+
+TEST(VdbReader, TheGridIsSurfaceThenPhiThenTheOnlyLevelSet) {
+  ScratchDir dir;
+  // Mantaflow's data cache: phi beside fog volumes; the ball of radius 1 is phi.
+  write_vdb(dir / "data.vdb", {fog("density"), sphere("phi", 1.0, {0, 0, 0}, 0.1),
+                               sphere("other", 0.5, {0, 0, 0}, 0.1)});
+  EXPECT_NEAR(read_mesh(dir / "data.vdb").mesh.positions.front().norm(), 1.0, 0.02);
+  write_vdb(dir / "both.vdb", {sphere("phi", 0.5, {0, 0, 0}, 0.05),
+                               sphere("surface", 1.0, {0, 0, 0}, 0.05)});
+  EXPECT_NEAR(read_mesh(dir / "both.vdb").mesh.positions.front().norm(), 1.0, 0.02);
+  write_vdb(dir / "only.vdb", {fog("density"), sphere("liquid", 0.5, {0, 0, 0}, 0.05)});
+  EXPECT_NEAR(read_mesh(dir / "only.vdb").mesh.positions.front().norm(), 0.5, 0.02);
+}
+
+TEST(VdbReader, NoLevelSetOrTwoAreErrorsNamingTheGrids) {
+  ScratchDir dir;
+  write_vdb(dir / "fog.vdb", {fog("density")});
+  try {
+    read_mesh(dir / "fog.vdb");
+    FAIL() << "a fog volume was meshed";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("fog.vdb: no level-set grid"), std::string::npos) << message;
+    EXPECT_NE(message.find("'density' (float, fog volume)"), std::string::npos) << message;
+  }
+  write_vdb(dir / "two.vdb", {sphere("a", 1.0, {0, 0, 0}, 0.1), sphere("b", 1.0, {0, 0, 0}, 0.1)});
+  try {
+    read_mesh(dir / "two.vdb");
+    FAIL() << "one of two level sets was chosen";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than one level-set grid"), std::string::npos) << e.what();
+  }
+  write_text(dir / "text.vdb", "not a vdb file\n");
+  EXPECT_THROW(read_mesh(dir / "text.vdb"), InputError);
+  // A level set without a zero crossing holds no surface: an empty frame.
+  auto empty = openvdb::FloatGrid::create(0.3f);
+  empty->setName("surface");
+  empty->setGridClass(openvdb::GRID_LEVEL_SET);
+  write_vdb(dir / "empty.vdb", {empty});
+  EXPECT_THROW(read_mesh(dir / "empty.vdb"), EmptyMeshError);
+}
+
+}  // namespace
+}  // namespace toonwater::test
