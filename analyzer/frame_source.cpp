@@ -15,7 +15,7 @@ SourceFrame FrameSource::read(const std::filesystem::path& path) {
   InputMesh input;
   ++reads_;
   try {
-    input = read_mesh(path);
+    input = read_mesh(path, options_.level_set);
   } catch (const EmptyMeshError& empty) {
     frame.empty = empty.what();
     frame.read_seconds = seconds_since(start);

@@ -13,6 +13,7 @@
 #include "analyzer/analysis.hpp"
 #include "analyzer/flow_coherence.hpp"
 #include "analyzer/mesh.hpp"
+#include "analyzer/mesh_reader.hpp"
 
 #include <cstddef>
 #include <filesystem>
@@ -23,6 +24,7 @@ namespace toonwater {
 
 struct FrameSourceOptions {
   std::optional<AffineTransform> transform;  // file to world coordinates; none: as read
+  LevelSetOptions level_set;                 // .vdb frames: the grid and the mesher's adaptivity
   std::optional<AnalyzeOptions> analysis;    // none: read only (the options' coherence is unused)
   bool coherent = false;  // carry the flow state from frame to frame (flow_coherence.hpp)
   bool box = false;       // measure each frame's box (SourceFrame::lower, upper)

@@ -210,14 +210,14 @@ std::string lowercase_extension(const std::filesystem::path& path) {
 }
 
 // An OpenVDB level set, meshed (readers/vdb/level_set_module.hpp): the module opens the file.
-InputMesh read_level_set(const SourceFile& file) {
+InputMesh read_level_set(const SourceFile& file, const LevelSetOptions& options) {
   struct stat info {};
   if (::stat(file.name.c_str(), &info) != 0) fail_errno(file, "cannot open", errno);
   if (!S_ISREG(info.st_mode)) readers::fail(file, "is not a regular file");
   const LevelSetModule& module = level_set_module();
   MeshedLevelSet meshed;
   try {
-    meshed = module.mesh_level_set(file.name, "", 0.0);
+    meshed = module.mesh_level_set(file.name, options.grid, options.adaptivity);
   } catch (const std::runtime_error& e) {
     readers::fail(file, e.what());
   }
@@ -231,11 +231,11 @@ InputMesh read_level_set(const SourceFile& file) {
 
 }  // namespace
 
-InputMesh read_mesh(const std::filesystem::path& path) {
+InputMesh read_mesh(const std::filesystem::path& path, const LevelSetOptions& level_set) {
   SourceFile file{path.string(), {}};
   const std::string extension = lowercase_extension(path);
   if (extension == ".vdb") {
-    InputMesh result = read_level_set(file);
+    InputMesh result = read_level_set(file, level_set);
     if (result.mesh.triangles.empty())
       throw EmptyMeshError(file.name + ": its level set has no zero crossing (no surface)");
     return result;

@@ -35,9 +35,16 @@ struct InputMesh {
   std::size_t polygon_count = 0;  // faces as the file lists them, before triangulation
 };
 
-// Reads OBJ/OFF/PLY/STL or Mantaflow's .bobj.gz, chosen by the file's extension (case-insensitive).
+// How an OpenVDB level set is meshed (readers/vdb/level_set_module.hpp).
+struct LevelSetOptions {
+  std::string grid;         // empty: surface, then phi, then the only level-set grid
+  double adaptivity = 0.0;  // OpenVDB's volumeToMesh, in [0, 1]
+};
+
+// Reads OBJ/OFF/PLY/STL, Mantaflow's .bobj.gz or an OpenVDB level set (.vdb, meshed as
+// `level_set` says), chosen by the file's extension (case-insensitive).
 // Throws InputError for a missing, unreadable, malformed or truncated file, an index out of
 // range, a face with fewer than three corners, or a coordinate that is NaN or infinite.
-InputMesh read_mesh(const std::filesystem::path& path);
+InputMesh read_mesh(const std::filesystem::path& path, const LevelSetOptions& level_set = {});
 
 }  // namespace toonwater

@@ -1,6 +1,7 @@
 // toonwater analyze MESH [--csv FILE] [--ply FILE] [options]
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
+#include "cli/level_set_options.hpp"
 #include "cli/transform_options.hpp"
 #include "cli/validators.hpp"
 
@@ -29,6 +30,7 @@ namespace {
 struct AnalyzeArgs {
   std::string mesh;
   TransformArgs transform;
+  LevelSetOptions level_set;
   std::string csv;
   std::string ply;
   std::string maps;                // directory for the curvature maps
@@ -116,8 +118,9 @@ void run_analyze(const AnalyzeArgs& args) {
   if (!args.maps.empty() && std::filesystem::is_directory(args.maps))
     remove_stale_temporaries(args.maps);
   const std::optional<AffineTransform> transform = transform_from(args.transform);
+  check_level_set_options(args.level_set, args.mesh);
   auto start = Clock::now();
-  InputMesh input = read_mesh(args.mesh);
+  InputMesh input = read_mesh(args.mesh, args.level_set);
   if (transform) apply_transform(*transform, input.mesh, args.mesh);
   const double read_seconds = seconds_since(start);
 
@@ -170,10 +173,11 @@ void add_analyze_command(CLI::App& app) {
   auto args = std::make_shared<AnalyzeArgs>();
   CLI::App* cmd = app.add_subcommand(
       "analyze", "Compute per-vertex curvature and water-flow regions of a surface mesh");
-  cmd->add_option("mesh", args->mesh, "Surface mesh: OBJ, OFF, PLY, STL or Mantaflow .bobj.gz")
+  cmd->add_option("mesh", args->mesh, "Surface mesh: OBJ, OFF, PLY, STL, Mantaflow .bobj.gz or an OpenVDB level set (.vdb)")
       ->required()
       ->check(NonEmptyPath);
   add_transform_options(*cmd, args->transform);
+  add_level_set_options(*cmd, args->level_set);
   cmd->add_option("--csv", args->csv, "Write x,y,z,gaussian,mean,k1,k2,area,label,flow per vertex")
       ->check(NonEmptyPath);
   cmd->add_option("--ply", args->ply, "Write a binary PLY with the curvature as vertex properties")

@@ -2,6 +2,7 @@
 //                  [--set key=value]... [--up x|y|z] --out DIR
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
+#include "cli/level_set_options.hpp"
 #include "cli/transform_options.hpp"
 #include "cli/stop_signals.hpp"
 #include "cli/validators.hpp"
@@ -35,6 +36,7 @@ struct PovgenArgs {
   Axis up = Axis::y;
   std::string maps;  // curvature maps of the water frames, one shared colour range
   TransformArgs water_transform;
+  LevelSetOptions water_level_set;
 };
 
 void run_povgen(const PovgenArgs& args) {
@@ -48,6 +50,8 @@ void run_povgen(const PovgenArgs& args) {
   povgen::PovgenRequest request;
   request.water_pattern = args.water;
   request.water_transform = transform_from(args.water_transform);
+  check_level_set_options(args.water_level_set, args.water);
+  request.water_level_set = args.water_level_set;
   request.base_dir = std::filesystem::current_path();
   request.up = args.up;
   request.out_dir = args.out;
@@ -127,6 +131,7 @@ void add_povgen_command(CLI::App& app) {
                   "with one colour range shared by all frames")
       ->check(NonEmptyPath);
   add_transform_options(*cmd, args->water_transform);  // applies to the water meshes
+  add_level_set_options(*cmd, args->water_level_set);  // so do these
   cmd->add_option("--up", args->up, "Up axis of the input (Blender writes z)")
       ->transform(one_of<Axis>({{"x", Axis::x}, {"y", Axis::y}, {"z", Axis::z}}))
       ->default_str("y");

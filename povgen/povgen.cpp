@@ -297,6 +297,7 @@ WaterPlan plan_water(const SceneConfig& config, const PovgenRequest& request, st
   plan.maps = !request.maps_dir.empty();
   plan.camera_box = !(config.camera.location && config.camera.look_at);
   plan.frames.transform = request.water_transform;
+  plan.frames.level_set = request.water_level_set;
   plan.frames.analysis = water_analysis(config, request.up, plan.maps);
   plan.frames.box = plan.camera_box;
   // Flow regions are carried from frame to frame so that they do not flicker

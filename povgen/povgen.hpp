@@ -13,6 +13,7 @@
 #include "analyzer/affine_transform.hpp"
 #include "analyzer/analysis.hpp"
 #include "analyzer/flow_coherence.hpp"
+#include "analyzer/mesh_reader.hpp"
 #include "analyzer/stroke_persistence.hpp"
 #include "analyzer/flow_strokes.hpp"
 #include "analyzer/maps/map_planner.hpp"
@@ -99,6 +100,7 @@ double water_line(const SceneMesh& water, const Vec3& lo, const Vec3& hi);
 struct PovgenRequest {
   std::string water_pattern;
   std::optional<AffineTransform> water_transform;  // file to world coordinates of the water
+  LevelSetOptions water_level_set;                 // .vdb water: the grid and the adaptivity
   std::filesystem::path base_dir;  // patterns on the command line are relative to it
   Axis up = Axis::y;
   std::filesystem::path out_dir;

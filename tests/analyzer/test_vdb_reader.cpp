@@ -74,6 +74,28 @@ TEST(VdbReader, TheGridIsSurfaceThenPhiThenTheOnlyLevelSet) {
   EXPECT_NEAR(read_mesh(dir / "only.vdb").mesh.positions.front().norm(), 0.5, 0.02);
 }
 
+TEST(VdbReader, AGridNamedIsMeshedAndAdaptivityMergesFlatCells) {
+  ScratchDir dir;
+  write_vdb(dir / "two.vdb", {sphere("a", 1.0, {0, 0, 0}, 0.05), sphere("b", 0.5, {0, 0, 0}, 0.05),
+                              fog("density")});
+  EXPECT_NEAR(read_mesh(dir / "two.vdb", {"b", 0.0}).mesh.positions.front().norm(), 0.5, 0.02);
+  const InputMesh fine = read_mesh(dir / "two.vdb", {"a", 0.0});
+  const InputMesh coarse = read_mesh(dir / "two.vdb", {"a", 1.0});
+  EXPECT_NEAR(fine.mesh.positions.front().norm(), 1.0, 0.02);
+  EXPECT_LT(coarse.mesh.triangles.size(), fine.mesh.triangles.size());
+  // Merged cells cut the sphere's corners, but the faces still turn outward.
+  EXPECT_GT(signed_volume(coarse.mesh), 0.8 * 4.0 / 3.0 * std::numbers::pi);
+  for (const std::string& wrong : {"c", "density"}) {
+    try {
+      read_mesh(dir / "two.vdb", {wrong, 0.0});
+      FAIL() << wrong << " was meshed";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("two.vdb: "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("'" + wrong + "'"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(VdbReader, NoLevelSetOrTwoAreErrorsNamingTheGrids) {
   ScratchDir dir;
   write_vdb(dir / "fog.vdb", {fog("density")});

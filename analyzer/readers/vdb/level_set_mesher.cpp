@@ -33,6 +33,9 @@ std::string choose_grid(const openvdb::GridPtrVec& grids, const std::string& wan
     if (!g) throw std::runtime_error("no grid named '" + wanted + "'; its grids: " + present);
     if (!is_scalar(*g))
       throw std::runtime_error("grid " + describe(*g) + " is not a float or double grid");
+    // A signed distance field may carry no class ("unknown"); a fog volume is a density.
+    if (g->getGridClass() == openvdb::GRID_FOG_VOLUME || g->getGridClass() == openvdb::GRID_STAGGERED)
+      throw std::runtime_error("grid " + describe(*g) + " is not a level set or a signed distance");
     return wanted;
   }
   for (const char* name : {"surface", "phi"})

@@ -4,7 +4,8 @@
 // [0, 1] merges coplanar cells, 0 keeps every cell), its quads split into triangles and every
 // face oriented so that its normal points out of the liquid (towards positive distance).
 //
-// The grid: the one named, else "surface", else "phi", else the only float or double grid
+// The grid: the one named (a float or double grid that is not a fog volume: a signed distance
+// field may carry no class), else "surface", else "phi", else the only float or double grid
 // whose class is level set; otherwise an error that lists the grids the file holds.
 //
 // Why a module: OpenVDB pulls in Boost, TBB, Blosc and more, which every run of the toonwater
