@@ -4,7 +4,9 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
+#include <algorithm>
 #include <mutex>
+#include <optional>
 
 namespace toonwater {
 namespace {
@@ -54,6 +56,26 @@ std::string choose_grid(const openvdb::GridPtrVec& grids, const std::string& wan
   return only->getName();
 }
 
+// Mantaflow's base resolution (res) when the grid is Mantaflow's (its `file_base_resolution`
+// metadata, which Mantaflow writes on every grid), else nothing.
+std::optional<openvdb::Vec3i> mantaflow_resolution(const openvdb::GridBase& grid) {
+  const auto resolution = grid.getMetadata<openvdb::Vec3IMetadata>("file_base_resolution");
+  if (!resolution) return std::nullopt;
+  const openvdb::Vec3i res = resolution->value();
+  if (res.x() <= 0 || res.y() <= 0 || res.z() <= 0) return std::nullopt;
+  return res;
+}
+
+// A point of the grid's world in Mantaflow's normalised domain coordinates, those of its mesh
+// cache (.bobj.gz): its cell centres (i + ½) with the domain's centre at 0 and its longest side
+// 1, v = (i + ½ − res/2) / max(res).
+Vec3 normalised(const openvdb::GridBase& grid, const openvdb::Vec3s& p, const openvdb::Vec3i& res) {
+  const openvdb::Vec3d index = grid.transform().worldToIndex(openvdb::Vec3d(p));
+  const double longest = std::max({res.x(), res.y(), res.z()});
+  return {(index.x() + 0.5 - 0.5 * res.x()) / longest, (index.y() + 0.5 - 0.5 * res.y()) / longest,
+          (index.z() + 0.5 - 0.5 * res.z()) / longest};
+}
+
 template <class Grid>
 TriangleMesh mesh_zero_level(const Grid& grid, double adaptivity) {
   std::vector<openvdb::Vec3s> points;
@@ -62,7 +84,9 @@ TriangleMesh mesh_zero_level(const Grid& grid, double adaptivity) {
   openvdb::tools::volumeToMesh(grid, points, triangles, quads, 0.0, adaptivity);
   TriangleMesh mesh;
   mesh.positions.reserve(points.size());
-  for (const auto& p : points) mesh.positions.emplace_back(p.x(), p.y(), p.z());
+  const std::optional<openvdb::Vec3i> mantaflow = mantaflow_resolution(grid);
+  for (const auto& p : points)
+    mesh.positions.push_back(mantaflow ? normalised(grid, p, *mantaflow) : Vec3(p.x(), p.y(), p.z()));
   mesh.triangles.reserve(triangles.size() + 2 * quads.size());
   // volumeToMesh winds its polygons clockwise seen from outside (towards positive distance):
   // reversed here, so that normals point out of the liquid.

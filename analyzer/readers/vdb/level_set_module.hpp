@@ -4,6 +4,13 @@
 // [0, 1] merges coplanar cells, 0 keeps every cell), its quads split into triangles and every
 // face oriented so that its normal points out of the liquid (towards positive distance).
 //
+// Coordinates: a Mantaflow grid (recognised by the `file_base_resolution` metadata Mantaflow
+// writes on every grid) is read in the normalised domain coordinates of Mantaflow's mesh cache,
+// cell centres (i + ½) with the domain's centre at 0 and its longest side 1, so that the same
+// --scale (the longest side) and --translate (the centre) put the mesh cache and the level set
+// of one bake in one place (../shared/data/mantaflow-dambreak/README.md). Any other grid keeps
+// its own transform as world coordinates.
+//
 // The grid: the one named (a float or double grid that is not a fog volume: a signed distance
 // field may carry no class), else "surface", else "phi", else the only float or double grid
 // whose class is level set; otherwise an error that lists the grids the file holds.
@@ -24,7 +31,7 @@
 namespace toonwater {
 
 struct MeshedLevelSet {
-  TriangleMesh mesh;      // world coordinates (the grid's transform applied)
+  TriangleMesh mesh;      // world coordinates, or Mantaflow's normalised ones (above)
   std::string grid;       // the grid meshed
   double voxel_size = 0;  // its voxel size along x
 };
