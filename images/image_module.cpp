@@ -1,35 +1,23 @@
-// image_codec() for the toonwater program: loads toonwater-images.so from the directory of the
-// running executable (/proc/self/exe, so a symbolic link to the program finds the real one) on
-// first use, and keeps it loaded. See image_codec.hpp.
+// image_codec() for the toonwater program: loads toonwater-images.so from beside the program
+// (common/module_loader.hpp) on first use, and keeps it loaded. See image_codec.hpp.
 #include "images/image_codec.hpp"
 
-#include <dlfcn.h>
-
-#include <filesystem>
-#include <system_error>
+#include "common/module_loader.hpp"
 
 namespace toonwater {
 namespace {
 
-constexpr const char* module_name = "toonwater-images.so";
-
 const ImageCodec* load_image_codec() {
-  std::error_code error;
-  const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
-  if (error)
-    throw ImageModuleError(std::string("cannot find the toonwater program's directory to load ") +
-                           module_name + ": /proc/self/exe: " + error.message());
-  const std::filesystem::path path = executable.parent_path() / module_name;
-  void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!module)
-    throw ImageModuleError(path.string() + ": cannot load the image module (" + dlerror() +
+  const LoadedModule module =
+      load_module_beside_program("toonwater-images.so", "toonwater_image_codec_entry");
+  if (!module.entry)
+    throw ImageModuleError(module.path.string() + ": cannot load the image module (" + module.error +
                            "); it must lie beside the toonwater program for images to be read "
                            "or written");
   using Entry = const ImageCodec* (*)();
-  const auto entry = reinterpret_cast<Entry>(dlsym(module, "toonwater_image_codec_entry"));
-  const ImageCodec* codec = entry ? entry() : nullptr;
+  const ImageCodec* codec = reinterpret_cast<Entry>(module.entry)();
   if (!codec || codec->interface_version != image_codec_interface_version)
-    throw ImageModuleError(path.string() +
+    throw ImageModuleError(module.path.string() +
                            ": the image module belongs to another build of toonwater");
   return codec;
 }

@@ -24,15 +24,7 @@ void write_square(const fs::path& path) {
 }
 
 TEST(ImageModule, TheProgramLinksNoOpenImageIO) {
-  // The dynamic loader lists what the program needs, as ldd does, without running it.
-  const std::string command =
-      std::string("LD_TRACE_LOADED_OBJECTS=1 '") + TOONWATER_EXECUTABLE + "' 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string listed;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) listed += buffer;
-  ::pclose(pipe);
+  const std::string listed = libraries_the_program_loads();
   ASSERT_NE(listed.find("libstdc++"), std::string::npos) << listed;
   EXPECT_EQ(listed.find("OpenImageIO"), std::string::npos) << listed;
   EXPECT_TRUE(fs::exists(fs::path(TOONWATER_EXECUTABLE).parent_path() / module_name));

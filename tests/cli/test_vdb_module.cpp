@@ -31,14 +31,7 @@ void write_ball(const fs::path& path, float radius) {
 }
 
 TEST(VdbModule, TheProgramLinksNoOpenVdb) {
-  const std::string command =
-      std::string("LD_TRACE_LOADED_OBJECTS=1 '") + TOONWATER_EXECUTABLE + "' 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string listed;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) listed += buffer;
-  ::pclose(pipe);
+  const std::string listed = libraries_the_program_loads();
   ASSERT_NE(listed.find("libstdc++"), std::string::npos) << listed;
   EXPECT_EQ(listed.find("openvdb"), std::string::npos) << listed;
   EXPECT_EQ(listed.find("libtbb"), std::string::npos) << listed;

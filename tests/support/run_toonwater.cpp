@@ -1,5 +1,7 @@
 #include "tests/support/run_toonwater.hpp"
 
+#include <cstdio>
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -43,6 +45,18 @@ CommandResult run_program(const std::filesystem::path& executable,
   ::waitpid(pid, &status, 0);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return result;
+}
+
+std::string libraries_the_program_loads() {
+  const std::string command =
+      std::string("LD_TRACE_LOADED_OBJECTS=1 '") + TOONWATER_EXECUTABLE + "' 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return "";
+  std::string listed;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) listed += buffer;
+  ::pclose(pipe);
+  return listed;
 }
 
 }  // namespace toonwater::test

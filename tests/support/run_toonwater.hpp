@@ -19,4 +19,8 @@ CommandResult run_toonwater(const std::vector<std::string>& args);
 CommandResult run_program(const std::filesystem::path& executable,
                           const std::vector<std::string>& args);
 
+// The shared libraries the toonwater program needs, as the dynamic loader lists them (what ldd
+// shows), without running it.
+std::string libraries_the_program_loads();
+
 }  // namespace toonwater::test

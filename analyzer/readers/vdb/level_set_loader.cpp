@@ -1,33 +1,25 @@
-// level_set_module() for the toonwater program: loads toonwater-vdb.so from the directory of the
-// running executable on first use, and keeps it loaded. See level_set_module.hpp.
+// level_set_module() for the toonwater program: loads toonwater-vdb.so from beside the program
+// (common/module_loader.hpp) when it first reads a .vdb file, and keeps it loaded. See
+// level_set_module.hpp.
 #include "analyzer/readers/vdb/level_set_module.hpp"
 
-#include <dlfcn.h>
-
-#include <filesystem>
-#include <system_error>
+#include "common/module_loader.hpp"
 
 namespace toonwater {
 namespace {
 
-constexpr const char* module_name = "toonwater-vdb.so";
-
 const LevelSetModule* load_level_set_module() {
-  std::error_code error;
-  const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
-  if (error)
-    throw LevelSetModuleError(std::string("cannot find the toonwater program's directory to load ") +
-                              module_name + ": /proc/self/exe: " + error.message());
-  const std::filesystem::path path = executable.parent_path() / module_name;
-  void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!module)
-    throw LevelSetModuleError(path.string() + ": cannot load the OpenVDB module (" + dlerror() +
+  const LoadedModule module =
+      load_module_beside_program("toonwater-vdb.so", "toonwater_level_set_module_entry");
+  if (!module.entry)
+    throw LevelSetModuleError(module.path.string() + ": cannot load the OpenVDB module (" +
+                              module.error +
                               "); it must lie beside the toonwater program for .vdb files to be read");
   using Entry = const LevelSetModule* (*)();
-  const auto entry = reinterpret_cast<Entry>(dlsym(module, "toonwater_level_set_module_entry"));
-  const LevelSetModule* loaded = entry ? entry() : nullptr;
+  const LevelSetModule* loaded = reinterpret_cast<Entry>(module.entry)();
   if (!loaded || loaded->interface_version != level_set_module_interface_version)
-    throw LevelSetModuleError(path.string() + ": the OpenVDB module belongs to another build of toonwater");
+    throw LevelSetModuleError(module.path.string() +
+                              ": the OpenVDB module belongs to another build of toonwater");
   return loaded;
 }
 
