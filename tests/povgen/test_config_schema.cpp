@@ -78,11 +78,11 @@ TEST(ConfigSchema, TheReadmeTableListsEveryKeyWithItsDefault) {
     std::string defaults;  // a row of several keys lists their defaults in order, ", " between
     for (const std::string& key : row.keys) {
       ASSERT_LT(next, schema.size()) << key << " is documented but not in the schema";
-      EXPECT_EQ(key, schema[next].key) << "the README's keys differ from the schema's (order)";
+      EXPECT_EQ(key, schema[next].key) << "docs/scenes.md's keys differ from the schema's (order)";
       defaults += (defaults.empty() ? "" : ", ") + schema[next].default_value;
       ++next;
     }
-    EXPECT_EQ(row.default_value, defaults) << "README default of " << row.keys.front();
+    EXPECT_EQ(row.default_value, defaults) << "docs/scenes.md default of " << row.keys.front();
   }
   for (; next < schema.size(); ++next) ADD_FAILURE() << schema[next].key << " is not documented";
 }
