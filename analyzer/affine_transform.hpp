@@ -1,6 +1,6 @@
 // Affine maps of mesh positions, x ↦ A·x + b, for meshes whose coordinates are not world
 // coordinates — Mantaflow's caches store the liquid in normalised domain space
-// (analyzer/readers/README.md). A map with det A < 0 mirrors the mesh; it reverses every
+// (docs/inputs.md). A map with det A < 0 mirrors the mesh; it reverses every
 // triangle's winding as well, so that normals still point to the side they pointed to before.
 #pragma once
 

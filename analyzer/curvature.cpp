@@ -25,7 +25,7 @@
 //   for do not depend on the triangulation chosen for L. A mesh without such faces (every
 //   analytic test surface) is computed from its positions alone, in one pass; the first pass
 //   detects the need for the second.
-//   Measured against the alternatives (README, "Thin and degenerate faces"):
+//   Measured against the alternatives (docs/analyzer.md, "Curvature"):
 //   · leaving thin faces out (angles below 3°, as this code did): the UV sphere's poles become
 //     undefined or extrapolated, error 0.17 at 10k vertices against MeshLab's 5.7e-3;
 //   · clamping cotangents at cot 3° (pmp-library): changes exact pole fans (UV sphere 10k:

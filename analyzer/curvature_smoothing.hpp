@@ -3,7 +3,7 @@
 // over the faces f around v and their corners c (v included, with A the mixed area). A vertex
 // weighs itself by its valence and each neighbour by two (the faces it shares with v), so one
 // step mixes about a third of v's own value with its one-ring's. It damps the vertex-to-vertex
-// noise of the cotangent H on irregular meshes (see curvature-notes in the README) at the price
+// noise of the cotangent H on irregular meshes (docs/analyzer.md, "Accuracy") at the price
 // of blurring features narrower than about sqrt(steps) edges.
 #pragma once
 

@@ -18,7 +18,7 @@
 
 namespace toonwater {
 
-// Chosen on real simulation output and analytic ripples (README, "Water-flow regions"). With
+// Chosen on real simulation output and analytic ripples (docs/analyzer.md, "Water-flow regions"). With
 // mean:
 // - c = 2: a long crest is drawn where its radius of curvature 1/(2H) is below L/4 (the wake
 //   and bow wave of a Mantaflow basin; a ripple ring 0.5 % of the scene's size high and 15 %

@@ -1,5 +1,5 @@
 // --transform | --scale/--translate: the map from a mesh file's coordinates to world
-// coordinates (Mantaflow caches: analyzer/readers/README.md), shared by analyze and povgen.
+// coordinates (Mantaflow caches: docs/inputs.md), shared by analyze and povgen.
 #pragma once
 
 #include "analyzer/affine_transform.hpp"

@@ -7,7 +7,7 @@
 // The normals and anything after the triangles are skipped (the analyzer computes its own
 // normals), but still inflated, so that a truncated or corrupt stream is caught by gzip's length
 // and CRC check. There is no header: the file does not say its grid size or domain, so positions
-// are read as stored, in Mantaflow's normalised domain coordinates (README.md in this directory
+// are read as stored, in Mantaflow's normalised domain coordinates (docs/inputs.md
 // says how they relate to Blender's world space and how to pass the domain transform).
 //
 // Memory follows what the stream delivers, not what its counts claim: the data is inflated in

@@ -1,5 +1,5 @@
 // The configuration's schema (povgen/config_schema.hpp) against its documentation and its own
-// rules: povgen/README.md's key table lists every key, in the schema's order, with the schema's
+// rules: docs/scenes.md's key table lists every key, in the schema's order, with the schema's
 // default; integer keys take whole numbers only, and a bad value in a file names file and line.
 #include "povgen/config.hpp"
 #include "tests/support/scene_config.hpp"
@@ -70,19 +70,19 @@ std::vector<Row> documented_keys(const std::string& readme) {
 
 TEST(ConfigSchema, TheReadmeTableListsEveryKeyWithItsDefault) {
   const std::vector<Row> rows =
-      documented_keys(read_text(std::string(TOONWATER_SOURCE_DIR) + "/povgen/README.md"));
-  ASSERT_FALSE(rows.empty()) << "no key table in povgen/README.md";
+      documented_keys(read_text(std::string(TOONWATER_SOURCE_DIR) + "/docs/scenes.md"));
+  ASSERT_FALSE(rows.empty()) << "no key table in docs/scenes.md";
   const std::vector<povgen::ConfigKey> schema = povgen::config_keys();
   std::size_t next = 0;
   for (const Row& row : rows) {
     std::string defaults;  // a row of several keys lists their defaults in order, ", " between
     for (const std::string& key : row.keys) {
       ASSERT_LT(next, schema.size()) << key << " is documented but not in the schema";
-      EXPECT_EQ(key, schema[next].key) << "the README's keys differ from the schema's (order)";
+      EXPECT_EQ(key, schema[next].key) << "docs/scenes.md's keys differ from the schema's (order)";
       defaults += (defaults.empty() ? "" : ", ") + schema[next].default_value;
       ++next;
     }
-    EXPECT_EQ(row.default_value, defaults) << "README default of " << row.keys.front();
+    EXPECT_EQ(row.default_value, defaults) << "docs/scenes.md default of " << row.keys.front();
   }
   for (; next < schema.size(); ++next) ADD_FAILURE() << schema[next].key << " is not documented";
 }
