@@ -8,6 +8,7 @@
 #include "scene/config.hpp"
 #include "scene/mesh2_writer.hpp"
 #include "pipeline/generate_scene.hpp"
+#include "scene/frame_include.hpp"
 #include "scene/scene_writer.hpp"
 #include "scene/simplify.hpp"
 

@@ -12,7 +12,9 @@
 #include "analyzer/vertex_normals.hpp"
 #include "analyzer/weld.hpp"
 #include "scene/axes.hpp"
+#include "scene/frame_include.hpp"
 #include "pipeline/frame_cache.hpp"
+#include "pipeline/frame_record.hpp"
 #include "scene/mesh2_writer.hpp"
 #include "pipeline/scene_directory.hpp"
 #include "scene/scene_writer.hpp"
@@ -32,8 +34,6 @@ namespace toonwater::povgen {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool is_closed(const MeshTopology& t) { return t.boundary_edges == 0 && t.nonmanifold_edges == 0; }
 
 // Weld, topology and orientation only: what a scene without flow regions or a curvature view
 // needs of a mesh (its normals are angle-weighted, prepare_surface).
@@ -73,43 +73,6 @@ std::optional<AnalyzeOptions> water_analysis(const SceneConfig& config, Axis up,
   return analysis_options(config.flow, up, config.water.shading);
 }
 
-PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow,
-                                WaterShading shading, StrokePersistence* persistence) {
-  const auto start = Clock::now();
-  PreparedSurface out;
-  if (!flow) {
-    const std::vector<Vec3> normals = angle_weighted_normals(a.surface, a.topology.vertex_faces);
-    out.mesh = make_scene_mesh(a.surface, normals, is_closed(a.topology), up);
-    out.analysis_seconds = seconds_since(start);
-    return out;
-  }
-  // The toon bands are chosen from the flow stage's shading normals where it ran
-  // (flow_regions.hpp), smoothed over the free surface at the scale of the cells.
-  const std::vector<Vec3>& normals =
-      a.flow.shading_normal.empty() ? a.curvature.normal : a.flow.shading_normal;
-  out.mesh = make_scene_mesh(a.surface, normals, is_closed(a.topology), up);
-  if (shading == WaterShading::toon) {
-    if (flow->style != FlowStyle::regions) {
-      // Strokes taper over 3 % of the scene's size: resolution-free, like the field.
-      const double taper_length = 0.03 * a.flow.scale_length;
-      out.flow_lines = flow_strokes(a.surface, a.flow, taper_length);
-      if (persistence)
-        out.flow_lines =
-            persistence->update(a.surface, a.flow, std::move(out.flow_lines), taper_length);
-      for (FlowLine& line : out.flow_lines)
-        for (Vec3& p : line.points) p = to_povray(p, up);
-    }
-    out.flow_field = std::move(a.flow.field);
-    out.normal_noise = a.flow.normal_noise;
-    out.ridge_vertices = a.flow.ridge_vertices;
-    out.valley_vertices = a.flow.valley_vertices;
-  } else {
-    out.view_values = shading == WaterShading::gaussian ? a.curvature.gaussian : a.curvature.mean;
-  }
-  out.analysis_seconds = seconds_since(start);
-  return out;
-}
-
 PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,
                                 FlowCoherence* coherence, WaterShading shading) {
   const auto start = Clock::now();
@@ -121,9 +84,8 @@ PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* f
   } else {
     a = geometry_analysis(std::move(input));
   }
-  const double analysis_seconds = seconds_since(start);
   PreparedSurface out = prepare_surface(std::move(a), up, flow, shading);
-  out.analysis_seconds += analysis_seconds;
+  out.analysis_seconds = seconds_since(start);
   return out;
 }
 
@@ -142,74 +104,6 @@ double view_range(const CurvatureRanges& ranges, WaterShading shading) {
   const double range = shading == WaterShading::gaussian ? r.gaussian : r.mean;
   return range > 0.0 ? range : 1.0;  // nothing measured: everything at the middle colour
 }
-
-}  // namespace
-
-double water_line(const SceneMesh& water, const Vec3& lo, const Vec3& hi) {
-  const Vec3 grow = 0.25 * (hi - lo);
-  const double x0 = lo.x() - grow.x(), x1 = hi.x() + grow.x(), z0 = lo.z() - grow.z(), z1 = hi.z() + grow.z();
-  // Faces, not vertices: a simplified calm surface is a few large faces whose corners all lie
-  // outside a small object's footprint.
-  std::vector<double> heights;
-  for (const Triangle& t : water.triangles) {
-    const Vec3 &a = water.positions[t[0]], &b = water.positions[t[1]], &c = water.positions[t[2]];
-    const Vec3 normal = water.normals[t[0]] + water.normals[t[1]] + water.normals[t[2]];
-    if (!(normal.y() > free_surface_min_up_component * normal.norm())) continue;
-    if (std::max({a.x(), b.x(), c.x()}) < x0 || std::min({a.x(), b.x(), c.x()}) > x1 ||
-        std::max({a.z(), b.z(), c.z()}) < z0 || std::min({a.z(), b.z(), c.z()}) > z1)
-      continue;
-    heights.push_back((a.y() + b.y() + c.y()) / 3.0);
-  }
-  if (heights.empty()) return lo.y() - (hi - lo).norm() - 1.0;
-  const auto middle = heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2);
-  std::nth_element(heights.begin(), middle, heights.end());
-  return *middle;
-}
-
-std::string empty_water_include() {
-  return "// Written by toonwater povgen: this frame's water mesh was empty.\n"
-         "#declare Water_mesh = union {}\n"
-         "#declare Water_shell = union {}\n";
-}
-
-std::vector<TextureCoordinate> texture_coordinates(const PreparedSurface& surface,
-                                                   const LightGeometry& light) {
-  return surface.view_values.empty()
-             ? toon_coordinates(surface.mesh, light, surface.flow_field)
-             : value_coordinates(surface.view_values, surface.view_range);
-}
-
-std::vector<TextureCoordinate> water_coordinates(const PreparedSurface& surface,
-                                                 const LightGeometry& light,
-                                                 const SceneLayout& layout) {
-  std::vector<TextureCoordinate> uv = texture_coordinates(surface, light);
-  const SceneConfig& config = *layout.config;
-  // A curvature view shows the values as they are; min_patch = 0 keeps every patch.
-  if (!surface.view_values.empty() || !(config.water.min_patch > 0.0)) return uv;
-  const auto [t_bright, t_medium] = water_thresholds(layout);
-  ToonLimits limits{{band_coordinate(t_medium), band_coordinate(t_bright)}, std::nullopt};
-  if (!surface.flow_field.empty() && config.flow.style != FlowStyle::lines)
-    limits.flow = {flow_coordinate(-1.0), flow_coordinate(1.0)};
-  IslandLimits island;
-  island.radius_pixels = config.water.min_patch;
-  merge_toon_islands(surface.mesh, layout.camera.location,
-                     pixel_widths(surface.mesh, layout.camera, config.render.width), limits,
-                     island, uv);
-  return uv;
-}
-
-std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
-                         std::span<const TextureCoordinate> uv, std::span<const double> shell_offsets,
-                         const FaceTextures* textures, const std::vector<bool>* shell_faces) {
-  std::string text = "// Written by toonwater povgen: meshes for scene.pov.\n";
-  append_mesh2(text, prefix + "_mesh", surface.mesh, uv, textures);
-  if (!shell_offsets.empty())
-    append_shell_mesh2(text, prefix + "_shell", surface.mesh, shell_offsets, shell_faces);
-  append_flow_lines(text, surface.flow_lines);
-  return text;
-}
-
-namespace {
 
 struct ObjectSource {
   ObjectPlacement placement;
@@ -381,87 +275,16 @@ struct SceneRun {
   // A frame with water, prepared for the scene; a sequence's frames in order, so that the
   // strokes persist where the flow is coherent.
   PreparedSurface prepare(SourceFrame& f) {
-    return f.analysis ? prepare_surface(std::move(*f.analysis), request.up, plan.flow, plan.shading,
-                                        plan.frames.coherent ? &strokes : nullptr)
-                      : prepare_surface(geometry_analysis(std::move(f.mesh)), request.up, nullptr);
+    Analysis a = f.analysis ? std::move(*f.analysis) : geometry_analysis(std::move(f.mesh));
+    const auto start = Clock::now();
+    PreparedSurface s =
+        f.analysis ? prepare_surface(std::move(a), request.up, plan.flow, plan.shading,
+                                     plan.frames.coherent ? &strokes : nullptr)
+                   : prepare_surface(std::move(a), request.up, nullptr);
+    s.analysis_seconds = seconds_since(start);
+    return s;
   }
 };
-
-// What the maps of a frame are drawn from (rasterize_top_down): its surface, curvature, labels
-// and free surface.
-struct MapInputs {
-  TriangleMesh surface;
-  CurvatureField curvature;  // gaussian, mean, k1, k2
-  std::vector<std::int8_t> label;
-  std::vector<std::uint8_t> free_surface;
-};
-
-// A frame's record in the FrameCache: why it has no water ("" when it has), then, with water,
-// its map inputs (when the scene has maps) and its prepared surface; then, where the survey
-// read them (for the camera's box), the frame's animated objects' meshes. Each part's fields
-// are listed once, for packing (Record = RecordWriter, const fields) and reading back
-// (RecordReader).
-template <class Record, class Mesh>
-void mesh_fields(Record& record, Mesh& mesh) {
-  record.field(mesh.positions);
-  record.field(mesh.triangles);
-}
-
-template <class Record, class Mesh, class Curvature, class Labels, class FreeSurface>
-void map_input_fields(Record& record, Mesh& surface, Curvature& curvature, Labels& label,
-                      FreeSurface& free_surface) {
-  mesh_fields(record, surface);
-  record.field(curvature.gaussian);
-  record.field(curvature.mean);
-  record.field(curvature.k1);
-  record.field(curvature.k2);
-  record.field(label);
-  record.field(free_surface);
-}
-
-void pack_map_inputs(RecordWriter& out, const Analysis& a) {
-  map_input_fields(out, a.surface, a.curvature, a.flow.label, a.flow.free_surface);
-}
-
-MapInputs unpack_map_inputs(RecordReader& in) {
-  MapInputs m;
-  map_input_fields(in, m.surface, m.curvature, m.label, m.free_surface);
-  return m;
-}
-
-// `view_range` is the sequence's, set when the frame is written.
-template <class Record, class Surface>
-void surface_fields(Record& record, Surface& s) {
-  record.field(s.mesh.positions);
-  record.field(s.mesh.normals);
-  record.field(s.mesh.triangles);
-  record.field(s.mesh.closed);
-  record.field(s.mesh.degenerate_faces);
-  record.field(s.mesh.replaced_normals);
-  record.field(s.mesh.min);
-  record.field(s.mesh.max);
-  record.field(s.flow_field);
-  record.count(s.flow_lines);
-  for (auto& line : s.flow_lines) {
-    record.field(line.sign);
-    record.field(line.closed);
-    record.field(line.points);
-    record.field(line.taper);
-  }
-  record.field(s.view_values);
-  record.field(s.ridge_vertices);
-  record.field(s.valley_vertices);
-  record.field(s.normal_noise);
-  record.field(s.analysis_seconds);
-}
-
-void pack_surface(RecordWriter& out, const PreparedSurface& s) { surface_fields(out, s); }
-
-PreparedSurface unpack_surface(RecordReader& in) {
-  PreparedSurface s;
-  surface_fields(in, s);
-  return s;
-}
 
 void throw_if_stopped(const SceneRun& run, const std::atomic<bool>* stop) {
   if (stop && stop->load()) throw InterruptedError(run.request.out_dir.string() + ": interrupted");

@@ -1,6 +1,6 @@
 // povgen: simulation frames in, a POV-Ray scene directory out.
 //
-//   DIR/scene.pov            the same for every frame (scene_writer.hpp)
+//   DIR/scene.pov            the same for every frame (scene/scene_writer.hpp)
 //   DIR/scene.ini            frame range, size, output names
 //   DIR/toon.inc             the parts of the shading template it uses (templates/toon.inc)
 //   DIR/water_NNNN.inc       per frame: Water_mesh (+ Water_shell) as mesh2
@@ -18,9 +18,7 @@
 #include "analyzer/flow_strokes.hpp"
 #include "analyzer/maps/map_planner.hpp"
 #include "scene/config.hpp"
-#include "scene/mesh2_writer.hpp"
-#include "scene/scene_mesh.hpp"
-#include "scene/scene_writer.hpp"
+#include "scene/prepared_surface.hpp"
 
 #include <atomic>
 #include <cstddef>
@@ -34,18 +32,6 @@
 
 namespace toonwater::povgen {
 
-// A mesh prepared for the scene, with the flow field (and lines) when they were asked for.
-struct PreparedSurface {
-  SceneMesh mesh;
-  std::vector<double> flow_field;   // per vertex s (flow_regions.hpp); empty without flow regions
-  std::vector<FlowLine> flow_lines;  // POV-Ray frame; only with a flow style that draws lines
-  std::vector<double> view_values;  // per vertex K or H for a curvature view; else empty
-  double view_range = 0;            // the sequence's colour range of view_values
-  std::size_t ridge_vertices = 0, valley_vertices = 0;
-  double normal_noise = 0;      // of the shading normals (flow_regions.hpp); 0 without flow
-  double analysis_seconds = 0;  // weld, topology, normals (and curvature and flow when asked)
-};
-
 // The one mapping from the scene's configuration to the analysis of its water frames:
 // `scene_flow` is the flow settings the scene draws with (flow regions, or a curvature view,
 // which needs the curvature whether or not flow regions are drawn), null when it needs the
@@ -57,45 +43,12 @@ const FlowConfig* scene_flow(const SceneConfig& config);
 std::optional<AnalyzeOptions> water_analysis(const SceneConfig& config, Axis up, bool maps);
 AnalyzeOptions analysis_options(const FlowConfig& flow, Axis up, WaterShading shading);
 
-// The scene's surface from an analysis: with `flow`, its curvature normals and, as `shading`
-// asks, the flow field (and lines) or the per-vertex K or H of a curvature view; without,
-// angle-weighted normals of the welded, oriented surface (the analysis then needs no more
-// than weld, topology and orientation). With `persistence` (a sequence's frames in order), the
-// flow strokes persist from frame to frame (stroke_persistence.hpp).
-PreparedSurface prepare_surface(Analysis analysis, Axis up, const FlowConfig* flow,
-                                WaterShading shading = WaterShading::toon,
-                                StrokePersistence* persistence = nullptr);
-// The same from a mesh, analysed here: with `coherence`, the field is made coherent with the
-// frames it saw before (a sequence's frames in order).
+// The scene's surface from a mesh, analysed here (prepare_surface in prepared_surface.hpp):
+// with `coherence`, the field is made coherent with the frames it saw before (a sequence's
+// frames in order).
 PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,
                                 FlowCoherence* coherence,
                                 WaterShading shading = WaterShading::toon);
-
-// The texture coordinates written per vertex: toon coordinates, or the curvature view's values.
-std::vector<TextureCoordinate> texture_coordinates(const PreparedSurface& surface,
-                                                   const LightGeometry& light);
-// The water's, as a frame is written for the scene's camera: its toon bands without the
-// islands too small to draw (toon_islands.hpp).
-std::vector<TextureCoordinate> water_coordinates(const PreparedSurface& surface,
-                                                 const LightGeometry& light,
-                                                 const SceneLayout& layout);
-
-// The include of a frame whose water mesh is empty: the declarations, holding nothing.
-std::string empty_water_include();
-
-// The mesh2 include text: `Prefix_mesh` with the texture coordinates `uv` (and `textures` per
-// face when given), and `Prefix_shell` when `shell_offsets` (one per vertex, world units) is not
-// empty, of the faces `shell_faces` marks (all when null).
-std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
-                         std::span<const TextureCoordinate> uv, std::span<const double> shell_offsets,
-                         const FaceTextures* textures = nullptr,
-                         const std::vector<bool>* shell_faces = nullptr);
-
-// The height (POV-Ray's y) of the water line around an object whose box is [lo, hi] in a
-// frame: the median height of the centroids of the free-surface faces (n·y > 0.5) that reach
-// over the object's footprint in x and z (grown by a quarter of its size); below the object
-// where no water is.
-double water_line(const SceneMesh& water, const Vec3& lo, const Vec3& hi);
 
 struct PovgenRequest {
   std::string water_pattern;
@@ -155,12 +108,5 @@ using ProgressFn = std::function<void(PovgenPass, std::size_t, std::size_t)>;
 // frames and throws InterruptedError. On any failure DIR (and the maps) are left as they were.
 PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& request,
                             const ProgressFn& progress, const std::atomic<bool>* stop);
-
-// The text of templates/toon.inc, built into the program.
-std::string_view toon_template();
-
-// templates/toon.inc with only the named parts ("bands", "flow", "objects", "outline",
-// "silhouette"): what a scene directory gets, so it holds no macro its scene does not call.
-std::string toon_template_parts(const std::vector<std::string>& parts);
 
 }  // namespace toonwater::povgen

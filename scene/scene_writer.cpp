@@ -3,7 +3,7 @@
 #include "analyzer/colormap.hpp"
 
 #include "scene/axes.hpp"
-#include "pipeline/generate_scene.hpp"
+#include "scene/toon_template.hpp"
 #include "scene/seen_through_water.hpp"
 
 #include <algorithm>

@@ -82,7 +82,7 @@ std::pair<double, double> water_thresholds(const SceneLayout& layout);
 
 // An object's water in a frame, declared in the frame's water include when the water refracts:
 // Obj_NAME_water_line, the height of the water's surface around the object (water_line in
-// pipeline/generate_scene.hpp), where its shell is cut in two; Obj_NAME_water, an object whose
+// frame_include.hpp), where its shell is cut in two; Obj_NAME_water, an object whose
 // inside is the water around the object (the frame's `closed_water` mesh, Water_mesh, else the
 // half-space under the water line), where its texture changes; and Obj_NAME_contact, how deep the
 // contact line reaches on each side of the water's surface (scene units; 0: none).

@@ -31,7 +31,7 @@
 // (non-manifold), pass through unchanged.
 #pragma once
 
-#include "pipeline/generate_scene.hpp"
+#include "scene/prepared_surface.hpp"
 #include "scene/scene_writer.hpp"
 
 #include <cstddef>
@@ -68,7 +68,7 @@ double screen_tolerance(double pixels, double nearest_distance, double angle_deg
                         int height);
 
 // Simplifies the surface's mesh, its per-vertex data (flow field, view values) and its texture
-// coordinates `uv` (texture_coordinates in pipeline/generate_scene.hpp) in place.
+// coordinates `uv` (texture_coordinates in frame_include.hpp) in place.
 SimplifyStats simplify_surface(PreparedSurface& surface, std::vector<TextureCoordinate>& uv,
                                const SimplifyOptions& options);
 

@@ -1,7 +1,7 @@
 // The parts of templates/toon.inc a scene uses. The template is a header, then parts that each
 // start at a "// @part NAME" line, then "// @end" and a footer: the selection keeps the header,
 // the parts named (in the template's order) and the footer.
-#include "pipeline/generate_scene.hpp"
+#include "scene/toon_template.hpp"
 
 #include <algorithm>
 #include <stdexcept>

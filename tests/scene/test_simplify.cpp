@@ -2,6 +2,9 @@
 // the rendered picture against the full mesh.
 #include "scene/simplify.hpp"
 
+#include "pipeline/generate_scene.hpp"
+#include "scene/frame_include.hpp"
+
 #include "tests/support/povray_test_util.hpp"
 #include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
