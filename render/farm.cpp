@@ -34,21 +34,6 @@ FarmWork farm_work(const FarmRequest& request, const SceneFrames& scene) {
   return work;
 }
 
-std::vector<FrameRange> split_into_tasks(const std::vector<long>& frames, long per_task) {
-  std::vector<FrameRange> tasks;
-  for (const long f : frames) {
-    if (!tasks.empty() && tasks.back().last == f - 1 && f - tasks.back().first < per_task)
-      tasks.back().last = f;
-    else
-      tasks.push_back({f, f});
-  }
-  return tasks;
-}
-
-std::string format_range(const FrameRange& range) {
-  return std::to_string(range.first) + "-" + std::to_string(range.last);
-}
-
 std::size_t count_images(const fs::path& dir, const SceneFrames& scene,
                          const std::vector<long>& frames) {
   std::size_t n = 0;
@@ -99,21 +84,10 @@ CommandOutput run_command(const std::vector<std::string>& argv) {
     ::close(out_pipe[1]);
     return {127, "", "cannot create a pipe"};
   }
-  std::vector<std::string> copies = argv;
-  std::vector<char*> args;
-  for (auto& a : copies) args.push_back(a.data());
-  args.push_back(nullptr);
-  const pid_t parent = ::getpid();
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    prepare_child_process(parent);
-    const int null = ::open("/dev/null", O_RDONLY);
-    if (null >= 0) ::dup2(null, STDIN_FILENO);
-    ::dup2(out_pipe[1], STDOUT_FILENO);
-    ::dup2(err_pipe[1], STDERR_FILENO);
-    ::execvp(args[0], args.data());
-    ::_exit(127);
-  }
+  ChildSetup setup;
+  setup.out_fd = out_pipe[1];
+  setup.err_fd = err_pipe[1];
+  const pid_t pid = start_child_process(argv, setup);
   ::close(out_pipe[1]);
   ::close(err_pipe[1]);
   if (pid < 0) {
@@ -144,7 +118,7 @@ CommandOutput run_command(const std::vector<std::string>& argv) {
   }
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  result.status = exit_status(status);
   return result;
 }
 

@@ -6,6 +6,7 @@
 // an image are skipped unless forced) and what progress and the final report count.
 #pragma once
 
+#include "render/frame_ranges.hpp"
 #include "render/render.hpp"
 
 #include <atomic>
@@ -48,11 +49,6 @@ struct FarmWork {
   std::size_t skipped = 0;
 };
 FarmWork farm_work(const FarmRequest& request, const SceneFrames& scene);
-
-// Runs of consecutive frames, each at most `per_task` long.
-std::vector<FrameRange> split_into_tasks(const std::vector<long>& frames, long per_task);
-
-std::string format_range(const FrameRange& range);  // "A-B"
 
 // How many of `frames` have their image in the scene directory.
 std::size_t count_images(const std::filesystem::path& dir, const SceneFrames& scene,

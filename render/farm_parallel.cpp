@@ -78,28 +78,13 @@ FarmReport render_on_parallel(const FarmRequest& request, const ParallelOptions&
                                   (farm / "parallel").string() + "/",
                                   task,
                                   ":::"};
-    const std::vector<FrameRange> tasks = split_into_tasks(frames, request.frames_per_task);
+    const std::vector<FrameRange> tasks = ranges_of_at_most(frames, request.frames_per_task);
     for (const auto& t : tasks) argv.push_back(format_range(t));
 
-    std::vector<std::string> copies = argv;
-    std::vector<char*> args;
-    for (auto& a : copies) args.push_back(a.data());
-    args.push_back(nullptr);
-    const std::string log_s = log.string();
-    const pid_t parent = ::getpid();
-    const pid_t pid = ::fork();
+    ChildSetup setup;
+    setup.output_file = log.string();
+    const pid_t pid = start_child_process(argv, setup);
     if (pid < 0) throw OutputError("cannot start '" + shell_command(argv) + "': fork failed");
-    if (pid == 0) {
-      prepare_child_process(parent);
-      const int fd = ::open(log_s.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      const int null = ::open("/dev/null", O_RDONLY);
-      if (fd < 0 || null < 0) ::_exit(126);
-      ::dup2(null, STDIN_FILENO);
-      ::dup2(fd, STDOUT_FILENO);
-      ::dup2(fd, STDERR_FILENO);
-      ::execvp(args[0], args.data());
-      ::_exit(127);
-    }
     if (progress)
       progress("GNU parallel: " + std::to_string(tasks.size()) + " task(s) over " +
                std::to_string(frames.size()) + " frame(s) started");
@@ -132,13 +117,13 @@ FarmReport render_on_parallel(const FarmRequest& request, const ParallelOptions&
       std::this_thread::sleep_for(terms_sent ? std::chrono::duration<double>(0.1)
                                              : std::chrono::duration<double>(options.poll_seconds));
     }
-    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    const int code = exit_status(status);
     std::ifstream log_in(log);
     std::ostringstream log_text;
     log_text << log_in.rdbuf();
     std::string message = log_text.str();
     while (!message.empty() && message.back() == '\n') message.pop_back();
-    if (code == 127 && message.empty())
+    if (code == child_cannot_execute && message.empty())
       throw OutputError("cannot run '" + shell_command(argv) + "' (is GNU parallel installed?)");
     // Below 101 the exit status counts the failed jobs: their frames are reported below.
     if (code > 100)

@@ -117,7 +117,7 @@ FarmReport render_on_slurm(const FarmRequest& request, const SlurmOptions& optio
   FarmReport report;
   report.skipped = skipped;
   if (!frames.empty()) {
-    const std::vector<FrameRange> tasks = split_into_tasks(frames, request.frames_per_task);
+    const std::vector<FrameRange> tasks = ranges_of_at_most(frames, request.frames_per_task);
     report.job_id = submit(dir, tasks, 0, request, options);
     write_farm_state(dir, {"slurm", report.job_id, frames});
     if (progress)
@@ -130,7 +130,7 @@ FarmReport render_on_slurm(const FarmRequest& request, const SlurmOptions& optio
     std::vector<long> missing;
     for (const auto& m : missing_frames(dir, scene, frames, "")) missing.push_back(m.frame);
     if (!missing.empty()) {
-      const std::vector<FrameRange> retry = split_into_tasks(missing, request.frames_per_task);
+      const std::vector<FrameRange> retry = ranges_of_at_most(missing, request.frames_per_task);
       remove_task_leftovers(dir);
       const std::string retry_id = submit(dir, retry, 1, request, options);
       report.resubmitted_tasks = retry.size();

@@ -5,6 +5,7 @@
 #include "common/temporary_name.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "pipeline/scene_directory.hpp"
+#include "render/frame_ranges.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -103,33 +104,17 @@ int wait_for(pid_t pid, const std::atomic<bool>* stop, const std::function<bool(
     }
   }
   if (finished) return 0;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return exit_status(status);
 }
-
-// Exit statuses of the forked child before it becomes POV-Ray (the shell's conventions).
-constexpr int cannot_write_log = 125, cannot_enter_directory = 126, cannot_execute = 127;
 
 // Runs one povray process in `dir` with its output in `log`; returns its exit status.
 int run_povray(const fs::path& dir, const std::vector<std::string>& args, const fs::path& log,
                const std::atomic<bool>* stop, const std::function<bool()>& tick) {
-  std::vector<std::string> copies = args;
-  std::vector<char*> argv;
-  for (auto& a : copies) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const std::string dir_s = dir.string(), log_s = log.string();
-  const pid_t parent = ::getpid();
-  const pid_t pid = ::fork();
+  ChildSetup setup;
+  setup.working_directory = dir.string();
+  setup.output_file = log.string();
+  const pid_t pid = start_child_process(args, setup);
   if (pid < 0) return -1;
-  if (pid == 0) {
-    prepare_child_process(parent);
-    const int fd = ::open(log_s.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd < 0) ::_exit(cannot_write_log);
-    if (::chdir(dir_s.c_str()) != 0) ::_exit(cannot_enter_directory);
-    ::dup2(fd, STDOUT_FILENO);
-    ::dup2(fd, STDERR_FILENO);
-    ::execvp(argv[0], argv.data());
-    ::_exit(cannot_execute);
-  }
   return wait_for(pid, stop, tick);
 }
 
@@ -325,10 +310,10 @@ void render_range(const RangeRun& run, const std::vector<long>& frames, const Fr
     while (published < end) publish(published++);
     if (end < frames.size()) {  // frames[end] failed
       std::string failure;
-      if (status == cannot_execute)
+      if (status == child_cannot_execute)
         failure = "cannot run '" + request.povray + "' (is POV-Ray installed?)";
-      else if (status == cannot_write_log) failure = "cannot write " + log.string();
-      else if (status == cannot_enter_directory) failure = "cannot enter " + run.dir.string();
+      else if (status == child_cannot_write_output) failure = "cannot write " + log.string();
+      else if (status == child_cannot_enter_directory) failure = "cannot enter " + run.dir.string();
       else if (status != 0) failure = povray_failure(status, read_all(log));
       else failure = "POV-Ray wrote no image";
       const fs::path kept_log = run.dir / ("render_" + std::to_string(frames[end]) + ".log");
@@ -404,30 +389,6 @@ int default_render_processes() {
   return 4 * static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
-std::vector<std::vector<long>> split_into_ranges(const std::vector<long>& frames, int processes) {
-  // Runs of consecutive frames first: a POV-Ray range (+SF/+EF) renders every frame between.
-  std::vector<std::vector<long>> runs;
-  for (const long f : frames) {
-    if (runs.empty() || runs.back().back() != f - 1) runs.emplace_back();
-    runs.back().push_back(f);
-  }
-  const std::size_t wanted = static_cast<std::size_t>(std::max(processes, 1));
-  std::vector<std::vector<long>> ranges;
-  for (const std::vector<long>& run : runs) {
-    // This run's share of the processes, rounded, at least one and at most a frame each.
-    const std::size_t share = (wanted * run.size() + frames.size() / 2) / frames.size();
-    const std::size_t count = std::clamp<std::size_t>(share, 1, run.size());
-    for (std::size_t r = 0, begin = 0; r < count; ++r) {
-      // The first run.size() % count ranges are one frame longer.
-      const std::size_t length = run.size() / count + (r < run.size() % count ? 1 : 0);
-      ranges.emplace_back(run.begin() + static_cast<std::ptrdiff_t>(begin),
-                          run.begin() + static_cast<std::ptrdiff_t>(begin + length));
-      begin += length;
-    }
-  }
-  return ranges;
-}
-
 RenderReport render_frames(const RenderRequest& request, const RenderProgressFn& progress) {
   RangeRun run;
   run.request = &request;
@@ -438,7 +399,7 @@ RenderReport render_frames(const RenderRequest& request, const RenderProgressFn&
   const std::vector<long> frames =
       request.skip_rendered ? frames_without_image(run.dir, run.ini, requested) : requested;
   if (!frames.empty()) check_writable(run.dir);
-  const std::vector<std::vector<long>> ranges = split_into_ranges(frames, request.jobs);
+  const std::vector<FrameRange> ranges = ranges_for_processes(frames, request.jobs);
   // With gaps (frames that have their image) there can be more ranges than processes: each
   // process takes the next range when it is done.
   const std::size_t processes =
@@ -451,7 +412,7 @@ RenderReport render_frames(const RenderRequest& request, const RenderProgressFn&
   std::atomic<std::size_t> next_range{0};
   auto work = [&] {
     for (std::size_t r = next_range++; r < ranges.size(); r = next_range++)
-      render_range(run, ranges[r], done);
+      render_range(run, frames_in(ranges[r]), done);
   };
   {
     std::vector<std::jthread> pool;

@@ -97,12 +97,6 @@ using RenderProgressFn = std::function<void(std::size_t, std::size_t, double)>;
 // and parses on one thread. Each holds a parsed frame: fewer (--jobs) where memory is short.
 int default_render_processes();
 
-// `frames` (ascending) cut into ranges of consecutive frames, in order: each run of consecutive
-// frames gets its share of `processes` (rounded, at least one range), cut into ranges as equal
-// in length as they can be (the first ones one frame longer). Without gaps, at most `processes`
-// ranges.
-std::vector<std::vector<long>> split_into_ranges(const std::vector<long>& frames, int processes);
-
 // Frames that already have their image are skipped with `request.skip_rendered`.
 // Throws InputError when the directory holds no povgen scene or the range is outside it.
 // Throws InterruptedError when `request.stop` interrupted the run.

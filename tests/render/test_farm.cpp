@@ -17,16 +17,6 @@ namespace {
 namespace fs = std::filesystem;
 using povgen::FrameRange;
 
-TEST(FarmTasks, SplitIntoRunsOfConsecutiveFramesAtMostNLong) {
-  const auto tasks = povgen::split_into_tasks({1, 2, 3, 4, 5, 7, 8, 10}, 2);
-  ASSERT_EQ(tasks.size(), 5u);
-  const std::vector<std::pair<long, long>> expected{{1, 2}, {3, 4}, {5, 5}, {7, 8}, {10, 10}};
-  for (std::size_t i = 0; i < tasks.size(); ++i) {
-    EXPECT_EQ(tasks[i].first, expected[i].first) << i;
-    EXPECT_EQ(tasks[i].last, expected[i].second) << i;
-  }
-}
-
 TEST(FarmTasks, ShellQuotingSurvivesTheShell) {
   ScratchDir dir;
   const std::string hostile = "a b'c\"$(touch " + (dir / "pwned").string() + ")";
@@ -235,15 +225,6 @@ TEST_F(FarmScene, ImagesOfAnEarlierSceneAreRenderedAgain) {
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_NE(again.output.find("0 frame(s) rendered, " + std::to_string(kFarmFrames) + " skipped"),
             std::string::npos) << again.output;
-}
-
-TEST(RenderRanges, RangesDoNotCrossGapsAndShareTheProcesses) {
-  using Ranges = std::vector<std::vector<long>>;
-  EXPECT_EQ(povgen::split_into_ranges({1, 2, 3, 4, 5, 6, 7}, 3), (Ranges{{1, 2, 3}, {4, 5}, {6, 7}}));
-  EXPECT_EQ(povgen::split_into_ranges({4, 6}, 2), (Ranges{{4}, {6}}));
-  EXPECT_EQ(povgen::split_into_ranges({1, 2, 3, 4, 7, 8}, 3), (Ranges{{1, 2}, {3, 4}, {7, 8}}));
-  EXPECT_EQ(povgen::split_into_ranges({1, 2, 5}, 1), (Ranges{{1, 2}, {5}}));
-  EXPECT_TRUE(povgen::split_into_ranges({}, 4).empty());
 }
 
 TEST_F(FarmScene, MissingOrFailingSbatchIsAClearErrorWithTheCommand) {
