@@ -460,7 +460,9 @@ void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long writt
   write_animated_objects(run, frame, written_frame);
   run.report.faces += s.mesh.triangles.size();
   std::vector<TextureCoordinate> uv = water_coordinates(s, run.light, run.layout);
-  run.report.simplify_seconds += simplify_water(s, uv, run.layout, run.plan.flow).seconds;
+  const auto simplify_start = Clock::now();
+  simplify_water(s, uv, run.layout, run.plan.flow);
+  run.report.simplify_seconds += seconds_since(simplify_start);
   run.report.faces_kept += s.mesh.triangles.size();
   const auto start = Clock::now();
   const std::vector<double> offsets =

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -443,16 +442,12 @@ SimplifyStats simplify_surface(PreparedSurface& surface, std::vector<TextureCoor
 
 SimplifyStats simplify_water(PreparedSurface& surface, std::vector<TextureCoordinate>& uv,
                              const SceneLayout& layout, const FlowConfig* flow) {
-  const auto start = std::chrono::steady_clock::now();
   const CameraReach camera = camera_reach(layout, surface.mesh.min, surface.mesh.max);
   const double tolerance = screen_tolerance(layout.config->water.simplify, camera.nearest_distance,
                                             camera.angle_degrees, camera.width, camera.height);
-  SimplifyStats stats = simplify_surface(
+  return simplify_surface(
       surface, uv,
       simplify_options(layout.config->water, water_thresholds(layout), flow, tolerance));
-  stats.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return stats;
 }
 
 }  // namespace toonwater::povgen

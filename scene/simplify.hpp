@@ -50,7 +50,6 @@ struct SimplifyOptions {
 struct SimplifyStats {
   std::size_t faces_before = 0, faces_after = 0;
   bool simplified = false;  // false: passed through unchanged
-  double seconds = 0;
 };
 
 // The options of the toon (or curvature-view) coordinates written for `water`, whose bands
