@@ -3,8 +3,8 @@
 // default camera's box, a curvature view's colour range, the curvature maps' view and ranges):
 // each frame is then read and analysed once, not once for that survey and again to be written.
 //
-// A record is a frame's bytes (generate_scene.cpp packs what its writing needs). Records stay in memory
-// while their total stays within `memory_budget` bytes; beyond it, a record goes to one
+// A record is a frame's bytes (frame_record.hpp packs what its writing needs). Records stay in
+// memory while their total stays within `memory_budget` bytes; beyond it, a record goes to one
 // temporary binary file (appended, read back by offset), so hundreds of large frames never sit
 // in memory together. The file is removed when the cache is destroyed; it lives in the scene's
 // staging directory, which a failed run removes whole (scene_directory.hpp).
@@ -61,7 +61,8 @@ class FrameCache {
 //
 // Both classes also take `field(x)`, which packs x or reads it back into x by its type, and
 // `count(v)`, which packs v's size or resizes v to it: a record's layout is then written once,
-// as one function template over the two (generate_scene.cpp), and packing and reading cannot drift.
+// as one function template over the two (frame_record.hpp), and packing and reading cannot
+// drift.
 class RecordWriter {
  public:
   template <class T>

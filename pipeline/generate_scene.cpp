@@ -3,13 +3,11 @@
 #include "analyzer/analysis.hpp"
 #include "common/atomic_file.hpp"
 #include "analyzer/frame_source.hpp"
-#include "analyzer/free_surface.hpp"
 #include "analyzer/maps/map_writer.hpp"
 #include "analyzer/maps/top_down_map.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "analyzer/stopwatch.hpp"
 #include "analyzer/topology.hpp"
-#include "analyzer/vertex_normals.hpp"
 #include "analyzer/weld.hpp"
 #include "scene/axes.hpp"
 #include "scene/frame_include.hpp"
@@ -21,8 +19,6 @@
 #include "pipeline/sequence.hpp"
 #include "scene/shell_culling.hpp"
 #include "scene/simplify.hpp"
-#include "scene/stroke_writer.hpp"
-#include "scene/toon_islands.hpp"
 
 #include <algorithm>
 #include <chrono>
