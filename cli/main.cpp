@@ -8,8 +8,8 @@
 #include "analyzer/mesh_reader.hpp"
 #include "analyzer/readers/vdb/level_set_module.hpp"
 #include "images/image_codec.hpp"
-#include "povgen/config.hpp"
-#include "povgen/render.hpp"
+#include "scene/config.hpp"
+#include "render/render.hpp"
 
 #include <csignal>
 #include <exception>

@@ -9,7 +9,7 @@
 
 #include "common/atomic_file.hpp"
 #include "images/image_codec.hpp"
-#include "povgen/povgen.hpp"
+#include "pipeline/generate_scene.hpp"
 
 #include <atomic>
 #include <chrono>

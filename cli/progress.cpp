@@ -1,6 +1,6 @@
 #include "cli/progress.hpp"
 
-#include "povgen/farm.hpp"
+#include "render/farm.hpp"
 
 #include <unistd.h>
 

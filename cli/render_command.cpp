@@ -5,7 +5,7 @@
 #include "cli/progress.hpp"
 #include "cli/stop_signals.hpp"
 #include "cli/validators.hpp"
-#include "povgen/render.hpp"
+#include "render/render.hpp"
 
 #include <atomic>
 #include <csignal>

@@ -6,8 +6,8 @@
 #include "cli/validators.hpp"
 
 #include "analyzer/mesh_reader.hpp"
-#include "povgen/farm_parallel.hpp"
-#include "povgen/farm_slurm.hpp"
+#include "render/farm_parallel.hpp"
+#include "render/farm_slurm.hpp"
 
 #include <unistd.h>
 

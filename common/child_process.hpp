@@ -1,5 +1,6 @@
-// What every child process toonwater starts (POV-Ray, GNU parallel, sbatch) does between fork
-// and exec, so that no child outlives a toonwater that ends abruptly.
+// Every child process toonwater starts (POV-Ray, GNU parallel, sbatch, scancel) is started by
+// start_child_process, which does between fork and exec what keeps a child from outliving a
+// toonwater that ends abruptly:
 //
 // - PR_SET_PDEATHSIG: the kernel sends the child SIGTERM when toonwater ends, whatever ended it
 //   (SIGKILL included); POV-Ray and GNU parallel stop on SIGTERM. A toonwater that stops
@@ -11,10 +12,32 @@
 
 #include <sys/types.h>
 
+#include <string>
+#include <vector>
+
 namespace toonwater {
 
-// Called in the child, right after fork(); `parent` is getpid() of the parent before the fork.
-// Async-signal-safe. When the parent has already gone, the child ends at once (exit 128 + 15).
-void prepare_child_process(pid_t parent);
+// How a child's standard output and error and its working directory are set up
+// (start_child_process).
+struct ChildSetup {
+  std::string working_directory;  // empty: the parent's
+  // Standard output and error both into this file, created or truncated; empty: `out_fd` and
+  // `err_fd`.
+  std::string output_file;
+  int out_fd = -1, err_fd = -1;  // standard output and error (e.g. pipe ends); -1: the parent's
+};
+
+// Exit statuses of a child that could not become the program asked for (the shell's
+// conventions, above those of the programs toonwater runs).
+inline constexpr int child_cannot_write_output = 125;
+inline constexpr int child_cannot_enter_directory = 126;
+inline constexpr int child_cannot_execute = 127;
+
+// Starts argv[0] (looked up in PATH, no shell) as `setup` says, its standard input from
+// /dev/null. Returns its pid, or -1 when it could not be forked.
+pid_t start_child_process(const std::vector<std::string>& argv, const ChildSetup& setup);
+
+// A waitpid status as an exit status: the child's own, or 128 + the signal that ended it.
+int exit_status(int wait_status);
 
 }  // namespace toonwater

@@ -5,10 +5,10 @@
 #include "analyzer/flow_regions.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "corpus/analytic_surfaces.hpp"
-#include "povgen/povgen.hpp"
-#include "povgen/render.hpp"
-#include "povgen/scene_writer.hpp"
-#include "povgen/sequence.hpp"
+#include "pipeline/generate_scene.hpp"
+#include "render/render.hpp"
+#include "scene/scene_writer.hpp"
+#include "pipeline/sequence.hpp"
 #include "report/study_scene.hpp"
 
 #include <algorithm>

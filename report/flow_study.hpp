@@ -16,7 +16,7 @@
 
 #include "analyzer/analysis.hpp"
 #include "analyzer/mesh.hpp"
-#include "povgen/config.hpp"
+#include "scene/config.hpp"
 #include "report/image.hpp"
 
 #include <array>

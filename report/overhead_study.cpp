@@ -2,8 +2,8 @@
 #include "report/overhead_study.hpp"
 
 #include "analyzer/disjoint_sets.hpp"
-#include "povgen/scene_writer.hpp"
-#include "povgen/sequence.hpp"
+#include "scene/scene_writer.hpp"
+#include "pipeline/sequence.hpp"
 #include "report/image.hpp"
 #include "report/study_scene.hpp"
 

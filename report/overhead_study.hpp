@@ -11,7 +11,7 @@
 #pragma once
 
 #include "analyzer/mesh.hpp"
-#include "povgen/config.hpp"
+#include "scene/config.hpp"
 
 #include <cstddef>
 #include <filesystem>

@@ -5,8 +5,8 @@
 
 #include "analyzer/analysis.hpp"
 #include "analyzer/mesh_reader.hpp"
-#include "povgen/povgen.hpp"
-#include "povgen/render.hpp"
+#include "pipeline/generate_scene.hpp"
+#include "render/render.hpp"
 
 #include <algorithm>
 #include <vector>

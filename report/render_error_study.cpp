@@ -4,7 +4,7 @@
 
 #include "report/image.hpp"
 
-#include "povgen/render.hpp"
+#include "render/render.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,5 +1,5 @@
 // Rendering error against run time: one povgen scene rendered by POV-Ray at
-// quality presets (povgen/render_presets.hpp: draft, preview, final, as `[render] quality`
+// quality presets (scene/render_presets.hpp: draft, preview, final, as `[render] quality`
 // offers them) and compared with a high-quality reference render of the same scene:
 //   reference  full size, antialiasing threshold 0 (every pixel supersampled), depth 4
 //
@@ -11,7 +11,7 @@
 // max_trace_level stays povgen's: POV-Ray sets it in the scene, not on the command line.
 #pragma once
 
-#include "povgen/render_presets.hpp"
+#include "scene/render_presets.hpp"
 
 #include <filesystem>
 #include <optional>

@@ -1,8 +1,8 @@
 // A study's scene written and rendered; see study_scene.hpp.
 #include "report/study_scene.hpp"
 
-#include "povgen/povgen.hpp"
-#include "povgen/render.hpp"
+#include "pipeline/generate_scene.hpp"
+#include "render/render.hpp"
 
 #include <stdexcept>
 

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "analyzer/mesh.hpp"
-#include "povgen/config.hpp"
+#include "scene/config.hpp"
 
 #include <filesystem>
 #include <string>

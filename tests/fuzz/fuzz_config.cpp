@@ -1,8 +1,8 @@
-// libFuzzer target for the scene configuration (povgen/config.hpp): the input up to the first
+// libFuzzer target for the scene configuration (scene/config.hpp): the input up to the first
 // NUL byte is scene.toml, each line after it one `--set` override. load_config must accept it or
 // throw ConfigError; whatever it accepts must be what the scene writer may emit: finite numbers,
 // colours in [0, 1] and identifiers of [A-Za-z0-9_].
-#include "povgen/config.hpp"
+#include "scene/config.hpp"
 
 #include <sys/mman.h>
 #include <unistd.h>

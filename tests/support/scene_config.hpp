@@ -2,7 +2,7 @@
 // so that errors name "scene.toml" and its lines as they do for a user's file.
 #pragma once
 
-#include "povgen/config.hpp"
+#include "scene/config.hpp"
 
 #include <string>
 #include <vector>

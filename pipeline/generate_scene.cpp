@@ -1,0 +1,637 @@
+#include "pipeline/generate_scene.hpp"
+
+#include "analyzer/analysis.hpp"
+#include "common/atomic_file.hpp"
+#include "analyzer/frame_source.hpp"
+#include "analyzer/maps/map_writer.hpp"
+#include "analyzer/maps/top_down_map.hpp"
+#include "analyzer/mesh_reader.hpp"
+#include "analyzer/stopwatch.hpp"
+#include "analyzer/topology.hpp"
+#include "analyzer/weld.hpp"
+#include "scene/axes.hpp"
+#include "scene/frame_include.hpp"
+#include "pipeline/frame_cache.hpp"
+#include "pipeline/frame_record.hpp"
+#include "scene/mesh2_writer.hpp"
+#include "pipeline/scene_directory.hpp"
+#include "scene/scene_writer.hpp"
+#include "pipeline/sequence.hpp"
+#include "scene/shell_culling.hpp"
+#include "scene/simplify.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <utility>
+
+namespace toonwater::povgen {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Weld, topology and orientation only: what a scene without flow regions or a curvature view
+// needs of a mesh (its normals are angle-weighted, prepare_surface).
+Analysis geometry_analysis(TriangleMesh input) {
+  Analysis a;
+  a.input_vertices = input.positions.size();
+  WeldedMesh welded = weld_coincident_vertices(std::move(input));
+  a.surface = std::move(welded.mesh);
+  a.topology = analyze_topology(a.surface);
+  a.flipped_faces = orient_consistently(a.surface, a.topology);
+  return a;
+}
+
+}  // namespace
+
+AnalyzeOptions analysis_options(const FlowConfig& flow, Axis up, WaterShading shading) {
+  AnalyzeOptions options;
+  options.flow.up = up;
+  options.flow.criterion = flow.criterion;
+  options.flow.threshold = flow.k_threshold;
+  options.flow.threshold_relative = flow.k_threshold_relative;
+  options.flow.smoothing_steps = flow.smoothing;
+  options.flow.min_region_area = flow.min_region;
+  options.estimator = flow.estimator;
+  options.flow_regions = shading == WaterShading::toon;
+  return options;
+}
+
+const FlowConfig* scene_flow(const SceneConfig& config) {
+  return config.flow.enabled || config.water.shading != WaterShading::toon ? &config.flow
+                                                                           : nullptr;
+}
+
+std::optional<AnalyzeOptions> water_analysis(const SceneConfig& config, Axis up, bool maps) {
+  if (maps) return analysis_options(config.flow, up, WaterShading::toon);
+  if (!scene_flow(config)) return std::nullopt;
+  return analysis_options(config.flow, up, config.water.shading);
+}
+
+PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,
+                                FlowCoherence* coherence, WaterShading shading) {
+  const auto start = Clock::now();
+  Analysis a;
+  if (flow) {
+    AnalyzeOptions options = analysis_options(*flow, up, shading);
+    options.coherence = shading == WaterShading::toon ? coherence : nullptr;
+    a = analyze_mesh(std::move(input), options);
+  } else {
+    a = geometry_analysis(std::move(input));
+  }
+  PreparedSurface out = prepare_surface(std::move(a), up, flow, shading);
+  out.analysis_seconds = seconds_since(start);
+  return out;
+}
+
+namespace {
+
+// The curvature view's colour range (CurvatureRanges): every vertex, weighted by its area.
+void add_view_samples(const Analysis& a, CurvatureRanges& ranges) {
+  ranges.add_edge_length(a.flow.median_edge_length > 0.0 ? a.flow.median_edge_length
+                                                         : median_edge_length(a.surface));
+  for (std::size_t v = 0; v < a.surface.positions.size(); ++v)
+    ranges.add(a.curvature.gaussian[v], a.curvature.mean[v], a.curvature.area[v]);
+}
+
+double view_range(const CurvatureRanges& ranges, WaterShading shading) {
+  const MapRanges r = ranges.ranges(MapOptions{}.percentile);
+  const double range = shading == WaterShading::gaussian ? r.gaussian : r.mean;
+  return range > 0.0 ? range : 1.0;  // nothing measured: everything at the middle colour
+}
+
+struct ObjectSource {
+  ObjectPlacement placement;
+  Sequence sequence;
+};
+
+// Frame selection: the water sequence cut to render.frames. POV-Ray renders every frame number
+// from first to last, so the sequence must not have gaps.
+Sequence select_frames(const SceneConfig& config, const PovgenRequest& request) {
+  Sequence water = find_sequence(request.water_pattern, request.base_dir);
+  // A single file has no frame numbers: a range given for it would be silently ignored.
+  if (config.render.frames && water.single_file)
+    throw InputError(request.water_pattern + ": render.frames " +
+                     std::to_string(config.render.frames->first) + "-" +
+                     std::to_string(config.render.frames->last) +
+                     " picks frames of a sequence, and this is a single file");
+  if (config.render.frames) {
+    auto& f = water.frames;
+    // A range beyond the sequence is a mistake to report, not to clip.
+    const long have_first = f.begin()->first, have_last = f.rbegin()->first;
+    if (config.render.frames->first < have_first || config.render.frames->last > have_last)
+      throw InputError(request.water_pattern + ": render.frames " +
+                       std::to_string(config.render.frames->first) + "-" +
+                       std::to_string(config.render.frames->last) +
+                       " is outside the sequence's frames " + std::to_string(have_first) + "-" +
+                       std::to_string(have_last));
+    std::erase_if(f, [&](const auto& kv) {
+      return kv.first < config.render.frames->first || kv.first > config.render.frames->last;
+    });
+    if (f.empty())
+      throw InputError(request.water_pattern + ": no frame in render.frames " +
+                       std::to_string(config.render.frames->first) + "-" +
+                       std::to_string(config.render.frames->last));
+  }
+  const long first = water.frames.begin()->first, last = water.frames.rbegin()->first;
+  for (long f = first; f <= last; ++f)
+    if (!water.frames.count(f))
+      throw InputError(request.water_pattern + ": frame " + std::to_string(f) +
+                       " is missing (frames " + std::to_string(first) + "-" +
+                       std::to_string(last) + " must all exist)");
+  return water;
+}
+
+// The objects: a static object's one file, or an animated object's file for every water frame.
+std::vector<ObjectSource> find_objects(const SceneConfig& config, const Sequence& water) {
+  std::vector<ObjectSource> objects;
+  for (const ObjectConfig& oc : config.objects) {
+    ObjectSource o;
+    o.placement.config = &oc;
+    o.sequence = find_sequence(oc.mesh, oc.base_dir);
+    o.placement.animated = !o.sequence.single_file;
+    if (o.placement.animated) {
+      for (const auto& [frame, path] : water.frames)
+        if (!o.sequence.frames.count(frame))
+          throw InputError(oc.mesh + ": object '" + oc.name + "' has no file for frame " +
+                           std::to_string(frame));
+    }
+    objects.push_back(std::move(o));
+  }
+  return objects;
+}
+
+// What the frames are read for. Each water frame is read and analysed once. What the whole
+// sequence shares (the box the default camera frames, the curvature view's colour range, the
+// curvature maps' view and ranges) is known only after the last frame: then one pass reads and
+// analyses the frames, gathers it (the survey) and keeps what writing each frame needs
+// (FrameCache), and the frame loop writes them from there. Otherwise the frame loop reads,
+// analyses and writes each frame in turn.
+struct WaterPlan {
+  const FlowConfig* flow = nullptr;  // the scene's flow settings; null: geometry only
+  WaterShading shading = WaterShading::toon;
+  bool maps = false;
+  bool camera_box = false;  // the camera is not configured
+  FrameSourceOptions frames;
+  bool shares() const { return camera_box || shading != WaterShading::toon || maps; }
+  // The survey reads the objects for the camera's box, and keeps them for their includes (a
+  // static object's mesh in SceneRun, an animated one's in each frame's record).
+  bool survey_reads_objects() const { return camera_box; }
+};
+
+WaterPlan plan_water(const SceneConfig& config, const PovgenRequest& request, std::size_t frames) {
+  WaterPlan plan;
+  plan.flow = scene_flow(config);
+  plan.shading = config.water.shading;
+  plan.maps = !request.maps_dir.empty();
+  plan.camera_box = !(config.camera.location && config.camera.look_at);
+  plan.frames.transform = request.water_transform;
+  plan.frames.level_set = request.water_level_set;
+  plan.frames.analysis = water_analysis(config, request.up, plan.maps);
+  plan.frames.box = plan.camera_box;
+  // Flow regions are carried from frame to frame so that they do not flicker
+  // (flow_coherence.hpp); the maps' labels show them as the scene renders them. Coherence
+  // changes only the flow field and labels: the survey's free surface and curvature are the
+  // frame's own.
+  plan.frames.coherent =
+      config.flow.coherence &&
+      (plan.maps || (plan.flow && plan.shading == WaterShading::toon && frames > 1));
+  return plan;
+}
+
+// What the survey finds over the whole sequence.
+struct SequenceSurvey {
+  bool have_box = false;
+  Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();  // POV-Ray frame
+  std::vector<double> normal_noise;                      // each frame's with water
+  CurvatureRanges view;                                  // the curvature view's colour range
+  std::optional<MapPlanner> maps;
+  void grow_box(const Vec3& lower, const Vec3& upper, Axis up) {
+    const Vec3 a = to_povray(lower, up), b = to_povray(upper, up);  // a signed permutation
+    box_min = have_box ? Vec3(box_min.cwiseMin(a.cwiseMin(b))) : Vec3(a.cwiseMin(b));
+    box_max = have_box ? Vec3(box_max.cwiseMax(a.cwiseMax(b))) : Vec3(a.cwiseMax(b));
+    have_box = true;
+  }
+};
+
+// Everything one run of generate_scene shares between its steps.
+struct SceneRun {
+  SceneRun(const SceneConfig& c, const PovgenRequest& r, const Sequence& w)
+      : config(c), request(r), water(w) {}
+  const SceneConfig& config;
+  const PovgenRequest& request;
+  const Sequence& water;
+  std::vector<ObjectSource> objects;
+  WaterPlan plan;
+  SceneLayout layout;
+  LightGeometry light;
+  fs::path out_dir;  // the staging directory
+  PovgenReport report;
+  struct Box {
+    Vec3 min = Vec3::Zero(), max = Vec3::Zero();
+  };
+  std::vector<Box> object_box;
+  std::vector<KeepOutBox> keep_out;  // each object with its shell (shell_culling.hpp)
+  StrokePersistence strokes;         // the flow strokes carried from frame to frame
+  std::vector<bool> submerged;
+  std::vector<double> contact_depth;  // each object's, in scene units (Obj_NAME_contact)
+  double view_range = 0;
+  std::optional<MapView> map_view;
+  MapRanges map_ranges;
+  bool have_water_box = false;
+  // Per object, the mesh the survey read for the include written next (a static object's, or an
+  // animated one's for the frame being written), taken by that include: read once, not twice.
+  std::vector<std::optional<TriangleMesh>> object_mesh;
+
+  void write(const fs::path& name, const std::string& text) {
+    const auto start = Clock::now();
+    write_file_atomically(out_dir / name, text);
+    report.write_seconds += seconds_since(start);
+  }
+  TriangleMesh read_object(const fs::path& path) {
+    const auto start = Clock::now();
+    InputMesh m = read_mesh(path);
+    report.read_seconds += seconds_since(start);
+    ++report.object_reads;
+    return std::move(m.mesh);
+  }
+  // Object i's mesh from `path`: the survey's copy where it kept one, else read now.
+  TriangleMesh take_object(std::size_t i, const fs::path& path) {
+    std::optional<TriangleMesh> kept = std::exchange(object_mesh[i], std::nullopt);
+    return kept ? std::move(*kept) : read_object(path);
+  }
+  // One water frame from its file, read and analysed (frame_source.hpp).
+  SourceFrame read_water(FrameSource& source, const fs::path& path) {
+    SourceFrame f = source.read(path);
+    report.read_seconds += f.read_seconds;
+    report.analysis_seconds += f.analysis_seconds;
+    return f;
+  }
+  // A frame with water, prepared for the scene; a sequence's frames in order, so that the
+  // strokes persist where the flow is coherent.
+  PreparedSurface prepare(SourceFrame& f) {
+    Analysis a = f.analysis ? std::move(*f.analysis) : geometry_analysis(std::move(f.mesh));
+    const auto start = Clock::now();
+    PreparedSurface s =
+        f.analysis ? prepare_surface(std::move(a), request.up, plan.flow, plan.shading,
+                                     plan.frames.coherent ? &strokes : nullptr)
+                   : prepare_surface(std::move(a), request.up, nullptr);
+    s.analysis_seconds = seconds_since(start);
+    return s;
+  }
+};
+
+void throw_if_stopped(const SceneRun& run, const std::atomic<bool>* stop) {
+  if (stop && stop->load()) throw InterruptedError(run.request.out_dir.string() + ": interrupted");
+}
+
+// The survey, for a sequence that shares something: each water frame read and analysed once,
+// what the sequence shares gathered from it, and what writing it needs kept in `cache`; with
+// the default camera, the objects' meshes too, for the camera's box (read once: kept for
+// their includes).
+SequenceSurvey survey_sequence(SceneRun& run, FrameCache& cache, const ProgressFn& progress,
+                               const std::atomic<bool>* stop) {
+  SequenceSurvey survey;
+  if (run.plan.maps) survey.maps.emplace(run.request.up);
+  FrameSource source(run.plan.frames);
+  RecordWriter record;  // one buffer for every frame's record
+  const bool read_objects = run.plan.survey_reads_objects();
+  auto grow = [&](const TriangleMesh& m) {
+    for (const Vec3& p : m.positions) survey.grow_box(p, p, run.request.up);
+  };
+  for (std::size_t i = 0; read_objects && i < run.objects.size(); ++i) {
+    const ObjectSource& o = run.objects[i];
+    if (o.placement.animated) continue;
+    run.object_mesh[i] = run.read_object(o.sequence.frames.begin()->second);
+    grow(*run.object_mesh[i]);
+  }
+  std::size_t done = 0;
+  for (const auto& [frame, path] : run.water.frames) {
+    throw_if_stopped(run, stop);
+    SourceFrame f = run.read_water(source, path);
+    record.clear();
+    record.string(f.empty);
+    if (f.has_water()) {
+      if (run.plan.camera_box) survey.grow_box(f.lower, f.upper, run.request.up);
+      if (f.analysis && run.plan.shading != WaterShading::toon)
+        add_view_samples(*f.analysis, survey.view);
+      if (survey.maps) {
+        survey.maps->add(*f.analysis);
+        pack_map_inputs(record, *f.analysis);
+      }
+      const PreparedSurface prepared = run.prepare(f);
+      survey.normal_noise.push_back(prepared.normal_noise);
+      pack_surface(record, prepared);
+    }
+    for (const ObjectSource& o : run.objects) {
+      if (!read_objects || !o.placement.animated) continue;
+      const TriangleMesh mesh = run.read_object(o.sequence.frames.at(frame));
+      grow(mesh);
+      mesh_fields(record, mesh);
+    }
+    cache.put(record.bytes());
+    if (progress) progress(PovgenPass::survey, ++done, run.water.frames.size());
+  }
+  run.report.water_reads += source.reads();
+  return survey;
+}
+
+// An object's shell, written whole: it is small next to the water's, and the water and other
+// objects come near it (shell_culling.hpp). Counted in the report.
+void count_whole_shell(SceneRun& run, const SceneMesh& mesh, std::span<const double> offsets) {
+  if (offsets.empty()) return;
+  run.report.shell_faces += mesh.triangles.size();
+  run.report.shell_faces_kept += mesh.triangles.size();
+}
+
+// The water's shell faces written (shell_culling.hpp): empty for all of them (then the shell
+// stays closed), else a mark per face. `keep`: the faces the shell is limited to anyway.
+// `may_cull`: nothing beyond shell_culling.hpp's rule forbids culling this shell.
+std::vector<bool> kept_water_shell_faces(SceneRun& run, const SceneMesh& mesh,
+                                         std::span<const double> offsets, bool may_cull,
+                                         std::span<const KeepOutBox> keep_out,
+                                         const std::vector<bool>* keep) {
+  std::vector<bool> kept;
+  if (offsets.empty()) return kept;
+  run.report.shell_faces += mesh.triangles.size();
+  // The water's shell is no_reflection whenever the water reflects (scene_writer.cpp).
+  if (run.request.cull_shells && may_cull &&
+      shell_met_by_camera_rays_only(run.config, /*shell_no_reflection=*/true))
+    kept = shell_faces_seen_from_behind(mesh, offsets, run.layout.camera.location, keep_out, keep);
+  else if (keep)
+    kept = *keep;
+  const auto count = static_cast<std::size_t>(std::count(kept.begin(), kept.end(), true));
+  if (!keep && count == kept.size()) kept.clear();  // every face: the shell stays closed
+  run.report.shell_faces_kept += kept.empty() ? mesh.triangles.size() : count;
+  return kept;
+}
+
+// One object's include for a frame (0 for a static object), and its box for the water line.
+void write_object(SceneRun& run, std::size_t i, const fs::path& path, long frame) {
+  const ObjectConfig& oc = *run.objects[i].placement.config;
+  const PreparedSurface s =
+      prepare_surface(geometry_analysis(run.take_object(i, path)), run.request.up, nullptr);
+  check_scene_extent(s.mesh, path);
+  if (s.mesh.triangles.empty())
+    throw InputError(path.string() + ": object '" + oc.name + "': all " +
+                     std::to_string(s.mesh.degenerate_faces) + " faces are degenerate (zero area)");
+  const auto start = Clock::now();
+  const std::vector<double> offsets =
+      run.config.outline.enabled && oc.outline
+          ? shell_offsets(run.config.outline, s.mesh, run.layout.camera, run.config.render.width)
+          : std::vector<double>{};
+  count_whole_shell(run, s.mesh, offsets);
+  std::string text = mesh_include(s, "Obj_" + oc.name, texture_coordinates(s, run.light), offsets, nullptr, nullptr);
+  run.report.write_seconds += seconds_since(start);
+  run.write(object_include_name(oc.name, run.objects[i].placement.animated, frame), text);
+  // The object with its shell: the water's shell faces keep away from it to be dropped.
+  const double grow = offsets.empty() ? 0.0 : *std::max_element(offsets.begin(), offsets.end());
+  run.object_box[i] = {s.mesh.min, s.mesh.max};
+  // The contact line is as wide as the outline: half of it on each side of the water.
+  run.contact_depth[i] = 0.0;
+  if (!offsets.empty()) {
+    std::vector<double> sorted = offsets;
+    const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+    std::nth_element(sorted.begin(), middle, sorted.end());
+    run.contact_depth[i] = 0.5 * *middle;
+  }
+  run.keep_out[i] = {s.mesh.min.array() - grow, s.mesh.max.array() + grow};
+}
+
+void write_animated_objects(SceneRun& run, long frame, long written_frame) {
+  for (std::size_t i = 0; i < run.objects.size(); ++i)
+    if (run.objects[i].placement.animated)
+      write_object(run, i, run.objects[i].sequence.frames.at(frame), written_frame);
+}
+
+bool refracts(const SceneRun& run) {
+  return run.config.water.shading == WaterShading::toon && run.config.water.transmit > 0;
+}
+
+// Per frame, each object's water (see ObjectPlacement) when the water refracts.
+std::string object_waters(SceneRun& run, const SceneMesh* frame_water) {
+  std::string text;
+  if (!refracts(run)) return text;
+  for (std::size_t i = 0; i < run.objects.size(); ++i) {
+    const ObjectConfig& oc = *run.objects[i].placement.config;
+    const SceneRun::Box& b = run.object_box[i];
+    const double line = frame_water ? water_line(*frame_water, b.min, b.max)
+                                    : b.min.y() - (b.max - b.min).norm() - 1.0;
+    run.submerged[i] = run.submerged[i] || line > b.min.y();
+    text += object_water_declaration(oc.name, frame_water && frame_water->closed ? frame_water : nullptr,
+                                     line, run.contact_depth[i]);
+  }
+  return text;
+}
+
+// A frame with no liquid: the scene still needs its include, with nothing in it.
+void write_empty_frame(SceneRun& run, long frame, long written_frame, const std::string& why) {
+  if (run.water.frames.size() == 1) throw InputError(why);
+  run.report.empty_frames.push_back(why);
+  write_animated_objects(run, frame, written_frame);
+  run.write(water_include_name(written_frame), empty_water_include() + object_waters(run, nullptr));
+}
+
+// The water include of one frame that has water.
+void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long written_frame) {
+  const SceneConfig& config = run.config;
+  // The band limits are the sequence's from its first frame on (no survey: this frame's).
+  if (!run.have_water_box && run.layout.normal_noise == 0.0) run.layout.normal_noise = s.normal_noise;
+  s.view_range = run.view_range;
+  run.report.analysis_seconds += s.analysis_seconds;
+  run.report.vertices += s.mesh.positions.size();
+  run.report.degenerate_faces += s.mesh.degenerate_faces;
+  run.report.replaced_normals += s.mesh.replaced_normals;
+  run.report.ridge_vertices += s.ridge_vertices;
+  run.report.valley_vertices += s.valley_vertices;
+  if (!run.have_water_box) {
+    run.layout.water_min = s.mesh.min;
+    run.layout.water_max = s.mesh.max;
+    run.have_water_box = true;
+  }
+  run.layout.water_min = run.layout.water_min.cwiseMin(s.mesh.min);
+  run.layout.water_max = run.layout.water_max.cwiseMax(s.mesh.max);
+
+  write_animated_objects(run, frame, written_frame);
+  run.report.faces += s.mesh.triangles.size();
+  std::vector<TextureCoordinate> uv = water_coordinates(s, run.light, run.layout);
+  const auto simplify_start = Clock::now();
+  simplify_water(s, uv, run.layout, run.plan.flow);
+  run.report.simplify_seconds += seconds_since(simplify_start);
+  run.report.faces_kept += s.mesh.triangles.size();
+  const auto start = Clock::now();
+  const std::vector<double> offsets =
+      config.outline.enabled
+          ? shell_offsets(config.outline, s.mesh, run.layout.camera, config.render.width)
+          : std::vector<double>{};
+  // A see-through closed volume (WaterBody): an opaque body gives free surface and body their
+  // own textures (scene.pov); a clear one keeps the shell on the free surface only, as rays
+  // refracted through the volume leave it through the floor and walls and would meet the
+  // inside of a closed shell there, painting the water in the line colour.
+  std::optional<FaceTextures> textures;
+  std::vector<bool> upward;
+  const bool see_through_volume = s.mesh.closed && refracts(run);
+  if (see_through_volume) upward = upward_faces(s.mesh);
+  if (see_through_volume && config.water.body == WaterBody::opaque) {
+    run.layout.closed_water = true;
+    textures.emplace();
+    textures->names = {kWaterSurfaceTexture, kWaterBodyTexture};
+    textures->index.resize(upward.size());
+    for (std::size_t f = 0; f < upward.size(); ++f) textures->index[f] = upward[f] ? 0 : 1;
+  }
+  const bool free_surface_shell = see_through_volume && config.water.body == WaterBody::clear;
+  // Flow lines are strokes on the water, reaching up towards its shell.
+  const std::vector<bool> shell_faces =
+      kept_water_shell_faces(run, s.mesh, offsets, s.flow_lines.empty(), run.keep_out,
+                             free_surface_shell ? &upward : nullptr);
+  const std::string text = mesh_include(s, "Water", uv, offsets,
+                                        textures ? &*textures : nullptr,
+                                        shell_faces.empty() ? nullptr : &shell_faces) +
+                           object_waters(run, &s.mesh);
+  run.report.write_seconds += seconds_since(start);
+  run.write(water_include_name(written_frame), text);
+}
+
+// The frame loop: each water frame's include written, and its maps, from its one read and
+// analysis: taken from the survey's `cache`, or, without one, read and analysed here.
+void write_frames(SceneRun& run, FrameCache* cache, const ProgressFn& progress,
+                  const std::atomic<bool>* stop) {
+  std::optional<FrameSource> source;
+  if (!cache) source.emplace(run.plan.frames);
+  std::size_t done = 0;
+  std::string bytes;  // one buffer for every frame's record
+  for (const auto& [frame, path] : run.water.frames) {
+    throw_if_stopped(run, stop);
+    const long written_frame = run.layout.animation ? frame : 0;
+    std::string empty;
+    std::optional<MapInputs> maps;
+    PreparedSurface s;
+    if (cache) {
+      cache->take(run.report.frames, bytes);
+      RecordReader record(bytes);
+      empty = record.string();
+      if (empty.empty() && run.map_view) maps = unpack_map_inputs(record);
+      if (empty.empty()) s = unpack_surface(record);
+      for (std::size_t i = 0; run.plan.survey_reads_objects() && i < run.objects.size(); ++i)
+        if (run.objects[i].placement.animated) mesh_fields(record, run.object_mesh[i].emplace());
+    } else {
+      SourceFrame f = run.read_water(*source, path);
+      empty = f.empty;
+      if (f.has_water()) s = run.prepare(f);
+    }
+    if (!empty.empty()) {
+      write_empty_frame(run, frame, written_frame, empty);
+    } else {
+      if (maps) {
+        const auto start = Clock::now();
+        write_maps(run.request.maps_dir, frame_stem(path),
+                   rasterize_top_down(maps->surface, maps->curvature, maps->label,
+                                      maps->free_surface, *run.map_view),
+                   run.map_ranges);
+        run.report.maps_seconds += seconds_since(start);
+        ++run.report.map_frames;
+      }
+      check_scene_extent(s.mesh, path);
+      // POV-Ray rejects a mesh2 without faces: a frame of zero-area faces only has no water.
+      if (s.mesh.triangles.empty())
+        write_empty_frame(run, frame, written_frame,
+                          path.string() + ": all " + std::to_string(s.mesh.degenerate_faces) +
+                              " faces are degenerate (zero area)");
+      else
+        write_water_frame(run, s, frame, written_frame);
+    }
+    ++run.report.frames;
+    if (progress) progress(PovgenPass::frames, ++done, run.water.frames.size());
+  }
+  if (source) run.report.water_reads += source->reads();
+}
+
+}  // namespace
+
+PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& request,
+                            const ProgressFn& progress, const std::atomic<bool>* stop) {
+  const Sequence water = select_frames(config, request);
+  SceneRun run(config, request, water);
+  run.objects = find_objects(config, water);
+  run.plan = plan_water(config, request, water.frames.size());
+  run.layout.config = &config;
+  run.layout.up = request.up;
+  run.layout.animation = water.frames.size() > 1;
+  run.layout.first_frame = run.layout.animation ? water.frames.begin()->first : 0;
+  run.layout.last_frame = run.layout.animation ? water.frames.rbegin()->first : 0;
+  run.light = light_geometry(config.light, request.up);
+  run.report.first_frame = run.layout.first_frame;
+  run.report.last_frame = run.layout.last_frame;
+  run.object_box.resize(run.objects.size());
+  run.keep_out.resize(run.objects.size());
+  run.submerged.assign(run.objects.size(), false);
+  run.contact_depth.assign(run.objects.size(), 0.0);
+  run.object_mesh.resize(run.objects.size());
+
+  if (!request.maps_dir.empty() && fs::is_directory(request.maps_dir))
+    remove_stale_temporaries(request.maps_dir);
+  SceneDirectory scene(request.out_dir, request.force);
+  // The maps directories this run makes go again if it fails (they are empty then).
+  const NewDirectories new_maps_directories(request.maps_dir);
+  try {
+    run.out_dir = scene.staging();
+    // With maps, every file of the scene and the maps is renamed into place at the end, together
+    // (OutputBatch): both outputs are replaced, or neither.
+    std::optional<OutputBatch> batch;
+    if (run.plan.maps) batch.emplace();
+
+    // The survey's frames wait in the staging directory's cache file, removed before the commit.
+    std::optional<FrameCache> cache;
+    SequenceSurvey survey;
+    if (run.plan.shares()) {
+      cache.emplace(run.out_dir / ".frame_cache.bin", request.frame_cache_bytes);
+      survey = survey_sequence(run, *cache, progress, stop);
+    }
+    run.layout.camera = frame_camera(config, request.up, survey.box_min, survey.box_max);
+    if (!survey.normal_noise.empty()) {
+      auto middle = survey.normal_noise.begin() + static_cast<std::ptrdiff_t>(survey.normal_noise.size() / 2);
+      std::nth_element(survey.normal_noise.begin(), middle, survey.normal_noise.end());
+      run.layout.normal_noise = *middle;
+    }
+    if (run.plan.shading != WaterShading::toon)
+      run.view_range = view_range(survey.view, run.plan.shading);
+    if (survey.maps) {
+      const MapOptions map_options;
+      run.map_view = survey.maps->view(map_options);
+      run.map_ranges = survey.maps->ranges(map_options.percentile);
+      run.report.map_ranges = run.map_ranges;
+    }
+
+    // Static objects first.
+    for (std::size_t i = 0; i < run.objects.size(); ++i)
+      if (!run.objects[i].placement.animated)
+        write_object(run, i, run.objects[i].sequence.frames.begin()->second, 0);
+    write_frames(run, cache ? &*cache : nullptr, progress, stop);
+    // A sequence without water anywhere has nothing to show or frame, as a single empty file.
+    if (run.report.frames > 0 && run.report.empty_frames.size() == run.report.frames)
+      throw InputError(request.water_pattern + ": no frame of the sequence holds any water (" +
+                       run.report.empty_frames.front() + ")");
+    if (cache) {
+      run.report.cached_frames = cache->size();
+      run.report.spilled_frames = cache->spilled();
+    }
+    cache.reset();
+
+    for (std::size_t i = 0; i < run.objects.size(); ++i) {
+      run.objects[i].placement.submerged = run.submerged[i];
+      run.layout.objects.push_back(run.objects[i].placement);
+    }
+    run.write("toon.inc", scene_toon_inc(run.layout));
+    run.write("scene.ini", scene_ini(run.layout));
+    run.write("scene.pov", scene_pov(run.layout));
+    if (batch) batch->commit();
+    scene.commit();
+  } catch (...) {
+    new_maps_directories.remove_empty();
+    throw;
+  }
+  return run.report;
+}
+
+}  // namespace toonwater::povgen

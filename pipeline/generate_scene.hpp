@@ -1,0 +1,112 @@
+// povgen: simulation frames in, a POV-Ray scene directory out.
+//
+//   DIR/scene.pov            the same for every frame (scene/scene_writer.hpp)
+//   DIR/scene.ini            frame range, size, output names
+//   DIR/toon.inc             the parts of the shading template it uses (templates/toon.inc)
+//   DIR/water_NNNN.inc       per frame: Water_mesh (+ Water_shell) as mesh2
+//   DIR/obj_NAME[.NNNN].inc  per object (per frame if animated): Obj_NAME_mesh (+ _shell)
+//
+// All references inside are relative, so DIR can be moved. The directory is replaced whole, or
+// not at all (scene_directory.hpp).
+#pragma once
+
+#include "analyzer/affine_transform.hpp"
+#include "analyzer/analysis.hpp"
+#include "analyzer/flow_coherence.hpp"
+#include "analyzer/mesh_reader.hpp"
+#include "analyzer/stroke_persistence.hpp"
+#include "analyzer/flow_strokes.hpp"
+#include "analyzer/maps/map_planner.hpp"
+#include "scene/config.hpp"
+#include "scene/prepared_surface.hpp"
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace toonwater::povgen {
+
+// The one mapping from the scene's configuration to the analysis of its water frames:
+// `scene_flow` is the flow settings the scene draws with (flow regions, or a curvature view,
+// which needs the curvature whether or not flow regions are drawn), null when it needs the
+// geometry only; `water_analysis` the options a water frame is analysed with, nothing for the
+// geometry only. Curvature maps (`maps`) need the flow regions (their labels and free surface)
+// whatever the scene draws. `analysis_options` is the part both share: the flow settings, with
+// flow regions for the toon shading only.
+const FlowConfig* scene_flow(const SceneConfig& config);
+std::optional<AnalyzeOptions> water_analysis(const SceneConfig& config, Axis up, bool maps);
+AnalyzeOptions analysis_options(const FlowConfig& flow, Axis up, WaterShading shading);
+
+// The scene's surface from a mesh, analysed here (prepare_surface in prepared_surface.hpp):
+// with `coherence`, the field is made coherent with the frames it saw before (a sequence's
+// frames in order).
+PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,
+                                FlowCoherence* coherence,
+                                WaterShading shading = WaterShading::toon);
+
+struct PovgenRequest {
+  std::string water_pattern;
+  std::optional<AffineTransform> water_transform;  // file to world coordinates of the water
+  LevelSetOptions water_level_set;                 // .vdb water: the grid and the adaptivity
+  std::filesystem::path base_dir;  // patterns on the command line are relative to it
+  Axis up = Axis::y;
+  std::filesystem::path out_dir;
+  bool force = false;  // write into a non-empty directory that is not a toonwater scene
+  // Also the curvature maps of the water frames (analyzer/maps: STEM.exr, STEM_K.png, ...) into
+  // this directory, from the scene's own reads and analyses of its frames, with one view and one
+  // colour range for the sequence; they are replaced with the scene: both, or neither.
+  // Empty: no maps.
+  std::filesystem::path maps_dir;
+  // A sequence whose frames share something (the default camera's box, a curvature view's or
+  // the maps' colour ranges) keeps each analysed frame until the last one is read: in memory
+  // up to this many bytes, beyond them in a temporary file in the staging directory. A frame
+  // takes about 80 bytes a vertex, 160 with maps: a few small frames stay in memory, and a
+  // long sequence of large frames never adds more than this to the peak.
+  std::size_t frame_cache_bytes = std::size_t{16} << 20;
+  // Leave out outline shell faces no ray can see (shell_culling.hpp). Off only to check that
+  // leaving them out changes no pixel.
+  bool cull_shells = true;
+};
+
+struct PovgenReport {
+  std::size_t frames = 0;
+  long first_frame = 0, last_frame = 0;
+  std::size_t vertices = 0;  // water vertices, all frames
+  std::size_t faces = 0, faces_kept = 0;  // water faces, all frames: analysed, and rendered
+  std::size_t degenerate_faces = 0, replaced_normals = 0;
+  std::size_t shell_faces = 0, shell_faces_kept = 0;  // outline shells, water and objects, all frames
+  std::size_t ridge_vertices = 0, valley_vertices = 0;
+  std::vector<std::string> empty_frames;  // "PATH: why", frames left without water (no faces)
+  double read_seconds = 0, analysis_seconds = 0, simplify_seconds = 0, write_seconds = 0;
+  // Water mesh files read: once per frame. Object mesh files read: once per static object,
+  // once per frame for an animated one.
+  std::size_t water_reads = 0, object_reads = 0;
+  std::size_t cached_frames = 0, spilled_frames = 0;  // kept for the frame loop; of them on disk
+  std::size_t map_frames = 0;  // frames with maps (those with water)
+  MapRanges map_ranges;        // the maps' shared colour ranges
+  double maps_seconds = 0;
+};
+
+// The passes over the frames that report progress: the survey (each frame read and analysed,
+// where the sequence shares something, e.g. the default camera's box), then the frame loop
+// (each frame's include written).
+enum class PovgenPass : std::uint8_t { survey, frames };
+
+// Called after each frame of a pass: the pass, frames done, frames in total.
+using ProgressFn = std::function<void(PovgenPass, std::size_t, std::size_t)>;
+
+// Frame selection, objects, a survey of the sequence where it shares something, then the frame
+// loop: each water frame read and analysed once (frame_source.hpp), and written once, with its
+// maps (from the survey's cache, frame_cache.hpp, where there is a survey).
+// Throws InputError, ConfigError or OutputError; when `stop` becomes true it stops between
+// frames and throws InterruptedError. On any failure DIR (and the maps) are left as they were.
+PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& request,
+                            const ProgressFn& progress, const std::atomic<bool>* stop);
+
+}  // namespace toonwater::povgen

@@ -1,0 +1,52 @@
+// A mesh prepared for the scene from its analysis (see prepared_surface.hpp).
+#include "scene/prepared_surface.hpp"
+
+#include "analyzer/flow_strokes.hpp"
+#include "analyzer/topology.hpp"
+#include "analyzer/vertex_normals.hpp"
+#include "scene/axes.hpp"
+
+#include <utility>
+
+namespace toonwater::povgen {
+namespace {
+
+bool is_closed(const MeshTopology& t) { return t.boundary_edges == 0 && t.nonmanifold_edges == 0; }
+
+}  // namespace
+
+PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow,
+                                WaterShading shading, StrokePersistence* persistence) {
+  PreparedSurface out;
+  if (!flow) {
+    const std::vector<Vec3> normals = angle_weighted_normals(a.surface, a.topology.vertex_faces);
+    out.mesh = make_scene_mesh(a.surface, normals, is_closed(a.topology), up);
+    return out;
+  }
+  // The toon bands are chosen from the flow stage's shading normals where it ran
+  // (flow_regions.hpp), smoothed over the free surface at the scale of the cells.
+  const std::vector<Vec3>& normals =
+      a.flow.shading_normal.empty() ? a.curvature.normal : a.flow.shading_normal;
+  out.mesh = make_scene_mesh(a.surface, normals, is_closed(a.topology), up);
+  if (shading == WaterShading::toon) {
+    if (flow->style != FlowStyle::regions) {
+      // Strokes taper over 3 % of the scene's size: resolution-free, like the field.
+      const double taper_length = 0.03 * a.flow.scale_length;
+      out.flow_lines = flow_strokes(a.surface, a.flow, taper_length);
+      if (persistence)
+        out.flow_lines =
+            persistence->update(a.surface, a.flow, std::move(out.flow_lines), taper_length);
+      for (FlowLine& line : out.flow_lines)
+        for (Vec3& p : line.points) p = to_povray(p, up);
+    }
+    out.flow_field = std::move(a.flow.field);
+    out.normal_noise = a.flow.normal_noise;
+    out.ridge_vertices = a.flow.ridge_vertices;
+    out.valley_vertices = a.flow.valley_vertices;
+  } else {
+    out.view_values = shading == WaterShading::gaussian ? a.curvature.gaussian : a.curvature.mean;
+  }
+  return out;
+}
+
+}  // namespace toonwater::povgen

@@ -1,0 +1,77 @@
+#include "scene/stroke_writer.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+
+namespace toonwater::povgen {
+namespace {
+
+void put_number(std::string& out, double v) {
+  if (!std::isfinite(v)) throw std::logic_error("stroke writer: non-finite number");
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 7);
+  out.append(buf, r.ptr);
+}
+
+void put_vector(std::string& out, const Vec3& p) {
+  out += '<';
+  put_number(out, p.x());
+  out += ',';
+  put_number(out, p.y());
+  out += ',';
+  put_number(out, p.z());
+  out += '>';
+}
+
+// The points worth writing: consecutive repeats (a contour through a vertex) dropped.
+FlowLine cleaned(const FlowLine& line) {
+  FlowLine out;
+  out.sign = line.sign;
+  for (std::size_t i = 0; i < line.points.size(); ++i) {
+    if (!out.points.empty() && (line.points[i] - out.points.back()).norm() <= 1e-9 * (1.0 + line.points[i].norm()))
+      continue;
+    out.points.push_back(line.points[i]);
+    out.taper.push_back(line.taper[i]);
+  }
+  out.closed = line.closed && out.points.size() > 2;
+  return out;
+}
+
+void append_stroke(std::string& out, const FlowLine& line) {
+  const std::size_t n = line.points.size();
+  out += "  Toon_stroke(array[" + std::to_string(n) + "] {";
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i) out += ',';
+    put_vector(out, line.points[i]);
+  }
+  out += "},\n    array[" + std::to_string(n) + "] {";
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i) out += ',';
+    put_number(out, std::clamp(line.taper[i], 0.0, 1.0));
+  }
+  out += line.closed ? "}, 1)\n" : "}, 0)\n";
+}
+
+}  // namespace
+
+void append_flow_lines(std::string& out, std::span<const FlowLine> lines) {
+  for (const std::int8_t sign : {std::int8_t{FlowLabel::ridge}, std::int8_t{FlowLabel::valley}}) {
+    std::string body;
+    for (const FlowLine& raw : lines) {
+      if (raw.sign != sign) continue;
+      const FlowLine line = cleaned(raw);
+      if (line.points.size() < 2 || *std::max_element(line.taper.begin(), line.taper.end()) <= 0.0)
+        continue;
+      append_stroke(body, line);
+    }
+    if (body.empty()) continue;
+    out += sign == FlowLabel::ridge ? "#declare Water_ridge_lines = union {\n"
+                                    : "#declare Water_valley_lines = union {\n";
+    out += body;
+    out += "}\n";
+  }
+}
+
+}  // namespace toonwater::povgen
