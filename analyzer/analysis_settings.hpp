@@ -22,17 +22,18 @@
 
 namespace toonwater {
 
-// The settings' values. Unset optionals take the criterion's defaults (flow_defaults) or, for
-// the rest height, the free surface's (free_surface.hpp).
+// The settings' values. The defaults are the analyzer's own (AnalyzeOptions); unset optionals
+// take the criterion's (flow_defaults) or, for the rest height, the free surface's
+// (free_surface.hpp).
 struct AnalysisSettings {
-  FlowCriterion criterion = FlowCriterion::mean;
+  FlowCriterion criterion = FlowOptions{}.criterion;
   std::optional<double> k_threshold;           // absolute T: 1/length (mean), 1/length² (paper)
   std::optional<double> k_threshold_relative;  // c in T = c / L or c / L²
   std::optional<int> flow_smoothing;           // smoothing steps of the flow field
   std::optional<double> min_region;            // A_min in scene units²
   std::optional<double> rest_height;           // along the up axis
-  Estimator estimator = Estimator::one_ring;
-  int curvature_smoothing = 0;                 // smoothing steps of K and H
+  Estimator estimator = AnalyzeOptions{}.estimator;
+  int curvature_smoothing = AnalyzeOptions{}.smoothing_steps;  // smoothing steps of K and H
 };
 
 // The analyzer's options for `settings` on a mesh whose up axis is `up`.
