@@ -94,7 +94,7 @@ int smoothing_steps_for_radius(double radius_in_edge_lengths);
 struct FlowOptions : FreeSurfaceOptions {
   FlowCriterion criterion = FlowCriterion::mean;
   std::optional<double> threshold;           // absolute T; overrides threshold_relative
-  std::optional<double> threshold_relative;  // c; default: default_threshold_relative(criterion)
+  std::optional<double> threshold_relative;  // c; default: flow_defaults(criterion)'s
   // Unset, these take the criterion's defaults (flow_defaults); for paper no smoothing, no
   // fading, no noise floor and no walls, so that it stays the paper's rule. An explicit
   // threshold (absolute or relative) is taken as it is, without the noise floor.

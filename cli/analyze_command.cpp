@@ -1,5 +1,6 @@
 // toonwater analyze MESH [--csv FILE] [--ply FILE] [options]
 #include "cli/commands.hpp"
+#include "cli/analysis_options.hpp"
 #include "cli/progress.hpp"
 #include "cli/level_set_options.hpp"
 #include "cli/transform_options.hpp"
@@ -7,6 +8,7 @@
 
 #include "analyzer/affine_transform.hpp"
 #include "analyzer/analysis.hpp"
+#include "analyzer/analysis_settings.hpp"
 #include "common/atomic_file.hpp"
 #include "analyzer/curvature_export.hpp"
 #include "analyzer/maps/map_writer.hpp"
@@ -37,14 +39,7 @@ struct AnalyzeArgs {
   std::optional<int> maps_size;    // pixels along the longer side
   std::vector<double> maps_box;    // u_min, v_min, u_max, v_max
   Axis up = Axis::y;
-  FlowCriterion criterion = FlowCriterion::mean;
-  std::optional<double> k_threshold;
-  std::optional<double> k_threshold_relative;
-  std::optional<int> flow_smooth;
-  std::optional<double> min_region;
-  std::optional<double> rest_height;
-  Estimator estimator = Estimator::one_ring;
-  int smooth = 0;
+  AnalysisSettings analysis;
 };
 
 void print_summary(const std::string& mesh_path, const Analysis& a, double read_seconds,
@@ -124,20 +119,11 @@ void run_analyze(const AnalyzeArgs& args) {
   if (transform) apply_transform(*transform, input.mesh, args.mesh);
   const double read_seconds = seconds_since(start);
 
-  AnalyzeOptions options;
-  options.flow.up = args.up;
-  options.flow.criterion = args.criterion;
-  options.flow.threshold = args.k_threshold;
-  options.flow.threshold_relative = args.k_threshold_relative;
-  options.flow.smoothing_steps = args.flow_smooth;
-  options.flow.min_region_area = args.min_region;
-  options.flow.rest_height = args.rest_height;
-  options.estimator = args.estimator;
-  options.smoothing_steps = args.smooth;
   // The PLY repeats the input's faces; nothing else needs the input once it is analysed.
   const std::vector<Triangle> input_triangles =
       args.ply.empty() ? std::vector<Triangle>{} : input.mesh.triangles;
-  const Analysis analysis = analyze_mesh(std::move(input.mesh), options);
+  const Analysis analysis =
+      analyze_mesh(std::move(input.mesh), analyze_options(args.analysis, args.up));
 
   start = Clock::now();
   // The maps directories this run makes are removed again if it fails (they are empty then).
@@ -196,39 +182,7 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--up", args->up, "Up axis of the input (Blender writes z)")
       ->transform(one_of<Axis>({{"x", Axis::x}, {"y", Axis::y}, {"z", Axis::z}}))
       ->default_str("y");
-  cmd->add_option("--criterion", args->criterion,
-                  "Flow regions on the mean curvature H (crests and troughs, round ones "
-                  "included) or the paper's |K| with the sign of H")
-      ->transform(one_of<FlowCriterion>({{"mean", FlowCriterion::mean}, {"paper", FlowCriterion::paper}}))
-      ->default_str("mean");
-  cmd->add_option("--k-threshold", args->k_threshold,
-                  "Absolute threshold T: on H (1/length) with mean, on |K| (1/length^2) with "
-                  "paper; overrides --k-threshold-relative")
-      ->check(PositiveNumber);
-  cmd->add_option("--k-threshold-relative", args->k_threshold_relative,
-                  "c in T = c / L (mean; default 2) or c / L^2 (paper; default 30), L the square "
-                  "root of the free surface's area")
-      ->check(PositiveNumber);
-  cmd->add_option("--flow-smooth", args->flow_smooth,
-                  "Smoothing steps of the flow field over the free surface (default: 2 with mean, "
-                  "0 with paper)")
-      ->check(CLI::Range(0, 1000));
-  cmd->add_option("--min-region", args->min_region,
-                  "Smallest flow region drawn, in scene units^2 (default: 0.002 L^2 with mean, 0 "
-                  "with paper); smaller ones fade out")
-      ->check(NonNegativeNumber);
-  cmd->add_option("--rest-height", args->rest_height,
-                  "Water rest level along the up axis (default: median height of the free surface)")
-      ->check(FiniteNumber);
-  cmd->add_option("--estimator", args->estimator,
-                  "Curvature estimator: one-ring (the paper's operators, fastest) or jet (cubic "
-                  "fits over the two-ring: accurate on irregular and noisy meshes, slower)")
-      ->transform(one_of<Estimator>({{"one-ring", Estimator::one_ring}, {"jet", Estimator::jet}}))
-      ->default_str("one-ring");
-  cmd->add_option("--smooth", args->smooth,
-                  "Steps of area-weighted smoothing of K and H over the one-ring")
-      ->check(CLI::Range(0, 1000))
-      ->capture_default_str();
+  add_analysis_options(*cmd, args->analysis);
   cmd->callback([args] { run_analyze(*args); });
 }
 

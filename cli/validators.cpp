@@ -33,8 +33,6 @@ const CLI::Validator FiniteNumber =
     finite_number([](double) { return true; }, "a finite number");
 const CLI::Validator PositiveNumber =
     finite_number([](double v) { return v > 0; }, "a positive finite number");
-const CLI::Validator NonNegativeNumber =
-    finite_number([](double v) { return v >= 0; }, "a non-negative finite number");
 
 const CLI::Validator NonEmptyPath = CLI::Validator(
     [](std::string& value) -> std::string {

@@ -15,11 +15,10 @@ namespace toonwater::cli {
 // The value shown in a message: at most 40 characters, control and non-ASCII bytes as '?'.
 std::string printable_value(const std::string& value);
 
-// A finite number: rejects "nan", "inf" and numbers too large for a double. The others also
-// ask for a sign (CLI11's own say "not in range 0.000000 to 1797693...", 309 digits).
+// A finite number: rejects "nan", "inf" and numbers too large for a double. PositiveNumber also
+// asks for a sign (CLI11's own says "not in range 0.000000 to 1797693...", 309 digits).
 extern const CLI::Validator FiniteNumber;
 extern const CLI::Validator PositiveNumber;
-extern const CLI::Validator NonNegativeNumber;
 
 // A file or directory name: refuses the empty string, which names no file (an unset shell
 // variable in `--csv "$OUT"`), where it would otherwise read as the option left out.

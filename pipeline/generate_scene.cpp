@@ -46,14 +46,7 @@ Analysis geometry_analysis(TriangleMesh input) {
 }  // namespace
 
 AnalyzeOptions analysis_options(const FlowConfig& flow, Axis up, WaterShading shading) {
-  AnalyzeOptions options;
-  options.flow.up = up;
-  options.flow.criterion = flow.criterion;
-  options.flow.threshold = flow.k_threshold;
-  options.flow.threshold_relative = flow.k_threshold_relative;
-  options.flow.smoothing_steps = flow.smoothing;
-  options.flow.min_region_area = flow.min_region;
-  options.estimator = flow.estimator;
+  AnalyzeOptions options = analyze_options(flow.analysis, up);
   options.flow_regions = shading == WaterShading::toon;
   return options;
 }

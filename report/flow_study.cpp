@@ -233,7 +233,7 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
   for (const FlowCriterion criterion : criteria) {
     SequenceFlowStudy study;
     study.criterion = criterion == FlowCriterion::mean ? "mean" : "paper";
-    config.flow.criterion = criterion;
+    config.flow.analysis.criterion = criterion;
     const fs::path scene_dir = work_dir / ("flow_" + study.criterion);
     write_and_render(config, pattern, up, scene_dir, "flow study");
     povgen::SceneLayout layout;

@@ -12,7 +12,7 @@
 // writer maps them to POV-Ray's frame.
 #pragma once
 
-#include "analyzer/analysis.hpp"
+#include "analyzer/analysis_settings.hpp"
 
 #include "analyzer/mesh.hpp"
 #include "scene/render_presets.hpp"
@@ -116,21 +116,17 @@ struct OutlineConfig {
 // both (analyzer/flow_lines.hpp).
 enum class FlowStyle { regions, lines, regions_and_lines };
 
-// The water-flow regions (analyzer/flow_regions.hpp). Unset values take the criterion's defaults.
+// The water-flow regions (analyzer/flow_regions.hpp): how they are found, the analysis settings
+// that `toonwater analyze` takes too (analyzer/analysis_settings.hpp), and how they are drawn.
 struct FlowConfig {
   bool enabled = true;
-  FlowCriterion criterion = FlowCriterion::mean;
-  std::optional<double> k_threshold;           // absolute T: 1/length (mean), 1/length² (paper)
-  std::optional<double> k_threshold_relative;  // c in T = c / L or c / L²
-  std::optional<int> smoothing;                // smoothing steps of the flow field
-  std::optional<double> min_region;            // A_min in scene units²
+  AnalysisSettings analysis;
   FlowStyle style = FlowStyle::regions;
   double line_width = 2.0;                     // pixels
   std::optional<Color> line_color;  // default: the region colours (lines), the outline colour (both)
   Color ridge_color{1.0, 1.0, 1.0};
   Color valley_color{0.02, 0.06, 0.22};
   bool coherence = true;                   // carry regions and strokes from frame to frame (flow_coherence.hpp, stroke_persistence.hpp)
-  Estimator estimator = Estimator::one_ring;  // curvature estimator (analysis.hpp)
 };
 
 enum class ReflectionTarget { concrete, abstract, none };

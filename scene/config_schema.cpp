@@ -1,9 +1,9 @@
 #include "scene/config_schema.hpp"
 
+#include "analyzer/analysis_settings.hpp"
 #include "scene/mesh2_writer.hpp"
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -26,12 +26,6 @@ std::string source_location(const toml::node& node) {
 namespace {
 
 // ---- how a value is read: its type and range, how its default is written ----
-
-// Shortest text that reads back as the same double: 0.05, 40, -1, 1e-09.
-std::string show_number(double value) {
-  char buffer[32];
-  return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
-}
 
 std::string show_range(double lo, double hi) {
   return "from " + show_number(lo) + " to " + show_number(hi);
@@ -348,37 +342,56 @@ const Section<OutlineConfig>& outline_section() {
   return section;
 }
 
+// A setting of the analysis as a [flow] key: its range, refusals, default and help are the
+// analysis settings' (analyzer/analysis_settings.hpp), which `toonwater analyze` takes too.
+Key<FlowConfig> analysis_key(const AnalysisSetting& setting) {
+  const std::string shown =
+      setting.is_word() ? "\"" + setting.default_value + "\"" : setting.default_value;
+  return {setting.key, setting.type(), shown, setting.help,
+          [&setting](FlowConfig& c, const toml::node& v, const std::string& key) {
+            if (setting.is_word()) {
+              const std::string word = Text{}.read(v, key);
+              for (std::size_t i = 0; i < setting.words.size(); ++i)
+                if (word == setting.words[i].first) {
+                  setting.store_word(c.analysis, i);
+                  return;
+                }
+              throw key_error(key, "must be one of " + setting.type());
+            }
+            if (!v.is_number())
+              throw key_error(key, setting.is_whole_number() ? "must be a whole number"
+                                                            : "must be a number");
+            const double value = read_double(v, key);
+            if (const std::string why = setting.refusal(value); !why.empty())
+              throw key_error(key, why);
+            setting.store(c.analysis, value);
+          }};
+}
+
 const Section<FlowConfig>& flow_section() {
   using C = FlowConfig;
-  const Number positive{1e-30, 1e30};
-  static const Section<C> section{
-      "flow",
-      {key("enabled", &C::enabled, Boolean{}, "draw the water-flow regions"),
-       key("criterion", &C::criterion,
-           Keyword<FlowCriterion>{{{"mean", FlowCriterion::mean}, {"paper", FlowCriterion::paper}}},
-           "ridges and valleys by the mean curvature, or the paper's |K| > T"),
-       key("k_threshold", &C::k_threshold, positive, "absolute threshold T", "scene-relative"),
-       key("k_threshold_relative", &C::k_threshold_relative, positive,
-           "c in T = c/L or c/L², L = sqrt of the free surface's area", "2 (mean), 30 (paper)"),
-       key("smoothing", &C::smoothing, Integer{0, 100}, "smoothing steps of the flow field",
-           "2 (mean), 0 (paper)"),
-       key("min_region", &C::min_region, Number{0.0, 1e30}, "smallest region drawn, scene units²",
-           "0.002 L² (mean), 0 (paper)"),
-       key("style", &C::style,
-           Keyword<FlowStyle>{{{"regions", FlowStyle::regions},
-                               {"lines", FlowStyle::lines},
-                               {"regions+lines", FlowStyle::regions_and_lines}}},
-           "filled regions, strokes (along narrow crests, around wide regions), or both"),
-       key("line_width", &C::line_width, Number{0.1, 100.0}, "stroke width in pixels"),
-       key("line_color", &C::line_color, Colour{}, "stroke colour",
-           "region colours (\"lines\"), outline colour (\"regions+lines\")"),
-       key("ridge_color", &C::ridge_color, Colour{}, "ridge regions' colour"),
-       key("valley_color", &C::valley_color, Colour{}, "valley regions' colour"),
-       key("coherence", &C::coherence, Boolean{}, "carry regions and strokes from frame to frame"),
-       key("estimator", &C::estimator,
-           Keyword<Estimator>{{{"one-ring", Estimator::one_ring}, {"jet", Estimator::jet}}},
-           "curvature estimator")},
-      nullptr};
+  static const Section<C> section = [] {
+    Section<C> flow{"flow",
+                    {key("enabled", &C::enabled, Boolean{}, "draw the water-flow regions")},
+                    nullptr};
+    for (const AnalysisSetting& setting : analysis_settings())
+      flow.keys.push_back(analysis_key(setting));
+    for (Key<C>& k : std::vector<Key<C>>{
+             key("style", &C::style,
+                 Keyword<FlowStyle>{{{"regions", FlowStyle::regions},
+                                     {"lines", FlowStyle::lines},
+                                     {"regions+lines", FlowStyle::regions_and_lines}}},
+                 "filled regions, strokes (along narrow crests, around wide regions), or both"),
+             key("line_width", &C::line_width, Number{0.1, 100.0}, "stroke width in pixels"),
+             key("line_color", &C::line_color, Colour{}, "stroke colour",
+                 "region colours (\"lines\"), outline colour (\"regions+lines\")"),
+             key("ridge_color", &C::ridge_color, Colour{}, "ridge regions' colour"),
+             key("valley_color", &C::valley_color, Colour{}, "valley regions' colour"),
+             key("coherence", &C::coherence, Boolean{},
+                 "carry regions and strokes from frame to frame")})
+      flow.keys.push_back(std::move(k));
+    return flow;
+  }();
   return section;
 }
 

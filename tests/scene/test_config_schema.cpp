@@ -89,7 +89,7 @@ TEST(ConfigSchema, TheReadmeTableListsEveryKeyWithItsDefault) {
 
 TEST(ConfigSchema, EveryKeyHasATypeAndHelp) {
   const std::vector<povgen::ConfigKey> schema = povgen::config_keys();
-  EXPECT_EQ(schema.size(), 55u);
+  EXPECT_EQ(schema.size(), 57u);
   for (const povgen::ConfigKey& k : schema) {
     EXPECT_FALSE(k.type.empty()) << k.key;
     EXPECT_FALSE(k.help.empty()) << k.key;
@@ -122,7 +122,7 @@ std::string error_in_file(const std::string& toml) {
 
 TEST(ConfigSchema, IntegerKeysTakeWholeNumbersOnly) {
   EXPECT_EQ(config_from("[render]\nwidth = 320\nheight = 200.0\n").render.height, 200);
-  EXPECT_EQ(config_from("[flow]\nsmoothing = 7\n").flow.smoothing, 7);
+  EXPECT_EQ(config_from("[flow]\nsmoothing = 7\n").flow.analysis.flow_smoothing, 7);
   EXPECT_EQ(error_in_file("[render]\nquality = \"draft\"\nwidth = 2.5\n"),
             "scene.toml:3: config: 'render.width' must be a whole number");
   EXPECT_EQ(error_in_file("# counts\n[flow]\nsmoothing = 2.5\n"),
