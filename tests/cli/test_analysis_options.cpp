@@ -3,7 +3,7 @@
 // default; a value given to either gives the same analysis; a value out of range is refused by
 // both, in the same words.
 #include "analyzer/analysis_settings.hpp"
-#include "povgen/config.hpp"
+#include "scene/config.hpp"
 #include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
