@@ -90,14 +90,10 @@ constexpr double normal_deviation_secant = 1.0154266118857451;  // 1 / cos(10°)
 
 // 2^-e with e the binary exponent of the largest |coordinate|: multiplying by it is exact.
 double power_of_two_scale(const std::vector<Vec3>& positions) {
-  const std::size_t workers = worker_count(positions.size());
-  std::vector<double> largest_of(workers, 0.0);
-  parallel_chunks(positions.size(), workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
-    double largest = 0.0;
-    for (std::size_t v = begin; v < end; ++v) largest = std::max(largest, positions[v].cwiseAbs().maxCoeff());
-    largest_of[worker] = largest;
-  });
-  const double largest = *std::max_element(largest_of.begin(), largest_of.end());
+  const auto n = static_cast<std::ptrdiff_t>(positions.size());
+  double largest = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : largest) if (positions.size() > serial_below)
+  for (std::ptrdiff_t v = 0; v < n; ++v) largest = std::max(largest, positions[v].cwiseAbs().maxCoeff());
   if (largest == 0.0 || !std::isfinite(largest)) return 1.0;
   return std::ldexp(1.0, -std::ilogb(largest));
 }
@@ -544,53 +540,43 @@ void set_curvature(CurvatureField& field, std::size_t v, double gaussian, double
 
 void extrapolate_from_neighbours(const TriangleMesh& mesh, const VertexFaces& vf,
                                  CurvatureField& field) {
-  // On all cores, each chunk counting its own. A vertex reads only its `computed` neighbours,
-  // which no chunk changes, so the result does not depend on the order. The status of an
-  // extrapolated vertex that turns undefined may be read meanwhile by a neighbour's chunk (which
-  // skips it either way): both go through atomic_ref, so the byte is never torn or raced on.
-  const std::size_t n = field.status.size();
-  const std::size_t workers = worker_count(n);
-  struct Counts {
-    std::size_t undefined = 0, extrapolated = 0;
+  // A vertex reads only its `computed` neighbours, which no iteration changes, so the result
+  // does not depend on the order. The status of an extrapolated vertex that turns undefined may
+  // be read meanwhile by a neighbour's thread (which skips it either way): both go through
+  // atomic_ref, so the byte is never torn or raced on.
+  const auto n = static_cast<std::ptrdiff_t>(field.status.size());
+  CurvatureStatus* const status = field.status.data();
+  auto status_of = [status](std::size_t v) {
+    return std::atomic_ref<CurvatureStatus>(status[v]).load(std::memory_order_relaxed);
   };
-  std::vector<Counts> counts(workers);
-  parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    CurvatureStatus* const status = field.status.data();
-    auto status_of = [status](std::size_t v) {
-      return std::atomic_ref<CurvatureStatus>(status[v]).load(std::memory_order_relaxed);
-    };
-    Counts c;  // stored once: the chunks' counts share a cache line
-    for (std::size_t v = begin; v < end; ++v) {
-      const CurvatureStatus own = status_of(v);
-      c.undefined += own == CurvatureStatus::undefined;
-      if (own != CurvatureStatus::extrapolated) continue;
-      double gaussian = 0.0, mean = 0.0;
-      int count = 0;
-      for (std::int32_t f : vf.of(static_cast<std::int32_t>(v))) {
-        for (std::int32_t w : mesh.triangles[f]) {
-          // Neighbours appear in two faces each; counting them twice keeps the mean unchanged.
-          if (static_cast<std::size_t>(w) == v || status_of(w) != CurvatureStatus::computed)
-            continue;
-          gaussian += field.gaussian[w];
-          mean += field.mean[w];
-          ++count;
-        }
-      }
-      if (count == 0) {
-        set_undefined(field, v);
-        ++c.undefined;
-      } else {
-        set_curvature(field, v, gaussian / count, mean / count);
-        ++c.extrapolated;
+  std::size_t undefined = 0, extrapolated = 0;
+#pragma omp parallel for schedule(static) reduction(+ : undefined, extrapolated) if (field.status.size() > serial_below)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    const auto v = static_cast<std::size_t>(i);
+    const CurvatureStatus own = status_of(v);
+    undefined += own == CurvatureStatus::undefined;
+    if (own != CurvatureStatus::extrapolated) continue;
+    double gaussian = 0.0, mean = 0.0;
+    int count = 0;
+    for (std::int32_t f : vf.of(static_cast<std::int32_t>(v))) {
+      for (std::int32_t w : mesh.triangles[f]) {
+        // Neighbours appear in two faces each; counting them twice keeps the mean unchanged.
+        if (static_cast<std::size_t>(w) == v || status_of(w) != CurvatureStatus::computed) continue;
+        gaussian += field.gaussian[w];
+        mean += field.mean[w];
+        ++count;
       }
     }
-    counts[chunk] = c;
-  });
-  field.undefined_vertices = field.extrapolated_vertices = 0;
-  for (const Counts& c : counts) {
-    field.undefined_vertices += c.undefined;
-    field.extrapolated_vertices += c.extrapolated;
+    if (count == 0) {
+      set_undefined(field, v);
+      ++undefined;
+    } else {
+      set_curvature(field, v, gaussian / count, mean / count);
+      ++extrapolated;
+    }
   }
+  field.undefined_vertices = undefined;
+  field.extrapolated_vertices = extrapolated;
 }
 
 bool avx2_fma_supported() {
@@ -612,7 +598,7 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   // The arrays are zero-filled as they are sized, and the filling (the first touch of every
   // page) costs about as much as a tenth of the gather: half of them on each of two cores.
   CurvatureField field;
-  parallel_chunks(2, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
+  parallel_chunks(2, chunk_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t half = begin; half < end; ++half) {
       if (half == 0) {
         field.normal.resize(n);
@@ -632,7 +618,7 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   // both sides of a range's end) afterwards in the vertex pass, in the same order. The first
   // pass also finds the mollification the mesh needs; only a mesh that needs one is summed
   // again with it.
-  const std::size_t workers = worker_count(n);
+  const std::size_t workers = chunk_count(n);
   const std::size_t m = mesh.triangles.size();
   const auto rings = std::make_unique_for_overwrite<RingSums[]>(n);
   const auto turns = std::make_unique_for_overwrite<TurnProduct[]>(n);

@@ -22,7 +22,7 @@ VertexFaces build_vertex_faces(std::size_t vertex_count, std::span<const Triangl
   // A counting sort of the face corners by vertex, on every core: each chunk of faces counts its
   // own corners per vertex, and a vertex's row then holds chunk 0's faces, then chunk 1's, and so
   // on, so every row lists its faces in ascending order whatever the number of chunks.
-  const std::size_t chunks = worker_count(triangles.size());
+  const std::size_t chunks = chunk_count(triangles.size());
   std::vector<std::unique_ptr<std::int32_t[]>> cursor(chunks);  // per chunk and vertex
   parallel_chunks(triangles.size(), chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     cursor[chunk] = std::make_unique<std::int32_t[]>(vertex_count);  // zeroed by its own thread
@@ -34,7 +34,7 @@ VertexFaces build_vertex_faces(std::size_t vertex_count, std::span<const Triangl
   VertexFaces vf;
   vf.offsets.resize(vertex_count + 1);
   vf.offsets[0] = 0;
-  const std::size_t vertex_chunks = worker_count(vertex_count);
+  const std::size_t vertex_chunks = chunk_count(vertex_count);
   parallel_chunks(vertex_count, vertex_chunks, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       std::int32_t faces = 0;
@@ -193,7 +193,7 @@ MeshTopology analyze_topology(const TriangleMesh& mesh) {
     std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0, misoriented_edge_ends = 0;
     std::size_t boundary = 0, nonmanifold = 0, isolated = 0;
   };
-  const std::size_t workers = worker_count(n);
+  const std::size_t workers = chunk_count(n);
   std::vector<Counts> counts(workers);
   parallel_chunks(n, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
     std::vector<RingNeighbour> ring;
@@ -234,14 +234,14 @@ std::size_t count_components(const TriangleMesh& mesh, const MeshTopology& topol
   const std::span<const Triangle> triangles = mesh.triangles;
   DisjointSets sets(n);
   join_in_parallel(sets, triangles.size(),
-                   vertex_ranges(triangles, n, worker_count(triangles.size())),
+                   vertex_ranges(triangles, n, chunk_count(triangles.size())),
                    [&](std::size_t f, auto& join) {
                      const Triangle& t = triangles[f];
                      if (has_repeated_corner(t)) return;
                      join(t[0], t[1]);
                      join(t[1], t[2]);
                    });
-  const std::size_t chunks = worker_count(n);
+  const std::size_t chunks = chunk_count(n);
   std::vector<std::size_t> roots(chunks, 0);
   parallel_chunks(n, chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     std::size_t count = 0;  // stored once: the chunks' counts share a cache line
