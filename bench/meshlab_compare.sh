@@ -8,7 +8,7 @@
 # rounds' ratios. Neither program writes an output.
 #
 # Usage: bench/meshlab_compare.sh TOONWATER [OTHER_TOONWATER] [PAIRS]   (PAIRS default 7)
-# Needs: meshlab and xvfb (apt-get install meshlab xvfb), python3 with numpy, /usr/bin/time.
+# Needs: meshlab and xvfb (apt-get install meshlab xvfb), python3, /usr/bin/time.
 set -euo pipefail
 a=$1
 b=${2:-}
@@ -17,24 +17,28 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"; [ -n "${xvfb_pid:-}" ] && kill "$xvfb_pid" 2>/dev/null || true' EXIT
 
 python3 - "$work" <<'PY'
-import sys, numpy as np
+import math, struct, sys
+from array import array
 for n, name in ((235, "55k"), (1000, "1M")):
-    x, y = np.meshgrid(np.linspace(-1, 1, n), np.linspace(-1, 1, n), indexing="ij")
-    z = 0.1 * np.sin(6 * x) * np.cos(6 * y)
-    vertices = np.stack([x, y, z], axis=-1).reshape(-1, 3).astype("<f4")
-    i, j = np.meshgrid(np.arange(n - 1), np.arange(n - 1), indexing="ij")
-    v = (i * n + j).ravel()
-    faces = np.concatenate([np.stack([v, v + n, v + n + 1], 1), np.stack([v, v + n + 1, v + 1], 1)])
-    records = np.empty(len(faces), dtype=[("count", "u1"), ("index", "<i4", (3,))])
-    records["count"] = 3
-    records["index"] = faces
+    axis = [-1 + 2 * i / (n - 1) for i in range(n)]
+    vertices = array("f")
+    for x in axis:  # vertex i * n + j at (axis[i], axis[j])
+        for y in axis:
+            vertices.extend((x, y, 0.1 * math.sin(6 * x) * math.cos(6 * y)))
+    face = struct.Struct("<Biii")
+    faces = []
+    for i in range(n - 1):
+        for j in range(n - 1):
+            v = i * n + j
+            faces.append(face.pack(3, v, v + n, v + n + 1))
+            faces.append(face.pack(3, v, v + n + 1, v + 1))
     with open(f"{sys.argv[1]}/{name}.ply", "wb") as f:
-        f.write((f"ply\nformat binary_little_endian 1.0\nelement vertex {len(vertices)}\n"
+        f.write((f"ply\nformat binary_little_endian 1.0\nelement vertex {n * n}\n"
                  "property float x\nproperty float y\nproperty float z\n"
                  f"element face {len(faces)}\nproperty list uchar int vertex_indices\n"
                  "end_header\n").encode())
         f.write(vertices.tobytes())
-        f.write(records.tobytes())
+        f.write(b"".join(faces))
 PY
 
 filter() {
