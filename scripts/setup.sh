@@ -13,7 +13,7 @@ packages=(
   libopenmesh-dev
   libopenvdb-dev libboost-dev  # .vdb level sets (analyzer/readers/vdb); OpenVDB's headers include Boost
   libgtest-dev libbenchmark-dev
-  clang-14 libclang-rt-14-dev  # fuzzing (scripts/fuzz.sh)
+  clang-14 libclang-rt-14-dev libomp-14-dev  # fuzzing (scripts/fuzz.sh); OpenMP under clang
   slurm-wlm munge parallel     # render farms (render --on slurm|parallel) and their tests
 )
 
