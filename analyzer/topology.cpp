@@ -189,37 +189,32 @@ MeshTopology analyze_topology(const TriangleMesh& mesh) {
   const std::size_t n = mesh.positions.size();
   topo.kind.resize(n);
 
-  struct Counts {
-    std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0, misoriented_edge_ends = 0;
-    std::size_t boundary = 0, nonmanifold = 0, isolated = 0;
-  };
-  const std::size_t workers = chunk_count(n);
-  std::vector<Counts> counts(workers);
-  parallel_chunks(n, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
-    std::vector<RingNeighbour> ring;
-    Counts c;  // stored once: the workers' counts share a cache line
-    for (std::size_t v = begin; v < end; ++v) {
-      const VertexEdges e =
-          classify_vertex(mesh, topo.vertex_faces, static_cast<std::int32_t>(v), ring);
-      topo.kind[v] = e.kind;
-      c.boundary_edge_ends += e.boundary_edges;
-      c.nonmanifold_edge_ends += e.nonmanifold_edges;
-      c.misoriented_edge_ends += e.misoriented_edges;
-      c.boundary += e.kind == VertexKind::boundary;
-      c.nonmanifold += e.kind == VertexKind::nonmanifold;
-      c.isolated += e.kind == VertexKind::isolated;
-    }
-    counts[worker] = c;
-  });
   std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0, misoriented_edge_ends = 0;
-  for (const Counts& c : counts) {
-    boundary_edge_ends += c.boundary_edge_ends;
-    nonmanifold_edge_ends += c.nonmanifold_edge_ends;
-    misoriented_edge_ends += c.misoriented_edge_ends;
-    topo.boundary_vertices += c.boundary;
-    topo.nonmanifold_vertices += c.nonmanifold;
-    topo.isolated_vertices += c.isolated;
+  std::size_t boundary = 0, nonmanifold = 0, isolated = 0;
+  const auto count = static_cast<std::ptrdiff_t>(n);
+  FirstException failure;
+#pragma omp parallel if (n > serial_below) reduction(+ : boundary_edge_ends, nonmanifold_edge_ends, \
+                                                         misoriented_edge_ends, boundary, nonmanifold, isolated)
+  {
+    std::vector<RingNeighbour> ring;  // the thread's own, reused from vertex to vertex
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t i = 0; i < count; ++i)
+      failure.run([&] {
+        const VertexEdges e =
+            classify_vertex(mesh, topo.vertex_faces, static_cast<std::int32_t>(i), ring);
+        topo.kind[static_cast<std::size_t>(i)] = e.kind;
+        boundary_edge_ends += e.boundary_edges;
+        nonmanifold_edge_ends += e.nonmanifold_edges;
+        misoriented_edge_ends += e.misoriented_edges;
+        boundary += e.kind == VertexKind::boundary;
+        nonmanifold += e.kind == VertexKind::nonmanifold;
+        isolated += e.kind == VertexKind::isolated;
+      });
   }
+  failure.rethrow();
+  topo.boundary_vertices = boundary;
+  topo.nonmanifold_vertices = nonmanifold;
+  topo.isolated_vertices = isolated;
   topo.boundary_edges = boundary_edge_ends / 2;  // each edge was seen from both of its ends
   topo.nonmanifold_edges = nonmanifold_edge_ends / 2;
   topo.misoriented_edges = misoriented_edge_ends / 2;
@@ -241,17 +236,14 @@ std::size_t count_components(const TriangleMesh& mesh, const MeshTopology& topol
                      join(t[0], t[1]);
                      join(t[1], t[2]);
                    });
-  const std::size_t chunks = chunk_count(n);
-  std::vector<std::size_t> roots(chunks, 0);
-  parallel_chunks(n, chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    std::size_t count = 0;  // stored once: the chunks' counts share a cache line
-    for (std::size_t v = begin; v < end; ++v) {
-      const auto i = static_cast<std::int32_t>(v);
-      count += kind[v] != VertexKind::isolated && sets.root_of(i) == i;
-    }
-    roots[chunk] = count;
-  });
-  return std::accumulate(roots.begin(), roots.end(), std::size_t{0});
+  std::size_t components = 0;
+  const auto count = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static) reduction(+ : components) if (n > serial_below)
+  for (std::ptrdiff_t v = 0; v < count; ++v) {
+    const auto i = static_cast<std::int32_t>(v);
+    components += kind[static_cast<std::size_t>(v)] != VertexKind::isolated && sets.root_of(i) == i;
+  }
+  return components;
 }
 
 namespace {
