@@ -58,6 +58,9 @@
 #include "common/parallel.hpp"
 #include "analyzer/vertex_normals.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
 #include <atomic>
 #include <bit>
@@ -90,10 +93,15 @@ constexpr double normal_deviation_secant = 1.0154266118857451;  // 1 / cos(10°)
 
 // 2^-e with e the binary exponent of the largest |coordinate|: multiplying by it is exact.
 double power_of_two_scale(const std::vector<Vec3>& positions) {
-  const auto n = static_cast<std::ptrdiff_t>(positions.size());
-  double largest = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : largest) if (positions.size() > serial_below)
-  for (std::ptrdiff_t v = 0; v < n; ++v) largest = std::max(largest, positions[v].cwiseAbs().maxCoeff());
+  // A maximum is exact in any order, so the threads' maxima may be combined as they come.
+  const double largest = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, positions.size(), serial_below), 0.0,
+      [&](const tbb::blocked_range<std::size_t>& range, double running) {
+        for (std::size_t v = range.begin(); v < range.end(); ++v)
+          running = std::max(running, positions[v].cwiseAbs().maxCoeff());
+        return running;
+      },
+      [](double a, double b) { return std::max(a, b); });
   if (largest == 0.0 || !std::isfinite(largest)) return 1.0;
   return std::ldexp(1.0, -std::ilogb(largest));
 }
@@ -547,39 +555,48 @@ void extrapolate_from_neighbours(const TriangleMesh& mesh, const VertexFaces& vf
   // does not depend on the order. The status of an extrapolated vertex that turns undefined may
   // be read meanwhile by a neighbour's thread (which skips it either way): both go through
   // atomic_ref, so the byte is never torn or raced on.
-  const auto n = static_cast<std::ptrdiff_t>(field.status.size());
   CurvatureStatus* const status = field.status.data();
   auto status_of = [status](std::size_t v) {
     return std::atomic_ref<CurvatureStatus>(status[v]).load(std::memory_order_relaxed);
   };
-  std::size_t undefined = 0, extrapolated = 0;
-#pragma omp parallel for schedule(static) reduction(+ : undefined, extrapolated) if (field.status.size() > serial_below)
-  for (std::ptrdiff_t i = 0; i < n; ++i) {
-    const auto v = static_cast<std::size_t>(i);
-    const CurvatureStatus own = status_of(v);
-    undefined += own == CurvatureStatus::undefined;
-    if (own != CurvatureStatus::extrapolated) continue;
-    double gaussian = 0.0, mean = 0.0;
-    int count = 0;
-    for (std::int32_t f : vf.of(static_cast<std::int32_t>(v))) {
-      for (std::int32_t w : mesh.triangles[f]) {
-        // Neighbours appear in two faces each; counting them twice keeps the mean unchanged.
-        if (static_cast<std::size_t>(w) == v || status_of(w) != CurvatureStatus::computed) continue;
-        gaussian += field.gaussian[w];
-        mean += field.mean[w];
-        ++count;
-      }
-    }
-    if (count == 0) {
-      set_undefined(field, v);
-      ++undefined;
-    } else {
-      set_curvature(field, v, gaussian / count, mean / count);
-      ++extrapolated;
-    }
-  }
-  field.undefined_vertices = undefined;
-  field.extrapolated_vertices = extrapolated;
+  // Counts are exact in any order, so the threads' counts may be added as they come.
+  struct Counts {
+    std::size_t undefined = 0, extrapolated = 0;
+  };
+  const Counts total = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, field.status.size(), serial_below), Counts{},
+      [&](const tbb::blocked_range<std::size_t>& range, Counts counts) {
+        for (std::size_t v = range.begin(); v < range.end(); ++v) {
+          const CurvatureStatus own = status_of(v);
+          counts.undefined += own == CurvatureStatus::undefined;
+          if (own != CurvatureStatus::extrapolated) continue;
+          double gaussian = 0.0, mean = 0.0;
+          int count = 0;
+          for (std::int32_t f : vf.of(static_cast<std::int32_t>(v))) {
+            for (std::int32_t w : mesh.triangles[f]) {
+              // Neighbours appear in two faces each; counting them twice keeps the mean unchanged.
+              if (static_cast<std::size_t>(w) == v || status_of(w) != CurvatureStatus::computed)
+                continue;
+              gaussian += field.gaussian[w];
+              mean += field.mean[w];
+              ++count;
+            }
+          }
+          if (count == 0) {
+            set_undefined(field, v);
+            ++counts.undefined;
+          } else {
+            set_curvature(field, v, gaussian / count, mean / count);
+            ++counts.extrapolated;
+          }
+        }
+        return counts;
+      },
+      [](Counts a, Counts b) {
+        return Counts{a.undefined + b.undefined, a.extrapolated + b.extrapolated};
+      });
+  field.undefined_vertices = total.undefined;
+  field.extrapolated_vertices = total.extrapolated;
 }
 
 bool avx2_fma_supported() {

@@ -9,7 +9,11 @@
 #include "analyzer/disjoint_sets.hpp"
 #include "common/parallel.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
+#include <functional>
 #include <memory>
 #include <numeric>
 #include <queue>
@@ -189,35 +193,43 @@ MeshTopology analyze_topology(const TriangleMesh& mesh) {
   const std::size_t n = mesh.positions.size();
   topo.kind.resize(n);
 
-  std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0, misoriented_edge_ends = 0;
-  std::size_t boundary = 0, nonmanifold = 0, isolated = 0;
-  const auto count = static_cast<std::ptrdiff_t>(n);
-  FirstException failure;
-#pragma omp parallel if (n > serial_below) reduction(+ : boundary_edge_ends, nonmanifold_edge_ends, \
-                                                         misoriented_edge_ends, boundary, nonmanifold, isolated)
-  {
-    std::vector<RingNeighbour> ring;  // the thread's own, reused from vertex to vertex
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t i = 0; i < count; ++i)
-      failure.run([&] {
-        const VertexEdges e =
-            classify_vertex(mesh, topo.vertex_faces, static_cast<std::int32_t>(i), ring);
-        topo.kind[static_cast<std::size_t>(i)] = e.kind;
-        boundary_edge_ends += e.boundary_edges;
-        nonmanifold_edge_ends += e.nonmanifold_edges;
-        misoriented_edge_ends += e.misoriented_edges;
-        boundary += e.kind == VertexKind::boundary;
-        nonmanifold += e.kind == VertexKind::nonmanifold;
-        isolated += e.kind == VertexKind::isolated;
+  // Counts are exact in any order, so the threads' counts may be added as they come.
+  struct Counts {
+    std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0, misoriented_edge_ends = 0;
+    std::size_t boundary = 0, nonmanifold = 0, isolated = 0;
+  };
+  const Counts total = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, serial_below), Counts{},
+      [&](const tbb::blocked_range<std::size_t>& range, Counts counts) {
+        std::vector<RingNeighbour> ring;  // reused from vertex to vertex of the range
+        for (std::size_t v = range.begin(); v < range.end(); ++v) {
+          const VertexEdges e =
+              classify_vertex(mesh, topo.vertex_faces, static_cast<std::int32_t>(v), ring);
+          topo.kind[v] = e.kind;
+          counts.boundary_edge_ends += e.boundary_edges;
+          counts.nonmanifold_edge_ends += e.nonmanifold_edges;
+          counts.misoriented_edge_ends += e.misoriented_edges;
+          counts.boundary += e.kind == VertexKind::boundary;
+          counts.nonmanifold += e.kind == VertexKind::nonmanifold;
+          counts.isolated += e.kind == VertexKind::isolated;
+        }
+        return counts;
+      },
+      [](Counts a, const Counts& b) {
+        a.boundary_edge_ends += b.boundary_edge_ends;
+        a.nonmanifold_edge_ends += b.nonmanifold_edge_ends;
+        a.misoriented_edge_ends += b.misoriented_edge_ends;
+        a.boundary += b.boundary;
+        a.nonmanifold += b.nonmanifold;
+        a.isolated += b.isolated;
+        return a;
       });
-  }
-  failure.rethrow();
-  topo.boundary_vertices = boundary;
-  topo.nonmanifold_vertices = nonmanifold;
-  topo.isolated_vertices = isolated;
-  topo.boundary_edges = boundary_edge_ends / 2;  // each edge was seen from both of its ends
-  topo.nonmanifold_edges = nonmanifold_edge_ends / 2;
-  topo.misoriented_edges = misoriented_edge_ends / 2;
+  topo.boundary_vertices = total.boundary;
+  topo.nonmanifold_vertices = total.nonmanifold;
+  topo.isolated_vertices = total.isolated;
+  topo.boundary_edges = total.boundary_edge_ends / 2;  // each edge was seen from both of its ends
+  topo.nonmanifold_edges = total.nonmanifold_edge_ends / 2;
+  topo.misoriented_edges = total.misoriented_edge_ends / 2;
   return topo;
 }
 
@@ -236,14 +248,16 @@ std::size_t count_components(const TriangleMesh& mesh, const MeshTopology& topol
                      join(t[0], t[1]);
                      join(t[1], t[2]);
                    });
-  std::size_t components = 0;
-  const auto count = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for schedule(static) reduction(+ : components) if (n > serial_below)
-  for (std::ptrdiff_t v = 0; v < count; ++v) {
-    const auto i = static_cast<std::int32_t>(v);
-    components += kind[static_cast<std::size_t>(v)] != VertexKind::isolated && sets.root_of(i) == i;
-  }
-  return components;
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, serial_below), std::size_t{0},
+      [&](const tbb::blocked_range<std::size_t>& range, std::size_t components) {
+        for (std::size_t v = range.begin(); v < range.end(); ++v) {
+          const auto i = static_cast<std::int32_t>(v);
+          components += kind[v] != VertexKind::isolated && sets.root_of(i) == i;
+        }
+        return components;
+      },
+      std::plus<>());
 }
 
 namespace {

@@ -16,9 +16,10 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 
-#include <unistd.h>
+#include <tbb/global_control.h>
 
 namespace {
 
@@ -35,18 +36,27 @@ int fail(std::string message, int code) {
 }
 
 
-// OpenMP threads sleep soon after a parallel loop unless OMP_WAIT_POLICY or GOMP_SPINCOUNT says
-// otherwise. libgomp's default keeps each idle thread spinning for about a millisecond after
-// every loop, and an analysis runs dozens of short loops: on a machine shared with other work
-// that spinning took the core from the thread with work to do (a 55k-vertex analyze took 4.5×
-// the wall time and 3× the CPU time of OMP_WAIT_POLICY=passive, measured side by side). libgomp
-// reads its environment once, as it is loaded, before any of the program's code runs (glibc
-// resets the environment after an executable's preinit functions): so the program starts itself
-// again with the policy set, at the cost of one more program start (about 3 ms).
-void default_to_passive_wait(char** argv) {
-  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
-  if (::setenv("OMP_WAIT_POLICY", "passive", 0) != 0) return;
-  ::execv("/proc/self/exe", argv);  // returns only on failure: then run with libgomp's default
+// Most threads the program may use, from TOONWATER_THREADS: the analysis gives the same bits
+// with any number (common/parallel.hpp), so the variable only shares the cores with other work.
+constexpr unsigned long most_threads = 1024;
+
+// The limit TOONWATER_THREADS sets (0 when unset), or a one-line reason it is not a count.
+struct ThreadLimit {
+  std::size_t threads = 0;
+  std::string error;
+};
+
+ThreadLimit thread_limit_from_environment() {
+  const char* text = std::getenv("TOONWATER_THREADS");
+  if (!text) return {};
+  const std::string value = text;
+  const bool digits = !value.empty() && value.size() <= 4 &&
+                      value.find_first_not_of("0123456789") == std::string::npos;
+  const unsigned long threads = digits ? std::stoul(value) : 0;
+  if (threads < 1 || threads > most_threads)
+    return {0, "TOONWATER_THREADS: '" + printable(value) + "' is not a thread count from 1 to " +
+                   std::to_string(most_threads)};
+  return {threads, {}};
 }
 
 std::string subcommand_names(const CLI::App& app) {
@@ -59,7 +69,12 @@ std::string subcommand_names(const CLI::App& app) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  default_to_passive_wait(argv);
+  const ThreadLimit limit = thread_limit_from_environment();
+  if (!limit.error.empty()) return fail(limit.error, exit_code::bad_input);
+  // Held for the whole run: every parallel loop of the process stays within the limit.
+  std::optional<tbb::global_control> thread_control;
+  if (limit.threads > 0)
+    thread_control.emplace(tbb::global_control::max_allowed_parallelism, limit.threads);
   toonwater::remove_temporaries_on_signals();  // an interrupted run leaves no temporary file
   // A closed standard error or output is a failed write, not an end (cli/stop_signals.hpp).
   std::signal(SIGPIPE, SIG_IGN);
@@ -70,7 +85,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("toonwater ") + TOONWATER_VERSION);
   app.footer("Run `toonwater help SUBCOMMAND` or `toonwater SUBCOMMAND --help` for its options.\n"
              "Exit codes: 0 success, 2 bad input, 3 output failure, 4 interrupted, "
-             "5 POV-Ray failed, 6 image module missing, 1 internal error.");
+             "5 POV-Ray failed, 6 image module missing, 1 internal error.\n"
+             "TOONWATER_THREADS=N uses at most N threads (1-1024; default: every core).");
   // Parse errors in one line, like every other error (CLI11 adds a second by default).
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return "toonwater: error: " + printable(e.what()) + " (see --help)\n";

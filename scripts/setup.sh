@@ -8,12 +8,13 @@ build_dir=${TOONWATER_BUILD_DIR:-$root/build}
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libcli11-dev libtomlplusplus-dev zlib1g-dev
+  libtbb-dev  # parallel loops (common/parallel.hpp)
   libopenimageio-dev openimageio-tools fonts-dejavu-core
   povray
   libopenmesh-dev
   libopenvdb-dev libboost-dev  # .vdb level sets (analyzer/readers/vdb); OpenVDB's headers include Boost
   libgtest-dev libbenchmark-dev
-  clang-14 libclang-rt-14-dev libomp-14-dev  # fuzzing (scripts/fuzz.sh); OpenMP under clang
+  clang-14 libclang-rt-14-dev  # fuzzing (scripts/fuzz.sh)
   slurm-wlm munge parallel     # render farms (render --on slurm|parallel) and their tests
 )
 

@@ -4,11 +4,11 @@
 #include "common/deterministic_sum.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <omp.h>
 #include <vector>
 
 namespace toonwater {
@@ -28,11 +28,9 @@ std::vector<double> spread_values(std::size_t n, std::uint64_t seed) {
 }
 
 double sum_with_threads(const std::vector<double>& values, int threads) {
-  const int before = omp_get_max_threads();
-  omp_set_num_threads(threads);
-  const double sum = deterministic_sum(values.size(), [&](std::size_t i) { return values[i]; });
-  omp_set_num_threads(before);
-  return sum;
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                  static_cast<std::size_t>(threads));
+  return deterministic_sum(values.size(), [&](std::size_t i) { return values[i]; });
 }
 
 TEST(DeterministicSum, SameBitsWithOneTwoThreeAndFourThreads) {

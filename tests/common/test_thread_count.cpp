@@ -1,4 +1,4 @@
-// The analysis with 1, 2 and 4 threads (OpenMP's thread-count override) gives the same bits:
+// The analysis with 1, 2 and 4 threads (oneTBB's global_control limit) gives the same bits:
 // the mesh read from a file, its curvature, flow field, labels and counts, the strokes' field
 // carried over from the frame before, and the CSV and PLY written. On a generated water tank
 // large enough that every parallel pass splits into chunks at 4 threads.
@@ -11,11 +11,11 @@
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <omp.h>
 #include <string>
 #include <vector>
 
@@ -63,8 +63,8 @@ struct Outputs {
 };
 
 Outputs run_with_threads(int threads, const std::filesystem::path& obj) {
-  const int before = omp_get_max_threads();
-  omp_set_num_threads(threads);
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                  static_cast<std::size_t>(threads));
   Outputs run;
   ScratchDir dir;
   const InputMesh input = read_mesh(obj);
@@ -101,7 +101,6 @@ Outputs run_with_threads(int threads, const std::filesystem::path& obj) {
   jet.smoothing_steps = 2;
   write_curvature_csv(dir / "jet.csv", analyze_mesh(input.mesh, jet));
   run.jet_csv = test::read_text(dir / "jet.csv");
-  omp_set_num_threads(before);
   return run;
 }
 
