@@ -1,7 +1,7 @@
 // The analysis settings: what a user can change about an analysis, as one table. Each setting
 // has its `toonwater analyze` option (--flow-smooth), its scene.toml key in [flow]
 // (flow.smoothing), its range, its default and a line of help, written here once. The analyze
-// command (cli/analysis_options.hpp) and the scene configuration (povgen/config_schema.cpp) are
+// command (cli/analysis_options.hpp) and the scene configuration (scene/config_schema.cpp) are
 // both made from the table, so a scene can repeat any analyze run, and both front ends take the
 // same values and refuse the others with the same words.
 //

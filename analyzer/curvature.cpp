@@ -58,6 +58,9 @@
 #include "common/parallel.hpp"
 #include "analyzer/vertex_normals.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
 #include <atomic>
 #include <bit>
@@ -90,14 +93,15 @@ constexpr double normal_deviation_secant = 1.0154266118857451;  // 1 / cos(10°)
 
 // 2^-e with e the binary exponent of the largest |coordinate|: multiplying by it is exact.
 double power_of_two_scale(const std::vector<Vec3>& positions) {
-  const std::size_t workers = worker_count(positions.size());
-  std::vector<double> largest_of(workers, 0.0);
-  parallel_chunks(positions.size(), workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
-    double largest = 0.0;
-    for (std::size_t v = begin; v < end; ++v) largest = std::max(largest, positions[v].cwiseAbs().maxCoeff());
-    largest_of[worker] = largest;
-  });
-  const double largest = *std::max_element(largest_of.begin(), largest_of.end());
+  // A maximum is exact in any order, so the threads' maxima may be combined as they come.
+  const double largest = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, positions.size(), serial_below), 0.0,
+      [&](const tbb::blocked_range<std::size_t>& range, double running) {
+        for (std::size_t v = range.begin(); v < range.end(); ++v)
+          running = std::max(running, positions[v].cwiseAbs().maxCoeff());
+        return running;
+      },
+      [](double a, double b) { return std::max(a, b); });
   if (largest == 0.0 || !std::isfinite(largest)) return 1.0;
   return std::ldexp(1.0, -std::ilogb(largest));
 }
@@ -508,6 +512,9 @@ template <class Lanes>
 // second can use: there a·b + c becomes one fused multiply-add, rounded once. Its results differ
 // from the portable path's by round-off only (tested); multiplying by the power-of-two scale
 // stays exact, so the scale invariance holds in both. Elsewhere there is only the portable code.
+// The AVX2 copy does not earn its place in time: whole `analyze` with the portable copy alone
+// differed by under 5 % at 55k and 1M vertices (2026-12-04, bench/meshlab_compare.sh's meshes,
+// 7–9 alternating runs); it stays because its fused roundings are the bits of the outputs.
 void sum_faces_portable(const GatherInput& in, std::size_t begin, std::size_t end,
                         CurvatureField& field, GatherCounts& counts,
                         std::vector<std::int32_t>& spanning) {
@@ -544,53 +551,52 @@ void set_curvature(CurvatureField& field, std::size_t v, double gaussian, double
 
 void extrapolate_from_neighbours(const TriangleMesh& mesh, const VertexFaces& vf,
                                  CurvatureField& field) {
-  // On all cores, each chunk counting its own. A vertex reads only its `computed` neighbours,
-  // which no chunk changes, so the result does not depend on the order. The status of an
-  // extrapolated vertex that turns undefined may be read meanwhile by a neighbour's chunk (which
-  // skips it either way): both go through atomic_ref, so the byte is never torn or raced on.
-  const std::size_t n = field.status.size();
-  const std::size_t workers = worker_count(n);
+  // A vertex reads only its `computed` neighbours, which no iteration changes, so the result
+  // does not depend on the order. The status of an extrapolated vertex that turns undefined may
+  // be read meanwhile by a neighbour's thread (which skips it either way): both go through
+  // atomic_ref, so the byte is never torn or raced on.
+  CurvatureStatus* const status = field.status.data();
+  auto status_of = [status](std::size_t v) {
+    return std::atomic_ref<CurvatureStatus>(status[v]).load(std::memory_order_relaxed);
+  };
+  // Counts are exact in any order, so the threads' counts may be added as they come.
   struct Counts {
     std::size_t undefined = 0, extrapolated = 0;
   };
-  std::vector<Counts> counts(workers);
-  parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    CurvatureStatus* const status = field.status.data();
-    auto status_of = [status](std::size_t v) {
-      return std::atomic_ref<CurvatureStatus>(status[v]).load(std::memory_order_relaxed);
-    };
-    Counts c;  // stored once: the chunks' counts share a cache line
-    for (std::size_t v = begin; v < end; ++v) {
-      const CurvatureStatus own = status_of(v);
-      c.undefined += own == CurvatureStatus::undefined;
-      if (own != CurvatureStatus::extrapolated) continue;
-      double gaussian = 0.0, mean = 0.0;
-      int count = 0;
-      for (std::int32_t f : vf.of(static_cast<std::int32_t>(v))) {
-        for (std::int32_t w : mesh.triangles[f]) {
-          // Neighbours appear in two faces each; counting them twice keeps the mean unchanged.
-          if (static_cast<std::size_t>(w) == v || status_of(w) != CurvatureStatus::computed)
-            continue;
-          gaussian += field.gaussian[w];
-          mean += field.mean[w];
-          ++count;
+  const Counts total = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, field.status.size(), serial_below), Counts{},
+      [&](const tbb::blocked_range<std::size_t>& range, Counts counts) {
+        for (std::size_t v = range.begin(); v < range.end(); ++v) {
+          const CurvatureStatus own = status_of(v);
+          counts.undefined += own == CurvatureStatus::undefined;
+          if (own != CurvatureStatus::extrapolated) continue;
+          double gaussian = 0.0, mean = 0.0;
+          int count = 0;
+          for (std::int32_t f : vf.of(static_cast<std::int32_t>(v))) {
+            for (std::int32_t w : mesh.triangles[f]) {
+              // Neighbours appear in two faces each; counting them twice keeps the mean unchanged.
+              if (static_cast<std::size_t>(w) == v || status_of(w) != CurvatureStatus::computed)
+                continue;
+              gaussian += field.gaussian[w];
+              mean += field.mean[w];
+              ++count;
+            }
+          }
+          if (count == 0) {
+            set_undefined(field, v);
+            ++counts.undefined;
+          } else {
+            set_curvature(field, v, gaussian / count, mean / count);
+            ++counts.extrapolated;
+          }
         }
-      }
-      if (count == 0) {
-        set_undefined(field, v);
-        ++c.undefined;
-      } else {
-        set_curvature(field, v, gaussian / count, mean / count);
-        ++c.extrapolated;
-      }
-    }
-    counts[chunk] = c;
-  });
-  field.undefined_vertices = field.extrapolated_vertices = 0;
-  for (const Counts& c : counts) {
-    field.undefined_vertices += c.undefined;
-    field.extrapolated_vertices += c.extrapolated;
-  }
+        return counts;
+      },
+      [](Counts a, Counts b) {
+        return Counts{a.undefined + b.undefined, a.extrapolated + b.extrapolated};
+      });
+  field.undefined_vertices = total.undefined;
+  field.extrapolated_vertices = total.extrapolated;
 }
 
 bool avx2_fma_supported() {
@@ -612,7 +618,7 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   // The arrays are zero-filled as they are sized, and the filling (the first touch of every
   // page) costs about as much as a tenth of the gather: half of them on each of two cores.
   CurvatureField field;
-  parallel_chunks(2, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
+  parallel_chunks(2, chunk_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t half = begin; half < end; ++half) {
       if (half == 0) {
         field.normal.resize(n);
@@ -632,7 +638,7 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   // both sides of a range's end) afterwards in the vertex pass, in the same order. The first
   // pass also finds the mollification the mesh needs; only a mesh that needs one is summed
   // again with it.
-  const std::size_t workers = worker_count(n);
+  const std::size_t workers = chunk_count(n);
   const std::size_t m = mesh.triangles.size();
   const auto rings = std::make_unique_for_overwrite<RingSums[]>(n);
   const auto turns = std::make_unique_for_overwrite<TurnProduct[]>(n);

@@ -87,7 +87,7 @@ void write_curvature_csv(const std::filesystem::path& path, const Analysis& anal
   file.write("x,y,z,gaussian,mean,k1,k2,area,label,flow\n");
   const std::size_t n = analysis.input_to_surface.size();
   // Shortest round-trip formatting dominates the cost, so each block is split over the cores.
-  std::vector<std::string> parts(worker_count(std::min(n, rows_per_block)));
+  std::vector<std::string> parts(chunk_count(std::min(n, rows_per_block)));
   for (std::size_t block = 0; block < n; block += rows_per_block) {
     const std::size_t rows = std::min(rows_per_block, n - block);
     parallel_chunks(rows, parts.size(), [&](std::size_t part, std::size_t begin, std::size_t end) {

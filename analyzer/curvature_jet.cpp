@@ -132,7 +132,7 @@ std::optional<SurfaceCurvature> fit_jet(const TriangleMesh& mesh, std::int32_t v
 CurvatureField compute_curvature_jet(const TriangleMesh& mesh, const MeshTopology& topology) {
   CurvatureField field = compute_curvature(mesh, topology);
   const std::size_t n = mesh.positions.size();
-  const std::size_t workers = worker_count(n, 4096);
+  const std::size_t workers = chunk_count(n, 4096);
   parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
     std::vector<std::int32_t> mark(n, -1), ring;
     for (std::size_t v = begin; v < end; ++v) {

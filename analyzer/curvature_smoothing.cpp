@@ -80,7 +80,7 @@ void smooth_values(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
   std::unique_ptr<Value[]> term(new Value[n]), term_sum(new Value[n]);
   const SmoothingArrays<Value> a{mesh.triangles.data(), weight.get(), term.get(), term_sum.get(),
                                  weight_sum.get()};
-  const std::size_t workers = worker_count(n);
+  const std::size_t workers = chunk_count(n);
   parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       weight[v] = member[v] ? vertex_area[v] : 0.0;
@@ -89,7 +89,7 @@ void smooth_values(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
       weight_sum[v] = 0.0;
     }
   });
-  const std::size_t face_chunks = worker_count(face_count);
+  const std::size_t face_chunks = chunk_count(face_count);
   const std::vector<std::int32_t> range_begin = vertex_ranges(mesh.triangles, n, face_chunks);
   // The vertices a face of a chunk whose range does not hold them touches, found by the first
   // step's pass over the faces (the chunks are the same every step).
@@ -108,7 +108,7 @@ void smooth_values(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
       for (std::size_t chunk = 1; chunk < face_chunks; ++chunk)
         chunk_shared[0].insert(chunk_shared[0].end(), chunk_shared[chunk].begin(), chunk_shared[chunk].end());
     const std::vector<std::int32_t>& shared = chunk_shared[0];
-    parallel_chunks(shared.size(), worker_count(shared.size()), [&](std::size_t, std::size_t begin, std::size_t end) {
+    parallel_chunks(shared.size(), chunk_count(shared.size()), [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i) {
         Value term_total = zero<Value>();
         double weight_total = 0.0;

@@ -25,7 +25,7 @@ class DisjointSets {
  public:
   explicit DisjointSets(std::size_t n) : parent_(new std::int32_t[n]) {
     // Left uninitialised by new and filled by the threads that will use each part first.
-    parallel_chunks(n, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
+    parallel_chunks(n, chunk_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
       std::fill(parent_.get() + begin, parent_.get() + end, root_of_rank(0));
     });
   }

@@ -1,7 +1,6 @@
 // Median edge length from a deterministic sample of edges; stated in edge_length.hpp.
 #include "analyzer/edge_length.hpp"
 
-#include "common/order_statistic.hpp"
 #include "common/parallel.hpp"
 
 #include <algorithm>
@@ -17,14 +16,16 @@ EdgeSample::EdgeSample(std::size_t face_count, std::size_t max_samples)
 double median_length(std::vector<double>& squared_lengths) {
   if (squared_lengths.empty()) return 0.0;
   // The square root of the middle square, as Eigen's norm() takes it.
-  return std::sqrt(kth_smallest(squared_lengths, squared_lengths.size() / 2));
+  const auto middle = squared_lengths.begin() + static_cast<std::ptrdiff_t>(squared_lengths.size() / 2);
+  std::nth_element(squared_lengths.begin(), middle, squared_lengths.end());
+  return std::sqrt(*middle);
 }
 
 double median_edge_length(std::span<const Vec3> positions, std::span<const Triangle> triangles,
                           std::size_t max_samples) {
   const EdgeSample sample(triangles.size(), max_samples);
   // The sampled edges' lengths chunk by chunk (each a cache miss or two), then joined in order.
-  const std::size_t workers = worker_count(sample.count(), 4096);
+  const std::size_t workers = chunk_count(sample.count(), 4096);
   std::vector<std::vector<double>> chunk_lengths(workers);
   parallel_chunks(sample.count(), workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     // Filled in a local and moved once: the chunks' vectors share a cache line, which every

@@ -48,7 +48,7 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
   // The free-surface vertices are numbered compactly in vertex order: counted chunk by chunk
   // (a byte a vertex, quicker on one core than waking another), then each chunk fills its part
   // of the pending frame from its own offset.
-  const std::size_t workers = worker_count(n, 4096);
+  const std::size_t workers = chunk_count(n, 4096);
   std::vector<std::size_t> chunk_begin(workers + 1, 0);
   for (std::size_t chunk = 0; chunk < workers && any_surface; ++chunk) {
     std::size_t count = 0;

@@ -7,7 +7,7 @@
 #include "analyzer/free_surface.hpp"
 #include "analyzer/noise_floor.hpp"
 #include "analyzer/tank_walls.hpp"
-#include "common/ordered_sum.hpp"
+#include "common/deterministic_sum.hpp"
 #include "common/parallel.hpp"
 
 #include <algorithm>
@@ -93,7 +93,7 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   flow.label.assign(n, FlowLabel::none);
   flow.ridge_vertices = flow.valley_vertices = flow.regions = flow.specks_faded = 0;
   flow.region_of_interest = Box3{};
-  const std::size_t workers = worker_count(n);
+  const std::size_t workers = chunk_count(n);
 
   // The vertices in regions, numbered compactly in vertex order: regions are a small part of
   // the surface. Counted chunk by chunk, then numbered from each chunk's offset. (The arrays are
@@ -127,7 +127,7 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   // Regions: vertices of one sign joined along the edges between them. The signs are a byte a
   // vertex, so the pass over the faces, most of which touch no region, stays in cache.
   DisjointSets sets(m);
-  const std::size_t face_chunks = m > 0 ? worker_count(mesh.triangles.size()) : 1;
+  const std::size_t face_chunks = m > 0 ? chunk_count(mesh.triangles.size()) : 1;
   std::vector<std::int32_t> range_begin = vertex_ranges(mesh.triangles, n, face_chunks);
   for (std::int32_t& begin : range_begin)  // vertex ranges to member ranges
     begin = static_cast<std::int32_t>(std::lower_bound(members.get(), members.get() + m, begin) -
@@ -148,7 +148,7 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
   };
   std::unique_ptr<Region[]> region(new Region[m]);
   std::unique_ptr<std::int32_t[]> region_of(new std::int32_t[m]);
-  parallel_chunks(m, worker_count(m), [&](std::size_t, std::size_t begin, std::size_t end) {
+  parallel_chunks(m, chunk_count(m), [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       region_of[i] = sets.root_of(static_cast<std::int32_t>(i));
       if (region_of[i] == static_cast<std::int32_t>(i)) region[i] = Region{0.0, 0.0, 0.0, 1.0};
@@ -184,7 +184,7 @@ void label_flow_field(const TriangleMesh& mesh, std::span<const double> vertex_a
     std::size_t ridges = 0, valleys = 0;
     Box3 box = Box3::of_no_points();
   };
-  const std::size_t member_workers = worker_count(m);
+  const std::size_t member_workers = chunk_count(m);
   std::vector<Tally> tallies(member_workers);
   parallel_chunks(m, member_workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     Tally tally;  // in a local: in the vector, each update would wait for the last one's store
@@ -284,7 +284,7 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topo
   std::vector<std::uint8_t> member = std::move(surface.inside);
   for (std::size_t v = 0; v < n; ++v)
     member[v] = member[v] && curvature.status[v] != CurvatureStatus::undefined;
-  const double surface_area = ordered_sum(
+  const double surface_area = deterministic_sum(
       n, [on_surface = flow.free_surface.data(), status = curvature.status.data(),
           area = curvature.area.data()](std::size_t v) {
         return on_surface[v] && status[v] != CurvatureStatus::undefined ? area[v] : 0.0;

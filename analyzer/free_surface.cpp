@@ -18,7 +18,6 @@
 #include "analyzer/disjoint_sets.hpp"
 #include "analyzer/edge_length.hpp"
 #include "analyzer/topology.hpp"
-#include "common/order_statistic.hpp"
 #include "common/parallel.hpp"
 
 #include <algorithm>
@@ -67,7 +66,7 @@ Slopes mark_slopes(const TriangleMesh& mesh, int up, double min_up_component) {
   const std::size_t n = mesh.positions.size(), face_count = mesh.triangles.size();
   Slopes slopes{std::vector<std::uint8_t>(n, 0), std::vector<std::uint8_t>(n, 0)};
   const EdgeSample sample(face_count);
-  const std::size_t workers = worker_count(face_count);
+  const std::size_t workers = chunk_count(face_count);
   // Each chunk's sampled lengths at its own place in one array; the gaps of lengths not
   // counted are closed after.
   std::vector<std::size_t> sample_begin(workers + 1);
@@ -113,7 +112,7 @@ std::vector<std::uint8_t> one_ring_inside(const TriangleMesh& mesh,
                                           const std::vector<std::uint8_t>& selected) {
   const std::size_t n = mesh.positions.size(), face_count = mesh.triangles.size();
   std::vector<std::uint8_t> near_unselected(n, 0);  // a corner of one of its faces is not selected
-  parallel_chunks(face_count, worker_count(face_count),
+  parallel_chunks(face_count, chunk_count(face_count),
                   [&](std::size_t, std::size_t begin, std::size_t end) {
     const std::span<const Triangle> triangles = mesh.triangles;
     const std::uint8_t* const in = selected.data();
@@ -124,7 +123,7 @@ std::vector<std::uint8_t> one_ring_inside(const TriangleMesh& mesh,
       for (std::int32_t v : t) mark(near, v);
     }
   });
-  parallel_chunks(n, worker_count(n, bytes_per_worker), [&](std::size_t, std::size_t begin, std::size_t end) {
+  parallel_chunks(n, chunk_count(n, bytes_per_worker), [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) near_unselected[v] = selected[v] && !near_unselected[v];
   });
   return near_unselected;
@@ -134,7 +133,7 @@ std::vector<std::uint8_t> one_ring_inside(const TriangleMesh& mesh,
 // fillets' faces tilt 6°–65° off the vertical.)
 std::vector<std::uint8_t> upward_vertices(const TriangleMesh& mesh, Slopes& slopes) {
   std::vector<std::uint8_t>& upward = slopes.has_up_face;
-  parallel_chunks(upward.size(), worker_count(upward.size(), bytes_per_worker),
+  parallel_chunks(upward.size(), chunk_count(upward.size(), bytes_per_worker),
                   [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) upward[v] = upward[v] && !slopes.has_other_face[v];
   });
@@ -147,7 +146,7 @@ struct Patches {
   std::vector<std::int32_t> of_vertex;     // patch index, −1 outside
   std::vector<std::int32_t> size;          // vertices per patch
   std::vector<std::int32_t> first_vertex;  // per patch
-  // Per chunk of vertices (worker_count(n)) and patch, how many of the patch's vertices come
+  // Per chunk of vertices (chunk_count(n)) and patch, how many of the patch's vertices come
   // before the chunk's first.
   std::vector<std::vector<std::int32_t>> rank_before_chunk;
   std::vector<std::uint8_t> near_unselected;  // per vertex: a corner of a face of it is not upward
@@ -158,7 +157,7 @@ Patches find_patches(const TriangleMesh& mesh, const std::vector<std::uint8_t>& 
   Patches patches;
   patches.near_unselected.assign(n, 0);
   DisjointSets sets(n);
-  const std::size_t chunks = worker_count(face_count);
+  const std::size_t chunks = chunk_count(face_count);
   join_in_parallel(sets, face_count, vertex_ranges(mesh.triangles, n, chunks),
                    [&](std::size_t f, auto& join) {
                      const Triangle& t = mesh.triangles[f];
@@ -175,7 +174,7 @@ Patches find_patches(const TriangleMesh& mesh, const std::vector<std::uint8_t>& 
                        for (std::int32_t v : t) mark(patches.near_unselected.data(), v);
                    });
   // Each vertex's root, and the roots, chunk by chunk; the roots are numbered in order.
-  const std::size_t workers = worker_count(n);
+  const std::size_t workers = chunk_count(n);
   patches.of_vertex.resize(n);
   std::vector<std::vector<std::int32_t>> chunk_roots(workers);
   parallel_chunks(n, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
@@ -275,8 +274,10 @@ std::vector<double> median_heights(const TriangleMesh& mesh, int up, const Patch
   });
   std::vector<double> median(count);
   for (std::size_t p = 0; p < count; ++p) {
-    const std::span<double> samples(heights.data() + sample_begin[p], heights.data() + sample_begin[p + 1]);
-    median[p] = kth_smallest(samples, samples.size() / 2);
+    double* const first = heights.data() + sample_begin[p];
+    double* const middle = first + (sample_begin[p + 1] - sample_begin[p]) / 2;
+    std::nth_element(first, middle, heights.data() + sample_begin[p + 1]);
+    median[p] = *middle;
   }
   return median;
 }
@@ -313,7 +314,7 @@ FreeSurface select_free_surface(const TriangleMesh& mesh, const FreeSurfaceOptio
   }
   surface.patches_dropped = count - surface.patches_kept;
   surface.inside = std::move(patches.near_unselected);
-  parallel_chunks(n, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
+  parallel_chunks(n, chunk_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
     std::uint8_t *const selected = surface.selected.data(), *const inside = surface.inside.data();
     const std::int32_t* const patch = patches.of_vertex.data();
     const std::uint8_t* const kept = keep.data();

@@ -175,7 +175,7 @@ std::unique_ptr<char[]> load_file(const SourceFile& file, std::size_t& size) {
   size = static_cast<std::size_t>(info.st_size);
   auto bytes = std::make_unique_for_overwrite<char[]>(size);
   constexpr std::size_t min_part_bytes = std::size_t{1} << 20;
-  const std::size_t parts = worker_count(size, min_part_bytes);
+  const std::size_t parts = chunk_count(size, min_part_bytes);
   std::vector<std::size_t> part_end(parts);  // where each part's data ends (short: the file shrank)
   std::vector<int> part_error(parts, 0);
   parallel_chunks(size, parts, [&](std::size_t part, std::size_t begin, std::size_t end) {

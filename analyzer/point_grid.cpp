@@ -15,7 +15,7 @@ namespace {
 // The points' bounding box, on all cores.
 Box3 bounding_box(const std::vector<Vec3>& points) {
   if (points.empty()) return Box3{};
-  const std::size_t workers = worker_count(points.size());
+  const std::size_t workers = chunk_count(points.size());
   std::vector<Box3> chunk_box(workers);
   parallel_chunks(points.size(), workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     // In a local: kept in the vector, each point's update waited for the last one's store.
@@ -59,7 +59,7 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, double radius, const Box3&
 // cell and within a cell chunk by chunk, and every chunk then places its points.
 void PointGrid::sort_into_cells(const std::vector<Vec3>& points) {
   const std::size_t n = points.size(), cell_count = static_cast<std::size_t>(cells_a_ * cells_b_);
-  const std::size_t workers = worker_count(n);
+  const std::size_t workers = chunk_count(n);
   // Left uninitialised by new: each chunk writes its points' cells and zeroes its own counts.
   std::unique_ptr<std::int32_t[]> cell_of(new std::int32_t[n]);
   std::unique_ptr<std::int32_t[]> counts(new std::int32_t[workers * cell_count]);
@@ -76,7 +76,7 @@ void PointGrid::sort_into_cells(const std::vector<Vec3>& points) {
   });
   // The offsets over ranges of cells: each range's total, then each range from the totals of
   // those before it. A chunk's count becomes the place of its first point in the cell.
-  const std::size_t cell_workers = worker_count(cell_count);
+  const std::size_t cell_workers = chunk_count(cell_count);
   std::vector<std::int32_t> range_begin(cell_workers + 1, 0);
   parallel_chunks(cell_count, cell_workers, [&](std::size_t range, std::size_t begin, std::size_t end) {
     std::int32_t total = 0;

@@ -9,7 +9,11 @@
 #include "analyzer/disjoint_sets.hpp"
 #include "common/parallel.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
+#include <functional>
 #include <memory>
 #include <numeric>
 #include <queue>
@@ -22,7 +26,7 @@ VertexFaces build_vertex_faces(std::size_t vertex_count, std::span<const Triangl
   // A counting sort of the face corners by vertex, on every core: each chunk of faces counts its
   // own corners per vertex, and a vertex's row then holds chunk 0's faces, then chunk 1's, and so
   // on, so every row lists its faces in ascending order whatever the number of chunks.
-  const std::size_t chunks = worker_count(triangles.size());
+  const std::size_t chunks = chunk_count(triangles.size());
   std::vector<std::unique_ptr<std::int32_t[]>> cursor(chunks);  // per chunk and vertex
   parallel_chunks(triangles.size(), chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     cursor[chunk] = std::make_unique<std::int32_t[]>(vertex_count);  // zeroed by its own thread
@@ -34,7 +38,7 @@ VertexFaces build_vertex_faces(std::size_t vertex_count, std::span<const Triangl
   VertexFaces vf;
   vf.offsets.resize(vertex_count + 1);
   vf.offsets[0] = 0;
-  const std::size_t vertex_chunks = worker_count(vertex_count);
+  const std::size_t vertex_chunks = chunk_count(vertex_count);
   parallel_chunks(vertex_count, vertex_chunks, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       std::int32_t faces = 0;
@@ -189,40 +193,43 @@ MeshTopology analyze_topology(const TriangleMesh& mesh) {
   const std::size_t n = mesh.positions.size();
   topo.kind.resize(n);
 
+  // Counts are exact in any order, so the threads' counts may be added as they come.
   struct Counts {
     std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0, misoriented_edge_ends = 0;
     std::size_t boundary = 0, nonmanifold = 0, isolated = 0;
   };
-  const std::size_t workers = worker_count(n);
-  std::vector<Counts> counts(workers);
-  parallel_chunks(n, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
-    std::vector<RingNeighbour> ring;
-    Counts c;  // stored once: the workers' counts share a cache line
-    for (std::size_t v = begin; v < end; ++v) {
-      const VertexEdges e =
-          classify_vertex(mesh, topo.vertex_faces, static_cast<std::int32_t>(v), ring);
-      topo.kind[v] = e.kind;
-      c.boundary_edge_ends += e.boundary_edges;
-      c.nonmanifold_edge_ends += e.nonmanifold_edges;
-      c.misoriented_edge_ends += e.misoriented_edges;
-      c.boundary += e.kind == VertexKind::boundary;
-      c.nonmanifold += e.kind == VertexKind::nonmanifold;
-      c.isolated += e.kind == VertexKind::isolated;
-    }
-    counts[worker] = c;
-  });
-  std::size_t boundary_edge_ends = 0, nonmanifold_edge_ends = 0, misoriented_edge_ends = 0;
-  for (const Counts& c : counts) {
-    boundary_edge_ends += c.boundary_edge_ends;
-    nonmanifold_edge_ends += c.nonmanifold_edge_ends;
-    misoriented_edge_ends += c.misoriented_edge_ends;
-    topo.boundary_vertices += c.boundary;
-    topo.nonmanifold_vertices += c.nonmanifold;
-    topo.isolated_vertices += c.isolated;
-  }
-  topo.boundary_edges = boundary_edge_ends / 2;  // each edge was seen from both of its ends
-  topo.nonmanifold_edges = nonmanifold_edge_ends / 2;
-  topo.misoriented_edges = misoriented_edge_ends / 2;
+  const Counts total = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, serial_below), Counts{},
+      [&](const tbb::blocked_range<std::size_t>& range, Counts counts) {
+        std::vector<RingNeighbour> ring;  // reused from vertex to vertex of the range
+        for (std::size_t v = range.begin(); v < range.end(); ++v) {
+          const VertexEdges e =
+              classify_vertex(mesh, topo.vertex_faces, static_cast<std::int32_t>(v), ring);
+          topo.kind[v] = e.kind;
+          counts.boundary_edge_ends += e.boundary_edges;
+          counts.nonmanifold_edge_ends += e.nonmanifold_edges;
+          counts.misoriented_edge_ends += e.misoriented_edges;
+          counts.boundary += e.kind == VertexKind::boundary;
+          counts.nonmanifold += e.kind == VertexKind::nonmanifold;
+          counts.isolated += e.kind == VertexKind::isolated;
+        }
+        return counts;
+      },
+      [](Counts a, const Counts& b) {
+        a.boundary_edge_ends += b.boundary_edge_ends;
+        a.nonmanifold_edge_ends += b.nonmanifold_edge_ends;
+        a.misoriented_edge_ends += b.misoriented_edge_ends;
+        a.boundary += b.boundary;
+        a.nonmanifold += b.nonmanifold;
+        a.isolated += b.isolated;
+        return a;
+      });
+  topo.boundary_vertices = total.boundary;
+  topo.nonmanifold_vertices = total.nonmanifold;
+  topo.isolated_vertices = total.isolated;
+  topo.boundary_edges = total.boundary_edge_ends / 2;  // each edge was seen from both of its ends
+  topo.nonmanifold_edges = total.nonmanifold_edge_ends / 2;
+  topo.misoriented_edges = total.misoriented_edge_ends / 2;
   return topo;
 }
 
@@ -234,24 +241,23 @@ std::size_t count_components(const TriangleMesh& mesh, const MeshTopology& topol
   const std::span<const Triangle> triangles = mesh.triangles;
   DisjointSets sets(n);
   join_in_parallel(sets, triangles.size(),
-                   vertex_ranges(triangles, n, worker_count(triangles.size())),
+                   vertex_ranges(triangles, n, chunk_count(triangles.size())),
                    [&](std::size_t f, auto& join) {
                      const Triangle& t = triangles[f];
                      if (has_repeated_corner(t)) return;
                      join(t[0], t[1]);
                      join(t[1], t[2]);
                    });
-  const std::size_t chunks = worker_count(n);
-  std::vector<std::size_t> roots(chunks, 0);
-  parallel_chunks(n, chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    std::size_t count = 0;  // stored once: the chunks' counts share a cache line
-    for (std::size_t v = begin; v < end; ++v) {
-      const auto i = static_cast<std::int32_t>(v);
-      count += kind[v] != VertexKind::isolated && sets.root_of(i) == i;
-    }
-    roots[chunk] = count;
-  });
-  return std::accumulate(roots.begin(), roots.end(), std::size_t{0});
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, serial_below), std::size_t{0},
+      [&](const tbb::blocked_range<std::size_t>& range, std::size_t components) {
+        for (std::size_t v = range.begin(); v < range.end(); ++v) {
+          const auto i = static_cast<std::int32_t>(v);
+          components += kind[v] != VertexKind::isolated && sets.root_of(i) == i;
+        }
+        return components;
+      },
+      std::plus<>());
 }
 
 namespace {

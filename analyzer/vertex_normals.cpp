@@ -7,7 +7,7 @@ namespace toonwater {
 std::vector<Vec3> angle_weighted_normals(const TriangleMesh& mesh, const VertexFaces& vertex_faces) {
   const std::size_t n = mesh.positions.size();
   std::vector<Vec3> normals(n, Vec3::Zero());
-  parallel_chunks(n, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
+  parallel_chunks(n, chunk_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       const Vec3& x = mesh.positions[v];
       Vec3 sum = Vec3::Zero();

@@ -49,7 +49,7 @@ WeldedMesh weld_coincident_vertices(TriangleMesh mesh) {
   // it will probe a few vertices ahead: the probes are random over a table far larger than the
   // cache, and waiting for each in turn was most of the cost.
   std::vector<std::uint32_t> home(n);
-  parallel_chunks(n, worker_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
+  parallel_chunks(n, chunk_count(n), [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v)
       home[v] = static_cast<std::uint32_t>(position_hash(positions[v]) & mask);
   });
@@ -74,7 +74,7 @@ WeldedMesh weld_coincident_vertices(TriangleMesh mesh) {
     welded.mesh = std::move(mesh);
     return welded;
   }
-  parallel_chunks(triangles.size(), worker_count(triangles.size()),
+  parallel_chunks(triangles.size(), chunk_count(triangles.size()),
                   [&](std::size_t, std::size_t begin, std::size_t end) {
                     for (std::size_t f = begin; f < end; ++f)
                       for (std::int32_t& corner : triangles[f]) corner = welded.input_to_mesh[corner];

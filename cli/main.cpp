@@ -12,10 +12,14 @@
 #include "render/render.hpp"
 
 #include <csignal>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
+
+#include <tbb/global_control.h>
 
 namespace {
 
@@ -32,6 +36,29 @@ int fail(std::string message, int code) {
 }
 
 
+// Most threads the program may use, from TOONWATER_THREADS: the analysis gives the same bits
+// with any number (common/parallel.hpp), so the variable only shares the cores with other work.
+constexpr unsigned long most_threads = 1024;
+
+// The limit TOONWATER_THREADS sets (0 when unset), or a one-line reason it is not a count.
+struct ThreadLimit {
+  std::size_t threads = 0;
+  std::string error;
+};
+
+ThreadLimit thread_limit_from_environment() {
+  const char* text = std::getenv("TOONWATER_THREADS");
+  if (!text) return {};
+  const std::string value = text;
+  const bool digits = !value.empty() && value.size() <= 4 &&
+                      value.find_first_not_of("0123456789") == std::string::npos;
+  const unsigned long threads = digits ? std::stoul(value) : 0;
+  if (threads < 1 || threads > most_threads)
+    return {0, "TOONWATER_THREADS: '" + printable(value) + "' is not a thread count from 1 to " +
+                   std::to_string(most_threads)};
+  return {threads, {}};
+}
+
 std::string subcommand_names(const CLI::App& app) {
   std::string names;
   for (const CLI::App* sub : app.get_subcommands({}))
@@ -42,6 +69,12 @@ std::string subcommand_names(const CLI::App& app) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const ThreadLimit limit = thread_limit_from_environment();
+  if (!limit.error.empty()) return fail(limit.error, exit_code::bad_input);
+  // Held for the whole run: every parallel loop of the process stays within the limit.
+  std::optional<tbb::global_control> thread_control;
+  if (limit.threads > 0)
+    thread_control.emplace(tbb::global_control::max_allowed_parallelism, limit.threads);
   toonwater::remove_temporaries_on_signals();  // an interrupted run leaves no temporary file
   // A closed standard error or output is a failed write, not an end (cli/stop_signals.hpp).
   std::signal(SIGPIPE, SIG_IGN);
@@ -52,7 +85,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("toonwater ") + TOONWATER_VERSION);
   app.footer("Run `toonwater help SUBCOMMAND` or `toonwater SUBCOMMAND --help` for its options.\n"
              "Exit codes: 0 success, 2 bad input, 3 output failure, 4 interrupted, "
-             "5 POV-Ray failed, 6 image module missing, 1 internal error.");
+             "5 POV-Ray failed, 6 image module missing, 1 internal error.\n"
+             "TOONWATER_THREADS=N uses at most N threads (1-1024; default: every core).");
   // Parse errors in one line, like every other error (CLI11 adds a second by default).
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return "toonwater: error: " + printable(e.what()) + " (see --help)\n";

@@ -92,7 +92,7 @@ void block(std::string& out, std::string_view keyword, std::size_t count,
     w.text(" { ");
     w.integer(static_cast<std::int64_t>(count));
   }
-  const std::size_t workers = worker_count(count, 65536);
+  const std::size_t workers = chunk_count(count, 65536);
   std::vector<std::string> parts(workers);
   parallel_chunks(count, workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     Writer w(parts[chunk], (end - begin) * bytes_per_element);

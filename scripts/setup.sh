@@ -8,6 +8,7 @@ build_dir=${TOONWATER_BUILD_DIR:-$root/build}
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libcli11-dev libtomlplusplus-dev zlib1g-dev
+  libtbb-dev  # parallel loops (common/parallel.hpp)
   libopenimageio-dev openimageio-tools fonts-dejavu-core
   povray
   libopenmesh-dev

@@ -124,7 +124,7 @@ TopDownMap rasterize_top_down(const TriangleMesh& surface, const CurvatureField&
   if (pixels == 0) return map;
 
   const Coverage c = cover_pixels(surface, free_surface, view);
-  const std::size_t workers = worker_count(pixels, 1 << 18);
+  const std::size_t workers = chunk_count(pixels, 1 << 18);
   std::vector<std::size_t> covered(workers, 0);
   parallel_chunks(pixels, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {

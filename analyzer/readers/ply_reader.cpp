@@ -515,7 +515,7 @@ class BinaryReader {
     const bool all_float = type[0] == PlyType::float32 && type[1] == PlyType::float32 &&
                            type[2] == PlyType::float32;
     // On every core; each chunk notes its first bad record, and the first of all is reported.
-    const std::size_t chunks = worker_count(complete);
+    const std::size_t chunks = chunk_count(complete);
     std::vector<std::uint64_t> first_bad(chunks, complete);
     parallel_chunks(complete, chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
       const char* record = position_ + begin * record_size;
@@ -562,7 +562,7 @@ class BinaryReader {
     const std::size_t first = triangles.size();
     triangles.resize(first + count);
     Triangle* out = triangles.data() + first;
-    const std::size_t chunks = worker_count(count);
+    const std::size_t chunks = chunk_count(count);
     std::vector<std::uint8_t> all_triangles(chunks, 1);
     parallel_chunks(count, chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
       const char* record = position_ + begin * record_size + before;

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
-#include <stdexcept>
 
 namespace toonwater::test {
 namespace {
@@ -93,13 +92,6 @@ TEST(CurvatureGather, SumsVerticesWithFacesInSeveralChunksAsTheOthers) {
   std::shuffle(shuffled.triangles.begin(), shuffled.triangles.end(), rng);
   expect_fields_agree(compute_curvature(in_order, analyze_topology(in_order)),
                       compute_curvature(shuffled, analyze_topology(shuffled)));
-}
-
-TEST(CurvatureKernels, AskingForAnUnsupportedKernelThrows) {
-  if (avx2_fma_supported()) GTEST_SKIP() << "this processor has AVX2 and FMA";
-  const TriangleMesh m = make_icosphere(2).mesh;
-  EXPECT_THROW(compute_curvature(m, analyze_topology(m), CurvatureKernel::avx2_fma),
-               std::invalid_argument);
 }
 
 }  // namespace

@@ -15,7 +15,7 @@
 // field may carry no class), else "surface", else "phi", else the only float or double grid
 // whose class is level set; otherwise an error that lists the grids the file holds.
 //
-// Why a module: OpenVDB pulls in Boost, TBB, Blosc and more, which every run of the toonwater
+// Why a module: OpenVDB pulls in Boost, Blosc and more, which every run of the toonwater
 // program would otherwise load. Its implementation (level_set_mesher.cpp) is built into
 // toonwater-vdb.so, which the program loads from beside its executable when it first reads a
 // .vdb file (level_set_loader.cpp); tests link the same implementation statically

@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# Whole-process `toonwater analyze --up z` against MeshLab's Discrete Curvatures filter
+# (meshlabserver, Debian's 2020.09, under one Xvfb server started beforehand so that its own
+# start-up is not counted), and optionally against a second toonwater build, on the
+# bench_analyzer height field z = 0.1 sin 6x cos 6y over [-1, 1]^2 written as a binary PLY of
+# float coordinates at 235^2 (55k) and 1000^2 (1M) vertices. Runs alternate (A, B, MeshLab) in
+# each of PAIRS rounds; prints the medians of wall and CPU (user + system) time and of the
+# rounds' ratios. Neither program writes an output.
+#
+# Usage: bench/meshlab_compare.sh TOONWATER [OTHER_TOONWATER] [PAIRS]   (PAIRS default 7)
+# Needs: meshlab and xvfb (apt-get install meshlab xvfb), python3, /usr/bin/time.
+set -euo pipefail
+a=$1
+b=${2:-}
+pairs=${3:-7}
+work=$(mktemp -d)
+trap 'rm -rf "$work"; [ -n "${xvfb_pid:-}" ] && kill "$xvfb_pid" 2>/dev/null || true' EXIT
+
+python3 - "$work" <<'PY'
+import math, struct, sys
+from array import array
+for n, name in ((235, "55k"), (1000, "1M")):
+    axis = [-1 + 2 * i / (n - 1) for i in range(n)]
+    vertices = array("f")
+    for x in axis:  # vertex i * n + j at (axis[i], axis[j])
+        for y in axis:
+            vertices.extend((x, y, 0.1 * math.sin(6 * x) * math.cos(6 * y)))
+    face = struct.Struct("<Biii")
+    faces = []
+    for i in range(n - 1):
+        for j in range(n - 1):
+            v = i * n + j
+            faces.append(face.pack(3, v, v + n, v + n + 1))
+            faces.append(face.pack(3, v, v + n + 1, v + 1))
+    with open(f"{sys.argv[1]}/{name}.ply", "wb") as f:
+        f.write((f"ply\nformat binary_little_endian 1.0\nelement vertex {n * n}\n"
+                 "property float x\nproperty float y\nproperty float z\n"
+                 f"element face {len(faces)}\nproperty list uchar int vertex_indices\n"
+                 "end_header\n").encode())
+        f.write(vertices.tobytes())
+        f.write(b"".join(faces))
+PY
+
+filter() {
+  printf ' <filter name="Discrete Curvatures">\n  <Param type="RichEnum" value="%s" name="CurvatureType" enum_val0="Mean Curvature" enum_val1="Gaussian Curvature" enum_val2="RMS Curvature" enum_val3="ABS Curvature" enum_cardinality="4" description="Type:" tooltip=""/>\n </filter>\n' "$1"
+}
+{ echo '<!DOCTYPE FilterScript><FilterScript>'; filter 1; echo '</FilterScript>'; } >"$work/gaussian.mlx"
+{ echo '<!DOCTYPE FilterScript><FilterScript>'; filter 1; filter 0; echo '</FilterScript>'; } >"$work/gaussian_mean.mlx"
+
+if [ -z "${DISPLAY:-}" ]; then
+  Xvfb :99 -nolisten tcp >/dev/null 2>&1 &
+  xvfb_pid=$!
+  export DISPLAY=:99
+  sleep 2
+fi
+
+# Appends "wall cpu" of one run of the command to the file $1.
+timed() {
+  local out=$1
+  shift
+  /usr/bin/time -f "%e %U %S" -o "$work/time" "$@" >/dev/null 2>&1
+  awk '{ printf "%s %.3f\n", $1, $2 + $3 }' "$work/time" >>"$out"
+}
+
+for size in 55k 1M; do
+  script=$work/gaussian_mean.mlx
+  [ "$size" = 1M ] && script=$work/gaussian.mlx
+  for ((round = 0; round < pairs; ++round)); do
+    timed "$work/$size.a" "$a" analyze --up z "$work/$size.ply"
+    [ -n "$b" ] && timed "$work/$size.b" "$b" analyze --up z "$work/$size.ply"
+    timed "$work/$size.meshlab" meshlabserver -i "$work/$size.ply" -s "$script"
+  done
+done
+
+python3 - "$work" "$pairs" "${b:+b}" <<'PY'
+import sys, statistics as st
+work, pairs, has_b = sys.argv[1], int(sys.argv[2]), sys.argv[3] == "b"
+def runs(name):
+    return [tuple(map(float, l.split())) for l in open(f"{work}/{name}")]
+print(f"{pairs} rounds, medians; wall and CPU (user + system) in seconds")
+print("| mesh | program | wall | CPU | ratio wall (range) | ratio CPU (range) |")
+print("|---|---|---:|---:|---:|---:|")
+for size, meshlab_name in (("55k", "Gaussian + mean"), ("1M", "Gaussian")):
+    a, m = runs(f"{size}.a"), runs(f"{size}.meshlab")
+    rows = [("toonwater A", a)] + ([("toonwater B", runs(f"{size}.b"))] if has_b else [])
+    print(f"| {size} | MeshLab {meshlab_name} | {st.median(r[0] for r in m):.3f} | {st.median(r[1] for r in m):.3f} | | |")
+    for name, t in rows:
+        rw = [x[0] / y[0] for x, y in zip(t, m)]
+        rc = [x[1] / y[1] for x, y in zip(t, m)]
+        print(f"| {size} | {name} | {st.median(r[0] for r in t):.3f} | {st.median(r[1] for r in t):.3f} | "
+              f"{st.median(rw):.3f} ({min(rw):.3f}–{max(rw):.3f}) vs MeshLab | {st.median(rc):.3f} ({min(rc):.3f}–{max(rc):.3f}) vs MeshLab |")
+    if has_b:
+        b = runs(f"{size}.b")
+        rw = [x[0] / y[0] for x, y in zip(a, b)]
+        rc = [x[1] / y[1] for x, y in zip(a, b)]
+        print(f"| {size} | A / B | | | {st.median(rw):.3f} ({min(rw):.3f}–{max(rw):.3f}) | {st.median(rc):.3f} ({min(rc):.3f}–{max(rc):.3f}) |")
+PY
