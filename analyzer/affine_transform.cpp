@@ -37,8 +37,8 @@ AffineTransform validated(const AffineTransform& transform) {
   const double det = normalised_determinant(transform.linear);
   if (!(std::abs(det) > singular_ratio)) {
     std::ostringstream message;
-    message << "transform: the linear part is singular (its rows' normalised determinant is "
-            << det << "): it would flatten the mesh";
+    message << "transform: the linear part is singular (its rows' normalised determinant is " << det
+            << "): it would flatten the mesh";
     throw std::invalid_argument(message.str());
   }
   return transform;

@@ -33,8 +33,7 @@ Analysis analyze_mesh(TriangleMesh input, const AnalyzeOptions& options) {
 
   start = Clock::now();
   if (options.flow_regions) {
-    a.flow = find_flow_regions(a.surface, a.topology, a.curvature, options.flow,
-                               options.coherence);
+    a.flow = find_flow_regions(a.surface, a.topology, a.curvature, options.flow, options.coherence);
   } else {
     a.flow.label.assign(a.surface.positions.size(), FlowLabel::none);
     a.flow.field.assign(a.surface.positions.size(), 0.0);

@@ -22,7 +22,7 @@ struct AnalyzeOptions {
   FlowOptions flow;
   bool flow_regions = true;  // false: curvature only, all labels 0
   Estimator estimator = Estimator::one_ring;
-  int smoothing_steps = 0;  // curvature_smoothing.hpp; 0: none
+  int smoothing_steps = 0;             // curvature_smoothing.hpp; 0: none
   FlowCoherence* coherence = nullptr;  // a sequence's carried flow state (flow_coherence.hpp)
 };
 

@@ -101,7 +101,8 @@ std::vector<AnalysisSetting> make_settings() {
       {"mean", static_cast<int>(FlowCriterion::mean)},
       {"paper", static_cast<int>(FlowCriterion::paper)}};
   const std::vector<std::pair<std::string, int>> estimators{
-      {"one-ring", static_cast<int>(Estimator::one_ring)}, {"jet", static_cast<int>(Estimator::jet)}};
+      {"one-ring", static_cast<int>(Estimator::one_ring)},
+      {"jet", static_cast<int>(Estimator::jet)}};
   const auto word_of = [](const std::vector<std::pair<std::string, int>>& words, auto value) {
     for (const auto& [word, v] : words)
       if (v == static_cast<int>(value)) return word;
@@ -113,31 +114,63 @@ std::vector<AnalysisSetting> make_settings() {
        word_of(criteria, defaults.criterion),
        "flow regions on the mean curvature H (crests and troughs, round ones included) or the "
        "paper's |K| with the sign of H"},
-      {"k-threshold", "k_threshold", &S::k_threshold, positive, largest, {}, "scene-relative",
+      {"k-threshold",
+       "k_threshold",
+       &S::k_threshold,
+       positive,
+       largest,
+       {},
+       "scene-relative",
        "absolute threshold T: on H (1/length) with mean, on |K| (1/length²) with paper; "
        "overrides the relative one"},
-      {"k-threshold-relative", "k_threshold_relative", &S::k_threshold_relative, positive, largest,
-       {}, by_criterion([](const FlowDefaults& d) { return show_number(d.threshold_relative); }),
+      {"k-threshold-relative",
+       "k_threshold_relative",
+       &S::k_threshold_relative,
+       positive,
+       largest,
+       {},
+       by_criterion([](const FlowDefaults& d) { return show_number(d.threshold_relative); }),
        "relative threshold: c in T = c/L (mean) or c/L² (paper), L the square root of the free "
        "surface's area"},
-      {"flow-smooth", "smoothing", &S::flow_smoothing, 0, most_steps, {},
+      {"flow-smooth",
+       "smoothing",
+       &S::flow_smoothing,
+       0,
+       most_steps,
+       {},
        by_criterion([](const FlowDefaults& d) {
          return std::to_string(smoothing_steps_for_radius(d.smoothing_radius));
        }),
        "smoothing steps of the flow field over the free surface"},
-      {"min-region", "min_region", &S::min_region, 0, largest, {},
+      {"min-region",
+       "min_region",
+       &S::min_region,
+       0,
+       largest,
+       {},
        by_criterion([](const FlowDefaults& d) {
          return d.min_region_relative > 0 ? show_number(d.min_region_relative) + " L²"
                                           : std::string("0");
        }),
        "smallest flow region drawn, in scene units²; smaller ones fade out"},
-      {"rest-height", "rest_height", &S::rest_height, -largest, largest, {},
-       "median height of the free surface", "water rest level along the up axis"},
+      {"rest-height",
+       "rest_height",
+       &S::rest_height,
+       -largest,
+       largest,
+       {},
+       "median height of the free surface",
+       "water rest level along the up axis"},
       {"estimator", "estimator", &S::estimator, 0, 0, estimators,
        word_of(estimators, defaults.estimator),
        "curvature estimator: one-ring (the paper's operators, fastest) or jet (cubic fits over "
        "the two-ring: accurate on irregular and noisy meshes, slower)"},
-      {"smooth", "curvature_smoothing", &S::curvature_smoothing, 0, most_steps, {},
+      {"smooth",
+       "curvature_smoothing",
+       &S::curvature_smoothing,
+       0,
+       most_steps,
+       {},
        std::to_string(defaults.curvature_smoothing),
        "steps of area-weighted smoothing of K and H over the one-ring"},
   };

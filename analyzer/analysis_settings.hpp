@@ -41,17 +41,16 @@ AnalyzeOptions analyze_options(const AnalysisSettings& settings, Axis up);
 
 // Where a setting's value is kept; its type says how the value is given: a word (an enum), a
 // number (double) or a whole number (int).
-using SettingMember =
-    std::variant<FlowCriterion AnalysisSettings::*, Estimator AnalysisSettings::*,
-                 std::optional<double> AnalysisSettings::*, std::optional<int> AnalysisSettings::*,
-                 int AnalysisSettings::*>;
+using SettingMember = std::variant<FlowCriterion AnalysisSettings::*, Estimator AnalysisSettings::*,
+                                   std::optional<double> AnalysisSettings::*,
+                                   std::optional<int> AnalysisSettings::*, int AnalysisSettings::*>;
 
 struct AnalysisSetting {
   std::string option;  // "flow-smooth": `toonwater analyze --flow-smooth`
   std::string key;     // "smoothing": scene.toml's flow.smoothing
   SettingMember member;
-  double lo = 0.0, hi = 0.0;                        // a number's range, ends included
-  std::vector<std::pair<std::string, int>> words;   // a word's choices and their enum values
+  double lo = 0.0, hi = 0.0;                       // a number's range, ends included
+  std::vector<std::pair<std::string, int>> words;  // a word's choices and their enum values
   std::string default_value;  // as shown: "mean", "0", "2 (mean), 0 (paper)", or what decides it
   std::string help;           // one line, lower case
 

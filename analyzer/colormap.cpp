@@ -10,9 +10,17 @@ namespace toonwater {
 namespace {
 
 constexpr std::array<Rgb8, 11> blue_white_red{{
-    {5, 48, 97},     {33, 102, 172}, {67, 147, 195}, {146, 197, 222},
-    {209, 229, 240}, {247, 247, 247}, {253, 219, 199}, {244, 165, 130},
-    {214, 96, 77},   {178, 24, 43},  {103, 0, 31},
+    {5, 48, 97},
+    {33, 102, 172},
+    {67, 147, 195},
+    {146, 197, 222},
+    {209, 229, 240},
+    {247, 247, 247},
+    {253, 219, 199},
+    {244, 165, 130},
+    {214, 96, 77},
+    {178, 24, 43},
+    {103, 0, 31},
 }};
 
 // The map sampled at t = −1 + k/1024: previews colour a million pixels per image, and a step
@@ -22,8 +30,10 @@ constexpr int steps_per_unit = 1024;
 std::array<Rgb8, 2 * steps_per_unit + 1> sample_diverging_map() {
   std::array<Rgb8, 2 * steps_per_unit + 1> table;
   for (std::size_t k = 0; k < table.size(); ++k) {
-    const double position = static_cast<double>(k) / (table.size() - 1) * (blue_white_red.size() - 1);
-    const std::size_t lower = std::min(static_cast<std::size_t>(position), blue_white_red.size() - 2);
+    const double position =
+        static_cast<double>(k) / (table.size() - 1) * (blue_white_red.size() - 1);
+    const std::size_t lower =
+        std::min(static_cast<std::size_t>(position), blue_white_red.size() - 2);
     const double s = position - static_cast<double>(lower);
     for (int c = 0; c < 3; ++c) {
       const double value = (1.0 - s) * blue_white_red[lower][c] + s * blue_white_red[lower + 1][c];

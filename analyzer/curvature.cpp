@@ -185,7 +185,8 @@ template <class Lanes>
                           edge[2][0] * edge[0][1] - edge[2][1] * edge[0][0]};
   const Lanes double_area = square_root(dot3(cross, cross));
   // At corner i, u = edge[i] and v = −edge[i + 2].
-  const Lanes corner_dot[3] = {-dot3(edge[0], edge[2]), -dot3(edge[1], edge[0]), -dot3(edge[2], edge[1])};
+  const Lanes corner_dot[3] = {-dot3(edge[0], edge[2]), -dot3(edge[1], edge[0]),
+                               -dot3(edge[2], edge[1])};
   const Lanes longest2 = maximum(maximum(length2[0], length2[1]), length2[2]);
   const Lanes inverse_area = 1.0 / double_area;
   const Lanes smallest_dot = minimum(minimum(corner_dot[0], corner_dot[1]), corner_dot[2]);
@@ -201,7 +202,8 @@ template <class Lanes>
     // by that at next.
     Lanes ring[4];
     for (int axis = 0; axis < 3; ++axis)
-      ring[axis] = select(shapeless, Lanes{}, cot[next] * edge[last][axis] - cot[last] * edge[c][axis]);
+      ring[axis] =
+          select(shapeless, Lanes{}, cot[next] * edge[last][axis] - cot[last] * edge[c][axis]);
     ring[3] = select(shapeless, splat<Lanes>(std::numeric_limits<double>::quiet_NaN()), angle);
     store_records(block.ring[c] + i, ring);
     Lanes normal[3];
@@ -230,7 +232,8 @@ template <class Lanes>
   const std::size_t padded = (count + lanes - 1) / lanes * lanes;
   for (std::size_t i = count; i < padded; ++i)
     for (int corner = 0; corner < 3; ++corner)
-      for (int axis = 0; axis < 3; ++axis) block.position[corner][axis][i] = block.position[corner][axis][0];
+      for (int axis = 0; axis < 3; ++axis)
+        block.position[corner][axis][i] = block.position[corner][axis][0];
   for (std::size_t i = 0; i < padded; i += lanes) compute_face_lanes<Lanes>(block, i);
 }
 
@@ -292,7 +295,8 @@ static_assert(largest_turn_counted_valence * 1e-5 < std::numbers::pi);
 [[gnu::always_inline]] inline void add_corner(const FaceBlock& block, std::size_t i, int corner,
                                               RingSums& ring, TurnProduct& turn, Vec3& normal,
                                               double& area) {
-  store_lanes(ring.value, load_lanes<Lanes4>(ring.value) + load_lanes<Lanes4>(block.ring[corner][i]));
+  store_lanes(ring.value,
+              load_lanes<Lanes4>(ring.value) + load_lanes<Lanes4>(block.ring[corner][i]));
   const double* normal_area = block.normal_area[corner][i];
   normal += Vec3(normal_area[0], normal_area[1], normal_area[2]);
   area += normal_area[3];
@@ -325,8 +329,8 @@ int corner_of(const Triangle& t, std::int32_t v) { return t[0] == v ? 0 : t[1] =
 // extrapolate_from_neighbours another chunk may read it meanwhile.
 void set_undefined(CurvatureField& field, std::size_t v) {
   set_curvature(field, v, 0.0, 0.0);
-  std::atomic_ref<CurvatureStatus>(field.status[v]).store(CurvatureStatus::undefined,
-                                                          std::memory_order_relaxed);
+  std::atomic_ref<CurvatureStatus>(field.status[v])
+      .store(CurvatureStatus::undefined, std::memory_order_relaxed);
 }
 
 struct GatherInput {
@@ -339,8 +343,8 @@ struct GatherInput {
   // The vertices whose faces lie in more than one chunk of the face pass, in ascending order
   // and once each (empty in the face pass itself, which finds them).
   std::span<const std::int32_t> spanning;
-  RingSums* rings;       // per vertex
-  TurnProduct* turns;    // per vertex
+  RingSums* rings;     // per vertex
+  TurnProduct* turns;  // per vertex
 };
 
 struct GatherCounts {
@@ -351,7 +355,8 @@ struct GatherCounts {
 // A chunk's list of the corners of its faces whose first face lies in an earlier chunk (a
 // corner once for each such face). Out of line: a vertex on a chunk's border is rare, and the
 // push inlined into the face pass cost it registers.
-[[gnu::noinline, gnu::cold]] void list_spanning(std::vector<std::int32_t>& spanning, std::int32_t v) {
+[[gnu::noinline, gnu::cold]] void list_spanning(std::vector<std::int32_t>& spanning,
+                                                std::int32_t v) {
   spanning.push_back(v);
 }
 
@@ -404,8 +409,7 @@ template <class Lanes>
           list_spanning(spanning, v);
           continue;
         }
-        if (first == f)
-          start_ring(in.rings[v], in.turns[v], field.normal[v], field.area[v]);
+        if (first == f) start_ring(in.rings[v], in.turns[v], field.normal[v], field.area[v]);
         add_corner(block, i, corner, in.rings[v], in.turns[v], field.normal[v], field.area[v]);
       }
     }
@@ -441,7 +445,8 @@ template <class Lanes>
   const VertexFaces& vf = in.topology.vertex_faces;
   const double scale = in.scale, scale2 = scale * scale;
   FaceBlock block;
-  for (auto it = std::lower_bound(in.spanning.begin(), in.spanning.end(), static_cast<std::int32_t>(begin));
+  for (auto it = std::lower_bound(in.spanning.begin(), in.spanning.end(),
+                                  static_cast<std::int32_t>(begin));
        it != in.spanning.end() && static_cast<std::size_t>(*it) < end; ++it)
     sum_row<Lanes>(in, *it, block, field);
   for (std::size_t v = begin; v < end; ++v) {
@@ -487,7 +492,8 @@ template <class Lanes>
     // be exact under scaling), the turns those that bring it nearest Σθ̃.
     const double normaliser = power_of_two_below(std::max(std::abs(turn.re), std::abs(turn.im)));
     const double argument = turn_argument(turn.re * normaliser, turn.im * normaliser);
-    const double turns = std::nearbyint((approximate_angle_sum - argument) / (2.0 * std::numbers::pi));
+    const double turns =
+        std::nearbyint((approximate_angle_sum - argument) / (2.0 * std::numbers::pi));
     const double angle_deficit = -(argument + 2.0 * std::numbers::pi * (turns - 1.0));
     // In scaled units, then back: K ∝ 1/s², H ∝ 1/s.
     const double gaussian = angle_deficit / ring_area * scale2;
@@ -655,7 +661,8 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
       std::vector<std::int32_t> spanning;  // moved once: the chunks' vectors share a cache line
       auto sum_chunk = [&] {
 #ifdef TOONWATER_CURVATURE_AVX2_FMA
-        if (use_avx2_fma) return sum_faces_avx2_fma(input, begin, end, field, counts[worker], spanning);
+        if (use_avx2_fma)
+          return sum_faces_avx2_fma(input, begin, end, field, counts[worker], spanning);
 #endif
         sum_faces_portable(input, begin, end, field, counts[worker], spanning);
       };
@@ -663,7 +670,8 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
       chunk_spanning[worker] = std::move(spanning);
     });
     std::vector<std::int32_t> spanning;
-    for (const auto& listed : chunk_spanning) spanning.insert(spanning.end(), listed.begin(), listed.end());
+    for (const auto& listed : chunk_spanning)
+      spanning.insert(spanning.end(), listed.begin(), listed.end());
     std::sort(spanning.begin(), spanning.end());
     spanning.erase(std::unique(spanning.begin(), spanning.end()), spanning.end());
     input.spanning = spanning;

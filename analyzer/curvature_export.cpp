@@ -23,12 +23,13 @@ namespace {
 void check_consistent(const Analysis& analysis) {
   const std::size_t rows = analysis.surface.positions.size();
   const CurvatureField& c = analysis.curvature;
-  const bool consistent = std::all_of(analysis.input_to_surface.begin(),
-                                      analysis.input_to_surface.end(),
-                                      [rows](std::int32_t s) { return s >= 0 && static_cast<std::size_t>(s) < rows; }) &&
-                          c.gaussian.size() == rows && c.mean.size() == rows &&
-                          c.k1.size() == rows && c.k2.size() == rows && c.area.size() == rows &&
-                          analysis.flow.label.size() == rows && analysis.flow.field.size() == rows;
+  const bool consistent =
+      std::all_of(
+          analysis.input_to_surface.begin(), analysis.input_to_surface.end(),
+          [rows](std::int32_t s) { return s >= 0 && static_cast<std::size_t>(s) < rows; }) &&
+      c.gaussian.size() == rows && c.mean.size() == rows && c.k1.size() == rows &&
+      c.k2.size() == rows && c.area.size() == rows && analysis.flow.label.size() == rows &&
+      analysis.flow.field.size() == rows;
   if (!consistent)
     throw std::invalid_argument("curvature export: the analysis does not belong to the mesh");
 }
@@ -46,8 +47,8 @@ void append_csv_rows(const Analysis& analysis, std::size_t begin, std::size_t en
   for (std::size_t v = begin; v < end; ++v) {
     const std::size_t s = analysis.input_to_surface[v];
     const Vec3& p = analysis.surface.positions[s];
-    const double values[8] = {p.x(), p.y(), p.z(), c.gaussian[s], c.mean[s], c.k1[s],
-                              c.k2[s], c.area[s]};
+    const double values[8] = {p.x(),     p.y(),   p.z(),   c.gaussian[s],
+                              c.mean[s], c.k1[s], c.k2[s], c.area[s]};
     char* out = row;
     for (const double value : values) {
       out = std::to_chars(out, row + max_csv_row_bytes, finite_or_zero(value)).ptr;
@@ -114,11 +115,15 @@ void write_curvature_ply(const std::filesystem::path& path,
       "format binary_little_endian 1.0\n"
       "comment toonwater curvature per vertex; label: 1 ridge, -1 valley, 0 none; flow: the "
       "signed flow field, regions where |flow| >= 1\n"
-      "element vertex " + std::to_string(n) + "\n"
+      "element vertex " +
+      std::to_string(n) +
+      "\n"
       "property float x\nproperty float y\nproperty float z\n"
       "property float gaussian\nproperty float mean\nproperty float k1\nproperty float k2\n"
       "property float area\nproperty float label\nproperty float flow\n"
-      "element face " + std::to_string(input_triangles.size()) + "\n"
+      "element face " +
+      std::to_string(input_triangles.size()) +
+      "\n"
       "property list uchar int vertex_indices\n"
       "end_header\n");
   constexpr std::size_t vertex_bytes = 10 * 4;
@@ -132,8 +137,15 @@ void write_curvature_ply(const std::filesystem::path& path,
     for (std::size_t v = first; v < first + block.size() / vertex_bytes; ++v) {
       const std::size_t s = analysis.input_to_surface[v];
       const Vec3& p = analysis.surface.positions[s];
-      const double values[10] = {p.x(), p.y(), p.z(), c.gaussian[s], c.mean[s], c.k1[s],
-                                 c.k2[s], c.area[s], static_cast<double>(analysis.flow.label[s]),
+      const double values[10] = {p.x(),
+                                 p.y(),
+                                 p.z(),
+                                 c.gaussian[s],
+                                 c.mean[s],
+                                 c.k1[s],
+                                 c.k2[s],
+                                 c.area[s],
+                                 static_cast<double>(analysis.flow.label[s]),
                                  analysis.flow.field[s]};
       for (const double value : values) out = put_little_endian(out, ply_float(value));
     }

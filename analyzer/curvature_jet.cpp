@@ -84,7 +84,8 @@ std::optional<SurfaceCurvature> fit_jet(const TriangleMesh& mesh, std::int32_t v
   if (points < quadric_min_points) return std::nullopt;
   const Vec3& p = mesh.positions[v];
   double radius = 0.0;
-  for (std::int32_t w : ring) radius = std::max(radius, (mesh.positions[w] - p).cwiseAbs().maxCoeff());
+  for (std::int32_t w : ring)
+    radius = std::max(radius, (mesh.positions[w] - p).cwiseAbs().maxCoeff());
   if (!(radius > 0.0) || !std::isfinite(radius)) return std::nullopt;
 
   // Tangent axes: the coordinate axis least aligned with n, made orthogonal to it.
@@ -120,9 +121,8 @@ std::optional<SurfaceCurvature> fit_jet(const TriangleMesh& mesh, std::int32_t v
   const double w2 = 1.0 + wu * wu + wv * wv;
   // Divided by ρ one factor at a time, so a tiny ρ does not underflow ρ².
   const double gaussian = (wuu * wvv - wuv * wuv) / (w2 * w2) / radius / radius;
-  const double mean =
-      -((1.0 + wv * wv) * wuu - 2.0 * wu * wv * wuv + (1.0 + wu * wu) * wvv) /
-      (2.0 * w2 * std::sqrt(w2)) / radius;
+  const double mean = -((1.0 + wv * wv) * wuu - 2.0 * wu * wv * wuv + (1.0 + wu * wu) * wvv) /
+                      (2.0 * w2 * std::sqrt(w2)) / radius;
   if (!std::isfinite(gaussian) || !std::isfinite(mean)) return std::nullopt;
   return SurfaceCurvature{gaussian, mean};
 }

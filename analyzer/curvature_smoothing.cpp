@@ -32,22 +32,24 @@ template <class Value>
 struct SmoothingArrays {
   const Triangle* triangles;
   const double* weight;
-  const Value* term;    // the values the faces read, weighted
-  Value* term_sum;      // Σ over v's faces of their corners' terms
-  double* weight_sum;   // Σ over v's faces of their corners' weights: the same every step
+  const Value* term;   // the values the faces read, weighted
+  Value* term_sum;     // Σ over v's faces of their corners' terms
+  double* weight_sum;  // Σ over v's faces of their corners' weights: the same every step
 };
 
 template <class Value>
 Value zero() {
-  if constexpr (std::is_same_v<Value, Vec3>) return Vec3::Zero();
-  else return 0.0;
+  if constexpr (std::is_same_v<Value, Vec3>)
+    return Vec3::Zero();
+  else
+    return 0.0;
 }
 
 // One face's corners' terms (and, in the first step, weights) added to those of its corners in
 // [low, low + size); the others are listed in `shared` (first step) or left to the gather.
 template <bool with_weights, class Value>
-void add_faces(const SmoothingArrays<Value>& a, std::size_t begin, std::size_t end, std::int32_t low,
-               std::uint32_t size, std::span<std::uint8_t> is_shared,
+void add_faces(const SmoothingArrays<Value>& a, std::size_t begin, std::size_t end,
+               std::int32_t low, std::uint32_t size, std::span<std::uint8_t> is_shared,
                std::vector<std::int32_t>& shared) {
   for (std::size_t f = begin; f < end; ++f) {
     const Triangle& t = a.triangles[f];
@@ -84,7 +86,8 @@ void smooth_values(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
   parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       weight[v] = member[v] ? vertex_area[v] : 0.0;
-      term[v] = member[v] ? Value(vertex_area[v] * values[v]) : zero<Value>();  // not 0 · value: it may be inf
+      term[v] = member[v] ? Value(vertex_area[v] * values[v])
+                          : zero<Value>();  // not 0 · value: it may be inf
       term_sum[v] = zero<Value>();
       weight_sum[v] = 0.0;
     }
@@ -96,31 +99,35 @@ void smooth_values(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
   std::vector<std::uint8_t> is_shared(n, 0);
   std::vector<std::vector<std::int32_t>> chunk_shared(face_chunks);
   for (int step = 0; step < steps; ++step) {
-    parallel_chunks(face_count, face_chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-      const std::int32_t low = range_begin[chunk];
-      const auto size = static_cast<std::uint32_t>(range_begin[chunk + 1] - low);
-      if (step == 0)
-        add_faces<true>(a, begin, end, low, size, is_shared, chunk_shared[chunk]);
-      else
-        add_faces<false>(a, begin, end, low, size, is_shared, chunk_shared[chunk]);
-    });
+    parallel_chunks(face_count, face_chunks,
+                    [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+                      const std::int32_t low = range_begin[chunk];
+                      const auto size = static_cast<std::uint32_t>(range_begin[chunk + 1] - low);
+                      if (step == 0)
+                        add_faces<true>(a, begin, end, low, size, is_shared, chunk_shared[chunk]);
+                      else
+                        add_faces<false>(a, begin, end, low, size, is_shared, chunk_shared[chunk]);
+                    });
     if (step == 0)
       for (std::size_t chunk = 1; chunk < face_chunks; ++chunk)
-        chunk_shared[0].insert(chunk_shared[0].end(), chunk_shared[chunk].begin(), chunk_shared[chunk].end());
+        chunk_shared[0].insert(chunk_shared[0].end(), chunk_shared[chunk].begin(),
+                               chunk_shared[chunk].end());
     const std::vector<std::int32_t>& shared = chunk_shared[0];
-    parallel_chunks(shared.size(), chunk_count(shared.size()), [&](std::size_t, std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i) {
-        Value term_total = zero<Value>();
-        double weight_total = 0.0;
-        for (const std::int32_t f : vertex_faces.of(shared[i])) {
-          const Triangle& t = mesh.triangles[f];
-          term_total += a.term[t[0]] + a.term[t[1]] + a.term[t[2]];
-          if (step == 0) weight_total += a.weight[t[0]] + a.weight[t[1]] + a.weight[t[2]];
-        }
-        term_sum[shared[i]] = term_total;
-        if (step == 0) weight_sum[shared[i]] = weight_total;
-      }
-    });
+    parallel_chunks(shared.size(), chunk_count(shared.size()),
+                    [&](std::size_t, std::size_t begin, std::size_t end) {
+                      for (std::size_t i = begin; i < end; ++i) {
+                        Value term_total = zero<Value>();
+                        double weight_total = 0.0;
+                        for (const std::int32_t f : vertex_faces.of(shared[i])) {
+                          const Triangle& t = mesh.triangles[f];
+                          term_total += a.term[t[0]] + a.term[t[1]] + a.term[t[2]];
+                          if (step == 0)
+                            weight_total += a.weight[t[0]] + a.weight[t[1]] + a.weight[t[2]];
+                        }
+                        term_sum[shared[i]] = term_total;
+                        if (step == 0) weight_sum[shared[i]] = weight_total;
+                      }
+                    });
     const bool last = step + 1 == steps;
     parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
@@ -156,8 +163,7 @@ void smooth_curvature(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
   smooth_vertex_field(mesh, vertex_faces, field.area, defined, field.gaussian, steps);
   smooth_vertex_field(mesh, vertex_faces, field.area, defined, field.mean, steps);
   for (std::size_t v = 0; v < n; ++v) {
-    const double root =
-        std::sqrt(std::max(field.mean[v] * field.mean[v] - field.gaussian[v], 0.0));
+    const double root = std::sqrt(std::max(field.mean[v] * field.mean[v] - field.gaussian[v], 0.0));
     field.k1[v] = field.mean[v] + root;
     field.k2[v] = field.mean[v] - root;
   }

@@ -100,7 +100,8 @@ void join_in_parallel(DisjointSets& sets, std::size_t face_count,
     // Each end tested against the range by one unsigned comparison: four signed ones, branch by
     // branch, made the pass 1.5 times as long (single-threaded, bench_analyzer's wave fields).
     auto join = [&](std::int32_t a, std::int32_t b) {
-      if (static_cast<std::uint32_t>(a - low) < size && static_cast<std::uint32_t>(b - low) < size) [[likely]]
+      if (static_cast<std::uint32_t>(a - low) < size && static_cast<std::uint32_t>(b - low) < size)
+          [[likely]]
         sets.join(a, b);
       else
         set_aside(later, a, b);

@@ -16,7 +16,8 @@ EdgeSample::EdgeSample(std::size_t face_count, std::size_t max_samples)
 double median_length(std::vector<double>& squared_lengths) {
   if (squared_lengths.empty()) return 0.0;
   // The square root of the middle square, as Eigen's norm() takes it.
-  const auto middle = squared_lengths.begin() + static_cast<std::ptrdiff_t>(squared_lengths.size() / 2);
+  const auto middle =
+      squared_lengths.begin() + static_cast<std::ptrdiff_t>(squared_lengths.size() / 2);
   std::nth_element(squared_lengths.begin(), middle, squared_lengths.end());
   return std::sqrt(*middle);
 }
@@ -27,17 +28,19 @@ double median_edge_length(std::span<const Vec3> positions, std::span<const Trian
   // The sampled edges' lengths chunk by chunk (each a cache miss or two), then joined in order.
   const std::size_t workers = chunk_count(sample.count(), 4096);
   std::vector<std::vector<double>> chunk_lengths(workers);
-  parallel_chunks(sample.count(), workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    // Filled in a local and moved once: the chunks' vectors share a cache line, which every
-    // push_back would otherwise write.
-    std::vector<double> lengths;
-    lengths.reserve(end - begin);
-    for (std::size_t i = begin; i < end; ++i) {
-      const double squared_length = EdgeSample::squared_length(positions, triangles, i * sample.stride());
-      if (EdgeSample::counts(squared_length)) lengths.push_back(squared_length);
-    }
-    chunk_lengths[chunk] = std::move(lengths);
-  });
+  parallel_chunks(sample.count(), workers,
+                  [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+                    // Filled in a local and moved once: the chunks' vectors share a cache line,
+                    // which every push_back would otherwise write.
+                    std::vector<double> lengths;
+                    lengths.reserve(end - begin);
+                    for (std::size_t i = begin; i < end; ++i) {
+                      const double squared_length =
+                          EdgeSample::squared_length(positions, triangles, i * sample.stride());
+                      if (EdgeSample::counts(squared_length)) lengths.push_back(squared_length);
+                    }
+                    chunk_lengths[chunk] = std::move(lengths);
+                  });
   std::vector<double> lengths = std::move(chunk_lengths[0]);
   for (std::size_t w = 1; w < workers; ++w)
     lengths.insert(lengths.end(), chunk_lengths[w].begin(), chunk_lengths[w].end());

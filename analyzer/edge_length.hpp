@@ -26,7 +26,9 @@ class EdgeSample {
   std::size_t count() const { return (3 * face_count_ + stride_ - 1) / stride_; }
   std::size_t stride() const { return stride_; }
   // The first sampled edge of the faces from `face` on.
-  std::size_t first_from(std::size_t face) const { return (3 * face + stride_ - 1) / stride_ * stride_; }
+  std::size_t first_from(std::size_t face) const {
+    return (3 * face + stride_ - 1) / stride_ * stride_;
+  }
   // The squared length of edge e; zero or not finite ones are not counted. The median is taken
   // among the squares, which order as the lengths do, and one square root taken of it.
   static double squared_length(std::span<const Vec3> positions, std::span<const Triangle> triangles,

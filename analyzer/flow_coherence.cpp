@@ -24,7 +24,8 @@ FlowFrame flow_frame(const TriangleMesh& surface, const CurvatureField&, const F
 
 double label_flicker(const FlowFrame& previous, const TriangleMesh& surface,
                      const CurvatureField& curvature, const FlowRegions& flow) {
-  const PointGrid grid(previous.positions, CoherenceOptions{}.max_distance * flow.median_edge_length);
+  const PointGrid grid(previous.positions,
+                       CoherenceOptions{}.max_distance * flow.median_edge_length);
   double changed = 0.0, total = 0.0;
   for (std::size_t v = 0; v < surface.positions.size(); ++v) {
     if (flow.free_surface.empty() || !flow.free_surface[v]) continue;
@@ -52,7 +53,8 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
   std::vector<std::size_t> chunk_begin(workers + 1, 0);
   for (std::size_t chunk = 0; chunk < workers && any_surface; ++chunk) {
     std::size_t count = 0;
-    for (std::size_t v = n * chunk / workers; v < n * (chunk + 1) / workers; ++v) count += flow.free_surface[v];
+    for (std::size_t v = n * chunk / workers; v < n * (chunk + 1) / workers; ++v)
+      count += flow.free_surface[v];
     chunk_begin[chunk + 1] = chunk_begin[chunk] + count;
   }
   // The buffers of the frame before last are reused: no new pages each frame.
@@ -61,7 +63,8 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
   pending_.field.resize(chunk_begin.back());
   const bool normals = shading_normal.size() == n;
   pending_.shading_normal.resize(normals ? chunk_begin.back() : 0);
-  const bool normals_before = normals && previous_.shading_normal.size() == previous_.positions.size();
+  const bool normals_before =
+      normals && previous_.shading_normal.size() == previous_.positions.size();
   pending_.label.resize(chunk_begin.back());
   predecessor_.resize(n);
   // The pending frame's bounding box, chunk by chunk, from the positions as they are copied:
@@ -87,7 +90,8 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
     const double normal_blend = options_.normal_blend;
     const double normal_change_limit = options_.normal_noise_multiple * flow.normal_noise;
     std::size_t next = chunk_begin[chunk];
-    Box3 bounds = Box3::of_no_points();  // in a local: in the vector, each update would wait for a store
+    Box3 bounds =
+        Box3::of_no_points();  // in a local: in the vector, each update would wait for a store
     for (std::size_t v = begin; v < end; ++v) {
       predecessor[v] = -1;
       if (!on_surface[v]) continue;
@@ -130,7 +134,8 @@ void FlowCoherence::remember(const CurvatureField& curvature, const FlowRegions&
     // By plain pointers: after the labels' byte stores the compiler would load every vector's
     // address again.
     const std::uint8_t* const on_surface = flow.free_surface.data();
-    const std::int8_t *const label = flow.label.data(), *const label_before = previous_.label.data();
+    const std::int8_t *const label = flow.label.data(), *const label_before =
+                                                            previous_.label.data();
     const std::int32_t* const predecessor = predecessor_.data();
     const double* const area = curvature.area.data();
     std::int8_t* const next_label = pending_.label.data();

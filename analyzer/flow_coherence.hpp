@@ -45,8 +45,8 @@
 namespace toonwater {
 
 struct CoherenceOptions {
-  double blend = 0.8;       // weight of the carried-over (already blended) field: lag b/(1 − b) frames
-  double rise_blend = 0.5;  // the same where the field grows (same sign, larger magnitude)
+  double blend = 0.8;  // weight of the carried-over (already blended) field: lag b/(1 − b) frames
+  double rise_blend = 0.5;    // the same where the field grows (same sign, larger magnitude)
   double normal_blend = 0.5;  // the same for the shading normals, where they change by noise only
   double normal_noise_multiple = 3.0;  // z: a change of z noise floors is motion, not blended
   double max_distance = 2.0;  // in median edge lengths: farther vertices have no predecessor
@@ -55,7 +55,7 @@ struct CoherenceOptions {
 // A frame's free surface as the next frame needs it.
 struct FlowFrame {
   std::vector<Vec3> positions;
-  std::vector<double> field;  // s̃: blended, before the specks are faded
+  std::vector<double> field;         // s̃: blended, before the specks are faded
   std::vector<Vec3> shading_normal;  // blended
   std::vector<std::int8_t> label;
   double edge_length = 0.0;

@@ -30,8 +30,8 @@ Contour level_contour(const TriangleMesh& mesh, std::span<const double> field,
   const auto& s = field;
   auto inside = [&](std::int32_t v) { return level > 0 ? s[v] >= level : s[v] <= level; };
   auto crossing = [&](std::int32_t a, std::int32_t b) {
-    const auto [it, added] =
-        crossing_of_edge.try_emplace(edge_key(a, b), static_cast<std::int32_t>(contour.crossing.size()));
+    const auto [it, added] = crossing_of_edge.try_emplace(
+        edge_key(a, b), static_cast<std::int32_t>(contour.crossing.size()));
     if (added) {
       if (a > b) std::swap(a, b);  // the same point from both faces, bit for bit
       const double t = std::clamp((level - s[a]) / (s[b] - s[a]), 0.0, 1.0);
@@ -55,8 +55,10 @@ Contour level_contour(const TriangleMesh& mesh, std::span<const double> field,
     contour.segments.push_back(ends);
     for (std::int32_t e : ends) {
       auto& slots = contour.segment_of_crossing[e];
-      if (slots[0] < 0) slots[0] = index;
-      else if (slots[1] < 0) slots[1] = index;
+      if (slots[0] < 0)
+        slots[0] = index;
+      else if (slots[1] < 0)
+        slots[1] = index;
     }
   }
   return contour;
@@ -69,7 +71,8 @@ void set_taper(FlowLine& line, double taper_length) {
   line.taper.assign(n, 1.0);
   if (line.closed || n == 0) return;
   std::vector<double> along(n, 0.0);
-  for (std::size_t i = 1; i < n; ++i) along[i] = along[i - 1] + (line.points[i] - line.points[i - 1]).norm();
+  for (std::size_t i = 1; i < n; ++i)
+    along[i] = along[i - 1] + (line.points[i] - line.points[i - 1]).norm();
   const double total = along.back();
   const double ramp = std::min(taper_length, 0.5 * total);
   for (std::size_t i = 0; i < n; ++i) {
@@ -133,7 +136,8 @@ std::vector<FlowLine> trace_flow_lines(const TriangleMesh& mesh, std::span<const
   if (field.size() != mesh.positions.size() || free_surface.size() != mesh.positions.size())
     return lines;
   for (const std::int8_t sign : {std::int8_t{FlowLabel::ridge}, std::int8_t{FlowLabel::valley}})
-    chain(level_contour(mesh, field, free_surface, static_cast<double>(sign)), sign, taper_length, lines);
+    chain(level_contour(mesh, field, free_surface, static_cast<double>(sign)), sign, taper_length,
+          lines);
   return lines;
 }
 

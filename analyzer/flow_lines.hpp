@@ -26,7 +26,7 @@ struct FlowLine {
   std::int8_t sign = FlowLabel::ridge;  // ridge (+1) or valley (−1)
   bool closed = false;                  // the last point joins the first
   std::vector<Vec3> points;
-  std::vector<double> taper;            // per point, in [0, 1]: width factor (0 at an open end)
+  std::vector<double> taper;  // per point, in [0, 1]: width factor (0 at an open end)
 };
 
 // The width factor along an open line: rising linearly from 0 at each end over taper_length,

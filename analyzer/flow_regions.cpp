@@ -18,8 +18,8 @@
 
 namespace toonwater {
 
-// Chosen on real simulation output and analytic ripples (docs/analyzer.md, "Water-flow regions"). With
-// mean:
+// Chosen on real simulation output and analytic ripples (docs/analyzer.md, "Water-flow regions").
+// With mean:
 // - c = 2: a long crest is drawn where its radius of curvature 1/(2H) is below L/4 (the wake
 //   and bow wave of a Mantaflow basin; a ripple ring 0.5 % of the scene's size high and 15 %
 //   long on its crest and trough circles);
@@ -73,15 +73,13 @@ double fade_factor(double area, double peak, double min_area, double salience,
                    double salience_cut) {
   constexpr double just_below_one = 0.999;
   const double hidden = just_below_one / peak;
-  const double by_area =
-      min_area > 0.0 ? std::clamp((area - min_area) / min_area, 0.0, 1.0) : 1.0;
-  const double by_peak =
-      min_area > 0.0 ? std::clamp((peak - 1.0) / peak_ramp, 0.0, 1.0) : 1.0;
+  const double by_area = min_area > 0.0 ? std::clamp((area - min_area) / min_area, 0.0, 1.0) : 1.0;
+  const double by_peak = min_area > 0.0 ? std::clamp((peak - 1.0) / peak_ramp, 0.0, 1.0) : 1.0;
   // A cut of +inf (saliences beyond the doubles) leaves no region, as any larger one would.
-  const double by_salience =
-      !(salience_cut > 0.0)       ? 1.0
-      : std::isinf(salience_cut)  ? (std::isinf(salience) ? 1.0 : 0.0)
-                                  : std::clamp((salience - salience_cut) / salience_cut, 0.0, 1.0);
+  const double by_salience = !(salience_cut > 0.0) ? 1.0
+                             : std::isinf(salience_cut)
+                                 ? (std::isinf(salience) ? 1.0 : 0.0)
+                                 : std::clamp((salience - salience_cut) / salience_cut, 0.0, 1.0);
   return hidden + (1.0 - hidden) * std::min({by_area, by_peak, by_salience});
 }
 
@@ -229,7 +227,8 @@ std::vector<Vec3> shading_normals(const TriangleMesh& mesh, const VertexFaces& v
   const std::size_t n = mesh.positions.size();
   const int u = static_cast<int>(up);
   std::vector<std::uint8_t> defined(n);
-  for (std::size_t v = 0; v < n; ++v) defined[v] = curvature.status[v] != CurvatureStatus::undefined;
+  for (std::size_t v = 0; v < n; ++v)
+    defined[v] = curvature.status[v] != CurvatureStatus::undefined;
   std::vector<Vec3> normal = curvature.normal;
   smooth_vertex_field(mesh, vertex_faces, curvature.area, defined, normal, steps);
   const double gain =
@@ -284,19 +283,20 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topo
   std::vector<std::uint8_t> member = std::move(surface.inside);
   for (std::size_t v = 0; v < n; ++v)
     member[v] = member[v] && curvature.status[v] != CurvatureStatus::undefined;
-  const double surface_area = deterministic_sum(
-      n, [on_surface = flow.free_surface.data(), status = curvature.status.data(),
-          area = curvature.area.data()](std::size_t v) {
+  const double surface_area =
+      deterministic_sum(n, [on_surface = flow.free_surface.data(), status = curvature.status.data(),
+                            area = curvature.area.data()](std::size_t v) {
         return on_surface[v] && status[v] != CurvatureStatus::undefined ? area[v] : 0.0;
       });
   flow.scale_length = std::sqrt(surface_area);
   const double length = flow.scale_length;
   const FlowDefaults defaults = flow_defaults(options.criterion);
   const bool paper = options.criterion == FlowCriterion::paper;
-  flow.min_region_area = options.min_region_area.value_or(defaults.min_region_relative * surface_area);
+  flow.min_region_area =
+      options.min_region_area.value_or(defaults.min_region_relative * surface_area);
   flow.max_regions = defaults.max_regions;
-  const int steps = options.smoothing_steps.value_or(
-      smoothing_steps_for_radius(defaults.smoothing_radius));
+  const int steps =
+      options.smoothing_steps.value_or(smoothing_steps_for_radius(defaults.smoothing_radius));
 
   // The field's source, smoothed (step 1): H, or the paper's sign(H)·|K|.
   std::vector<double> field(n, 0.0);
@@ -304,8 +304,8 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topo
     if (!member[v]) continue;
     const double mean = curvature.mean[v];
     // Only H = 0 exactly (or −0) gives the paper's field the sign of zero: it is not a region.
-    const double value = paper ? (mean == 0.0 ? 0.0 : std::copysign(std::abs(curvature.gaussian[v]), mean))
-                               : mean;
+    const double value =
+        paper ? (mean == 0.0 ? 0.0 : std::copysign(std::abs(curvature.gaussian[v]), mean)) : mean;
     field[v] = std::isfinite(value) ? value : 0.0;
   }
   const std::vector<double> raw = field;
@@ -318,12 +318,12 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topo
   flow.sequence_noise_floor =
       coherence ? coherence->sequence_noise_floor(flow.noise_floor) : flow.noise_floor;
   const double c = options.threshold_relative.value_or(defaults.threshold_relative);
-  const double scene_threshold =
-      length > 0.0 ? (paper ? c / (length * length) : c / length) : 0.0;
+  const double scene_threshold = length > 0.0 ? (paper ? c / (length * length) : c / length) : 0.0;
   const bool explicit_threshold = options.threshold || options.threshold_relative;
   flow.threshold = options.threshold.value_or(
-      explicit_threshold ? scene_threshold
-                         : std::max(scene_threshold, defaults.noise_multiple * flow.sequence_noise_floor));
+      explicit_threshold
+          ? scene_threshold
+          : std::max(scene_threshold, defaults.noise_multiple * flow.sequence_noise_floor));
 
   // The tank's walls (step 2), for the field and the shading normals.
   const bool closed = topology.boundary_edges == 0 && topology.nonmanifold_edges == 0;
@@ -341,9 +341,9 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topo
   } else {
     std::fill(field.begin(), field.end(), 0.0);
   }
-  flow.shading_normal = shading_normals(mesh, vertex_faces, curvature, member, wall_weight,
-                                        options.up, smoothing_steps_for_radius(defaults.shading_radius),
-                                        flow.normal_noise);
+  flow.shading_normal =
+      shading_normals(mesh, vertex_faces, curvature, member, wall_weight, options.up,
+                      smoothing_steps_for_radius(defaults.shading_radius), flow.normal_noise);
 
   flow.smoothed_field = field;
   if (coherence) coherence->blend(mesh, flow, field, flow.shading_normal);

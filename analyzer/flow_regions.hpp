@@ -98,36 +98,36 @@ struct FlowOptions : FreeSurfaceOptions {
   // Unset, these take the criterion's defaults (flow_defaults); for paper no smoothing, no
   // fading, no noise floor and no walls, so that it stays the paper's rule. An explicit
   // threshold (absolute or relative) is taken as it is, without the noise floor.
-  std::optional<int> smoothing_steps;        // Jacobi steps over the free surface
-  std::optional<double> min_region_area;     // absolute A_min (scene units²)
+  std::optional<int> smoothing_steps;     // Jacobi steps over the free surface
+  std::optional<double> min_region_area;  // absolute A_min (scene units²)
 };
 
 enum FlowLabel : std::int8_t { valley = -1, none = 0, ridge = 1 };
 
 struct FlowRegions {
-  std::vector<double> field;       // per vertex: s (0 off the free surface); regions at |s| >= 1
+  std::vector<double> field;  // per vertex: s (0 off the free surface); regions at |s| >= 1
   std::vector<double> smoothed_field;  // s after step 1, before coherence and fading
-  std::vector<std::int8_t> label;  // per vertex: FlowLabel
+  std::vector<std::int8_t> label;      // per vertex: FlowLabel
   FlowCriterion criterion = FlowCriterion::mean;
-  double threshold = 0.0;          // T actually used
-  double scale_length = 0.0;       // L = sqrt(free-surface area)
-  double min_region_area = 0.0;    // A_min actually used
-  std::size_t max_regions = 0;     // the salience limit actually used; 0: none
-  double noise_floor = 0.0;        // σ of this frame's smoothed field source (H, or sign(H)|K|)
+  double threshold = 0.0;             // T actually used
+  double scale_length = 0.0;          // L = sqrt(free-surface area)
+  double min_region_area = 0.0;       // A_min actually used
+  std::size_t max_regions = 0;        // the salience limit actually used; 0: none
+  double noise_floor = 0.0;           // σ of this frame's smoothed field source (H, or sign(H)|K|)
   double sequence_noise_floor = 0.0;  // σ the threshold was held above (the sequence's)
-  std::size_t walls = 0;           // tank walls found (tank_walls.hpp)
-  std::vector<Vec3> shading_normal;  // per vertex: unit normal the toon bands are chosen from
-  double normal_noise = 0.0;       // noise floor of the shading normals' horizontal parts
+  std::size_t walls = 0;              // tank walls found (tank_walls.hpp)
+  std::vector<Vec3> shading_normal;   // per vertex: unit normal the toon bands are chosen from
+  double normal_noise = 0.0;          // noise floor of the shading normals' horizontal parts
   double median_edge_length = 0.0;
   double rest_height = 0.0;
-  Box3 region_of_interest;         // bounding box of the regions; empty when there are none
+  Box3 region_of_interest;                 // bounding box of the regions; empty when there are none
   std::vector<std::uint8_t> free_surface;  // per vertex: 1 on the free surface (free_surface.hpp)
   std::size_t free_surface_vertices = 0;
   std::size_t free_surface_patches_dropped = 0;
   std::size_t ridge_vertices = 0;
   std::size_t valley_vertices = 0;
-  std::size_t regions = 0;         // drawn regions (connected, one sign)
-  std::size_t specks_faded = 0;    // regions faded in part or whole
+  std::size_t regions = 0;       // drawn regions (connected, one sign)
+  std::size_t specks_faded = 0;  // regions faded in part or whole
 };
 
 class FlowCoherence;

@@ -16,7 +16,7 @@ namespace {
 
 // The region's vertices' neighbours inside it, with each edge's cost.
 struct RegionGraph {
-  std::vector<std::int32_t> vertices;                       // region vertex → mesh vertex
+  std::vector<std::int32_t> vertices;                              // region vertex → mesh vertex
   std::vector<std::vector<std::pair<std::int32_t, double>>> next;  // → (region vertex, length)
 };
 
@@ -46,7 +46,8 @@ std::vector<double> dijkstra(const RegionGraph& g, std::int32_t source,
 std::int32_t farthest(const std::vector<double>& distance) {
   std::int32_t best = 0;
   for (std::size_t v = 0; v < distance.size(); ++v)
-    if (std::isfinite(distance[v]) && distance[v] > distance[best]) best = static_cast<std::int32_t>(v);
+    if (std::isfinite(distance[v]) && distance[v] > distance[best])
+      best = static_cast<std::int32_t>(v);
   return best;
 }
 
@@ -124,7 +125,8 @@ std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const FlowRegions& 
     if (!(spine * spine >= narrow_aspect * region_area)) continue;  // wide: keeps its contour
 
     auto along_crest = [&](double length, std::int32_t v, std::int32_t w) {
-      const double strength = 0.5 * (std::abs(flow.field[g.vertices[v]]) + std::abs(flow.field[g.vertices[w]]));
+      const double strength =
+          0.5 * (std::abs(flow.field[g.vertices[v]]) + std::abs(flow.field[g.vertices[w]]));
       return length / std::max(strength, 1.0);
     };
     dijkstra(g, a, along_crest, previous);
@@ -140,7 +142,8 @@ std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const FlowRegions& 
     std::vector<Vec3> normal;
     for (std::size_t i = first; i < last; ++i) {
       line.points.push_back(mesh.positions[path[i]]);
-      normal.push_back(flow.shading_normal.size() == n ? flow.shading_normal[path[i]] : Vec3::Zero());
+      normal.push_back(flow.shading_normal.size() == n ? flow.shading_normal[path[i]]
+                                                       : Vec3::Zero());
     }
     for (std::int32_t v : g.vertices) wide[v] = 0.0;
     if (line.points.size() < 2) continue;

@@ -27,7 +27,7 @@
 
 namespace toonwater {
 
-inline constexpr double narrow_aspect = 3.0;    // ℓ / (A / ℓ) at least this: a narrow region
+inline constexpr double narrow_aspect = 3.0;      // ℓ / (A / ℓ) at least this: a narrow region
 inline constexpr int stroke_smoothing_steps = 4;  // umbrella steps, weight 1/2, ends held
 
 // A stroke along each narrow region's crest, and the contours of the wide ones.

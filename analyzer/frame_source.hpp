@@ -34,7 +34,7 @@ struct SourceFrame {
   std::filesystem::path path;
   std::string empty;  // why the frame holds no liquid (an empty mesh); "" when it has some
   Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();  // box of its vertices (world), when asked
-  TriangleMesh mesh;  // world coordinates, when the source does not analyse
+  TriangleMesh mesh;                 // world coordinates, when the source does not analyse
   std::optional<Analysis> analysis;  // when it does and the frame is not empty
   double read_seconds = 0, analysis_seconds = 0;
   bool has_water() const { return empty.empty(); }

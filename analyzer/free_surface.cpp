@@ -99,7 +99,8 @@ Slopes mark_slopes(const TriangleMesh& mesh, int up, double min_up_component) {
   });
   std::size_t kept = sample_end[0];
   for (std::size_t chunk = 1; chunk < workers; ++chunk)
-    for (std::size_t i = sample_begin[chunk]; i < sample_end[chunk]; ++i) lengths[kept++] = lengths[i];
+    for (std::size_t i = sample_begin[chunk]; i < sample_end[chunk]; ++i)
+      lengths[kept++] = lengths[i];
   lengths.resize(kept);
   slopes.edge_length = median_length(lengths);
   return slopes;
@@ -114,18 +115,20 @@ std::vector<std::uint8_t> one_ring_inside(const TriangleMesh& mesh,
   std::vector<std::uint8_t> near_unselected(n, 0);  // a corner of one of its faces is not selected
   parallel_chunks(face_count, chunk_count(face_count),
                   [&](std::size_t, std::size_t begin, std::size_t end) {
-    const std::span<const Triangle> triangles = mesh.triangles;
-    const std::uint8_t* const in = selected.data();
-    std::uint8_t* const near = near_unselected.data();
-    for (std::size_t f = begin; f < end; ++f) {
-      const Triangle& t = triangles[f];
-      if (has_repeated_corner(t) || (in[t[0]] && in[t[1]] && in[t[2]])) continue;
-      for (std::int32_t v : t) mark(near, v);
-    }
-  });
-  parallel_chunks(n, chunk_count(n, bytes_per_worker), [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) near_unselected[v] = selected[v] && !near_unselected[v];
-  });
+                    const std::span<const Triangle> triangles = mesh.triangles;
+                    const std::uint8_t* const in = selected.data();
+                    std::uint8_t* const near = near_unselected.data();
+                    for (std::size_t f = begin; f < end; ++f) {
+                      const Triangle& t = triangles[f];
+                      if (has_repeated_corner(t) || (in[t[0]] && in[t[1]] && in[t[2]])) continue;
+                      for (std::int32_t v : t) mark(near, v);
+                    }
+                  });
+  parallel_chunks(n, chunk_count(n, bytes_per_worker),
+                  [&](std::size_t, std::size_t begin, std::size_t end) {
+                    for (std::size_t v = begin; v < end; ++v)
+                      near_unselected[v] = selected[v] && !near_unselected[v];
+                  });
   return near_unselected;
 }
 
@@ -135,8 +138,9 @@ std::vector<std::uint8_t> upward_vertices(const TriangleMesh& mesh, Slopes& slop
   std::vector<std::uint8_t>& upward = slopes.has_up_face;
   parallel_chunks(upward.size(), chunk_count(upward.size(), bytes_per_worker),
                   [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) upward[v] = upward[v] && !slopes.has_other_face[v];
-  });
+                    for (std::size_t v = begin; v < end; ++v)
+                      upward[v] = upward[v] && !slopes.has_other_face[v];
+                  });
   return one_ring_inside(mesh, upward);
 }
 
@@ -158,21 +162,21 @@ Patches find_patches(const TriangleMesh& mesh, const std::vector<std::uint8_t>& 
   patches.near_unselected.assign(n, 0);
   DisjointSets sets(n);
   const std::size_t chunks = chunk_count(face_count);
-  join_in_parallel(sets, face_count, vertex_ranges(mesh.triangles, n, chunks),
-                   [&](std::size_t f, auto& join) {
-                     const Triangle& t = mesh.triangles[f];
-                     const bool up0 = upward[t[0]], up1 = upward[t[1]], up2 = upward[t[2]];
-                     if (up0 && up1 && up2) {  // most faces: two edges join them, a third adds nothing
-                       join(t[0], t[1]);
-                       join(t[1], t[2]);
-                       return;
-                     }
-                     if (up0 && up1) join(t[0], t[1]);
-                     if (up1 && up2) join(t[1], t[2]);
-                     if (up2 && up0) join(t[2], t[0]);
-                     if (!has_repeated_corner(t))
-                       for (std::int32_t v : t) mark(patches.near_unselected.data(), v);
-                   });
+  join_in_parallel(
+      sets, face_count, vertex_ranges(mesh.triangles, n, chunks), [&](std::size_t f, auto& join) {
+        const Triangle& t = mesh.triangles[f];
+        const bool up0 = upward[t[0]], up1 = upward[t[1]], up2 = upward[t[2]];
+        if (up0 && up1 && up2) {  // most faces: two edges join them, a third adds nothing
+          join(t[0], t[1]);
+          join(t[1], t[2]);
+          return;
+        }
+        if (up0 && up1) join(t[0], t[1]);
+        if (up1 && up2) join(t[1], t[2]);
+        if (up2 && up0) join(t[2], t[0]);
+        if (!has_repeated_corner(t))
+          for (std::int32_t v : t) mark(patches.near_unselected.data(), v);
+      });
   // Each vertex's root, and the roots, chunk by chunk; the roots are numbered in order.
   const std::size_t workers = chunk_count(n);
   patches.of_vertex.resize(n);

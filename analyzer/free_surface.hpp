@@ -35,8 +35,8 @@ constexpr double shell_min_up_component = 0.1;
 struct FreeSurfaceOptions {
   Axis up = Axis::y;
   double min_up_component = free_surface_min_up_component;
-  std::optional<double> rest_height;  // default: median height of the largest patch
-  double max_depth = 2.0;             // in median edge lengths below the rest level
+  std::optional<double> rest_height;    // default: median height of the largest patch
+  double max_depth = 2.0;               // in median edge lengths below the rest level
   std::size_t min_patch_vertices = 16;  // smaller detached patches (droplets) carry no flow
 };
 
@@ -45,11 +45,11 @@ struct FreeSurface {
   // Per vertex: 1 where selected and off the free surface's border ring: no face of the vertex
   // (faces with a repeated corner are none, topology.hpp) has a corner off the free surface.
   std::vector<std::uint8_t> inside;
-  std::size_t vertices = 0;            // selected vertices
+  std::size_t vertices = 0;  // selected vertices
   std::size_t patches_kept = 0;
-  std::size_t patches_dropped = 0;     // too deep or too small
+  std::size_t patches_dropped = 0;  // too deep or too small
   double rest_height = 0.0;
-  double edge_length = 0.0;            // the median edge length (edge_length.hpp), max_depth's unit
+  double edge_length = 0.0;  // the median edge length (edge_length.hpp), max_depth's unit
 };
 
 FreeSurface select_free_surface(const TriangleMesh& mesh, const FreeSurfaceOptions& options);

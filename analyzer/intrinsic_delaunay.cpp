@@ -23,7 +23,8 @@ double cotangent(double a, double b, double opposite) {
 }
 
 double angle(double a, double b, double opposite) {
-  return std::atan2(2.0 * double_area_from_lengths(a, b, opposite), a * a + b * b - opposite * opposite);
+  return std::atan2(2.0 * double_area_from_lengths(a, b, opposite),
+                    a * a + b * b - opposite * opposite);
 }
 
 }  // namespace

@@ -43,9 +43,9 @@ using MaskOf = decltype(Real{} < Real{});
 using LaneBits2 = std::uint64_t __attribute__((vector_size(16)));
 using LaneBits4 = std::uint64_t __attribute__((vector_size(32)));
 template <class Real>
-using BitsOf = std::conditional_t<
-    std::is_same_v<Real, double>, std::uint64_t,
-    std::conditional_t<std::is_same_v<Real, Lanes2>, LaneBits2, LaneBits4>>;
+using BitsOf =
+    std::conditional_t<std::is_same_v<Real, double>, std::uint64_t,
+                       std::conditional_t<std::is_same_v<Real, Lanes2>, LaneBits2, LaneBits4>>;
 
 // A value in every lane (for a double, the value).
 template <class Real>

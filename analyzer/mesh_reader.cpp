@@ -1,5 +1,5 @@
-// read_mesh: loads the file (one pread per core), picks the reader by extension, and checks that a mesh
-// came out. Also the parsing helpers the format readers share (readers/readers.hpp).
+// read_mesh: loads the file (one pread per core), picks the reader by extension, and checks that a
+// mesh came out. Also the parsing helpers the format readers share (readers/readers.hpp).
 #include "analyzer/mesh_reader.hpp"
 
 #include "analyzer/readers/readers.hpp"
@@ -57,9 +57,7 @@ bool LineReader::next(std::string_view& line) {
   return true;
 }
 
-std::string_view strip_comment(std::string_view line) {
-  return line.substr(0, line.find('#'));
-}
+std::string_view strip_comment(std::string_view line) { return line.substr(0, line.find('#')); }
 
 namespace {
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
@@ -113,7 +111,8 @@ std::optional<std::int64_t> parse_integer(std::string_view field) {
 double parse_coordinate(const SourceFile& file, std::size_t line, std::string_view field) {
   const std::optional<double> value = parse_double(field);
   if (!value) fail_at_line(file, line, "malformed number " + quote(field));
-  if (!std::isfinite(*value)) fail_at_line(file, line, "coordinate " + quote(field) + " is NaN or infinite");
+  if (!std::isfinite(*value))
+    fail_at_line(file, line, "coordinate " + quote(field) + " is NaN or infinite");
   return *value;
 }
 
@@ -222,7 +221,8 @@ InputMesh read_level_set(const SourceFile& file, const LevelSetOptions& options)
     readers::fail(file, e.what());
   }
   for (const Vec3& p : meshed.mesh.positions)
-    if (!p.allFinite()) readers::fail(file, "grid '" + meshed.grid + "' meshes to a non-finite point");
+    if (!p.allFinite())
+      readers::fail(file, "grid '" + meshed.grid + "' meshes to a non-finite point");
   InputMesh result;
   result.polygon_count = meshed.mesh.triangles.size();
   result.mesh = std::move(meshed.mesh);
@@ -241,15 +241,20 @@ InputMesh read_mesh(const std::filesystem::path& path, const LevelSetOptions& le
     return result;
   }
   InputMesh (*read)(const SourceFile&) = nullptr;
-  if (extension == ".obj") read = readers::read_obj;
-  else if (extension == ".off") read = readers::read_off;
-  else if (extension == ".ply") read = readers::read_ply;
-  else if (extension == ".stl") read = readers::read_stl;
+  if (extension == ".obj")
+    read = readers::read_obj;
+  else if (extension == ".off")
+    read = readers::read_off;
+  else if (extension == ".ply")
+    read = readers::read_ply;
+  else if (extension == ".stl")
+    read = readers::read_stl;
   else if (extension == ".gz" && lowercase_extension(path.stem()) == ".bobj")
     read = readers::read_bobj;
   else if (extension.empty())
-    readers::fail(file, "has no extension to tell its format "
-                        "(expected .obj, .off, .ply, .stl, .bobj.gz or .vdb)");
+    readers::fail(file,
+                  "has no extension to tell its format "
+                  "(expected .obj, .off, .ply, .stl, .bobj.gz or .vdb)");
   else
     readers::fail(file, "unknown mesh format " + readers::quote(extension) +
                             " (expected .obj, .off, .ply, .stl, .bobj.gz or .vdb)");

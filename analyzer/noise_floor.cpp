@@ -18,7 +18,8 @@ constexpr std::size_t min_members = 8;
 double robust_spread(std::span<const double> values, std::span<const std::uint8_t> member) {
   std::size_t members = 0;
   for (std::size_t v = 0; v < values.size(); ++v) members += member[v] != 0;
-  const std::size_t stride = std::max<std::size_t>(1, (members + spread_samples - 1) / spread_samples);
+  const std::size_t stride =
+      std::max<std::size_t>(1, (members + spread_samples - 1) / spread_samples);
   std::vector<double> x;
   x.reserve(members / stride + 1);
   for (std::size_t v = 0, seen = 0; v < values.size(); ++v) {
@@ -48,7 +49,8 @@ double smoothing_noise_gain(const TriangleMesh& mesh, const VertexFaces& vertex_
   VertexFaces patch_faces;
   const bool whole = n == member.size();
   if (!whole) {
-    patch.positions.assign(mesh.positions.begin(), mesh.positions.begin() + static_cast<std::ptrdiff_t>(n));
+    patch.positions.assign(mesh.positions.begin(),
+                           mesh.positions.begin() + static_cast<std::ptrdiff_t>(n));
     for (const Triangle& t : mesh.triangles)
       if (static_cast<std::size_t>(std::max({t[0], t[1], t[2]})) < n) patch.triangles.push_back(t);
     patch_faces = build_vertex_faces(n, patch.triangles);

@@ -17,12 +17,14 @@ Box3 bounding_box(const std::vector<Vec3>& points) {
   if (points.empty()) return Box3{};
   const std::size_t workers = chunk_count(points.size());
   std::vector<Box3> chunk_box(workers);
-  parallel_chunks(points.size(), workers, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    // In a local: kept in the vector, each point's update waited for the last one's store.
-    Box3 box = Box3::of_no_points();
-    for (std::size_t i = begin; i < end; ++i) box.add(points[i]);
-    chunk_box[chunk] = box;
-  });
+  parallel_chunks(points.size(), workers,
+                  [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+                    // In a local: kept in the vector, each point's update waited for the last one's
+                    // store.
+                    Box3 box = Box3::of_no_points();
+                    for (std::size_t i = begin; i < end; ++i) box.add(points[i]);
+                    chunk_box[chunk] = box;
+                  });
   Box3 box = Box3::of_no_points();
   for (const Box3& chunk : chunk_box) box.add(chunk);
   return box;
@@ -78,26 +80,29 @@ void PointGrid::sort_into_cells(const std::vector<Vec3>& points) {
   // those before it. A chunk's count becomes the place of its first point in the cell.
   const std::size_t cell_workers = chunk_count(cell_count);
   std::vector<std::int32_t> range_begin(cell_workers + 1, 0);
-  parallel_chunks(cell_count, cell_workers, [&](std::size_t range, std::size_t begin, std::size_t end) {
-    std::int32_t total = 0;
-    for (std::size_t chunk = 0; chunk < workers; ++chunk)
-      for (std::size_t cell = begin; cell < end; ++cell) total += counts[chunk * cell_count + cell];
-    range_begin[range + 1] = total;
-  });
+  parallel_chunks(cell_count, cell_workers,
+                  [&](std::size_t range, std::size_t begin, std::size_t end) {
+                    std::int32_t total = 0;
+                    for (std::size_t chunk = 0; chunk < workers; ++chunk)
+                      for (std::size_t cell = begin; cell < end; ++cell)
+                        total += counts[chunk * cell_count + cell];
+                    range_begin[range + 1] = total;
+                  });
   std::partial_sum(range_begin.begin(), range_begin.end(), range_begin.begin());
   cell_begin_.resize(cell_count + 1);
-  parallel_chunks(cell_count, cell_workers, [&](std::size_t range, std::size_t begin, std::size_t end) {
-    std::int32_t next = range_begin[range];
-    for (std::size_t cell = begin; cell < end; ++cell) {
-      cell_begin_[cell] = next;
-      for (std::size_t chunk = 0; chunk < workers; ++chunk) {
-        std::int32_t& count = counts[chunk * cell_count + cell];
-        const std::int32_t points_here = count;
-        count = next;
-        next += points_here;
-      }
-    }
-  });
+  parallel_chunks(cell_count, cell_workers,
+                  [&](std::size_t range, std::size_t begin, std::size_t end) {
+                    std::int32_t next = range_begin[range];
+                    for (std::size_t cell = begin; cell < end; ++cell) {
+                      cell_begin_[cell] = next;
+                      for (std::size_t chunk = 0; chunk < workers; ++chunk) {
+                        std::int32_t& count = counts[chunk * cell_count + cell];
+                        const std::int32_t points_here = count;
+                        count = next;
+                        next += points_here;
+                      }
+                    }
+                  });
   cell_begin_[cell_count] = static_cast<std::int32_t>(n);
   sorted_points_.resize(n);
   sorted_index_.resize(n);
@@ -156,9 +161,11 @@ void PointGrid::scan(const Vec3& p, std::int64_t ca, std::int64_t cb, int inner,
 
 std::int32_t PointGrid::closest(const Vec3& p) const {
   if (sorted_points_.empty()) return -1;
-  const double ta = cells_from_origin(p[axis_a_], axis_a_), tb = cells_from_origin(p[axis_b_], axis_b_);
+  const double ta = cells_from_origin(p[axis_a_], axis_a_),
+               tb = cells_from_origin(p[axis_b_], axis_b_);
   Best best{radius_ * radius_};
-  if (ta >= 0.0 && ta < static_cast<double>(cells_a_) && tb >= 0.0 && tb < static_cast<double>(cells_b_)) {
+  if (ta >= 0.0 && ta < static_cast<double>(cells_a_) && tb >= 0.0 &&
+      tb < static_cast<double>(cells_b_)) {
     // Inside the grid, where truncation is cell_index's floor. First the query's own cell, then
     // the 2 × 2 cells nearest it (its own and those across its cell's nearer sides). Each holds
     // every point nearer than its `reach`, the query's distance to its sides (for the block at
@@ -175,10 +182,12 @@ std::int32_t PointGrid::closest(const Vec3& p) const {
     if (closer_than(std::min({fa, 1.0 - fa, fb, 1.0 - fb}))) return sorted_index_[best.at];
     best = Best{radius_ * radius_};
     const std::int64_t a = fa < 0.5 ? ca - 1 : ca, b = fb < 0.5 ? cb - 1 : cb;
-    for (std::int64_t row = std::max<std::int64_t>(a, 0); row <= std::min(a + 1, cells_a_ - 1); ++row)
+    for (std::int64_t row = std::max<std::int64_t>(a, 0); row <= std::min(a + 1, cells_a_ - 1);
+         ++row)
       scan_run(p, cell_begin_[row * cells_b_ + std::max<std::int64_t>(b, 0)],
                cell_begin_[row * cells_b_ + std::min(b + 1, cells_b_ - 1) + 1], best);
-    if (closer_than(std::min(std::max(fa, 1.0 - fa), std::max(fb, 1.0 - fb)))) return sorted_index_[best.at];
+    if (closer_than(std::min(std::max(fa, 1.0 - fa), std::max(fb, 1.0 - fb))))
+      return sorted_index_[best.at];
     best = Best{radius_ * radius_};
   }
   const std::int64_t ca = cell_index(ta, cells_a_), cb = cell_index(tb, cells_b_);

@@ -71,8 +71,10 @@ std::vector<FlowLine> kept_pieces(const FlowLine& line, const std::vector<std::u
   piece.sign = line.sign;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = (start + k) % n;
-    if (keep[i]) piece.points.push_back(line.points[i]);
-    else finish();
+    if (keep[i])
+      piece.points.push_back(line.points[i]);
+    else
+      finish();
   }
   finish();
   return pieces;
@@ -81,8 +83,7 @@ std::vector<FlowLine> kept_pieces(const FlowLine& line, const std::vector<std::u
 }  // namespace
 
 std::vector<FlowLine> StrokePersistence::update(const TriangleMesh& mesh, const FlowRegions& flow,
-                                                std::vector<FlowLine> fresh,
-                                                double taper_length) {
+                                                std::vector<FlowLine> fresh, double taper_length) {
   const double edge = flow.median_edge_length;
   const double step = 1.0 / std::max(1, options_.fade_frames);
   const std::size_t n = mesh.positions.size();
@@ -93,7 +94,8 @@ std::vector<FlowLine> StrokePersistence::update(const TriangleMesh& mesh, const 
     std::vector<Vec3> surface;
     std::vector<std::int32_t> vertex;
     for (std::size_t v = 0; v < n; ++v)
-      if (flow.free_surface[v]) surface.push_back(mesh.positions[v]), vertex.push_back(static_cast<std::int32_t>(v));
+      if (flow.free_surface[v])
+        surface.push_back(mesh.positions[v]), vertex.push_back(static_cast<std::int32_t>(v));
     if (!surface.empty() && !strokes_.empty()) {
       const PointGrid grid(surface, options_.carry_distance * edge);
       for (const Stroke& s : strokes_) {

@@ -35,8 +35,9 @@ namespace toonwater {
 
 struct StrokePersistenceOptions {
   double carry_distance = 3.0;  // in median edge lengths: farther, a point has no water under it
-  double match_distance = 3.0;  // in median edge lengths: a point this near another stroke is shared
-  double min_shared = 0.5;      // share of points near the other stroke for a match
+  double match_distance =
+      3.0;                  // in median edge lengths: a point this near another stroke is shared
+  double min_shared = 0.5;  // share of points near the other stroke for a match
   double noise_distance = 2.0;  // z: in median edge lengths, a move below z·e is noise
   double hold_blend = 0.9;      // weight of the carried stroke where the move is noise
   int fade_frames = 3;          // frames to fade in or out

@@ -30,7 +30,8 @@ TankWalls find_tank_walls(const TriangleMesh& mesh, Axis up, double edge_length)
   for (int side = 0; side < 4; ++side) {
     const int along = axes[1 - side / 2];
     const double length = walls.box.max[along] - walls.box.min[along];
-    covered[side].assign(static_cast<std::size_t>(std::clamp(std::ceil(length / edge_length), 1.0, 1e7)), 0);
+    covered[side].assign(
+        static_cast<std::size_t>(std::clamp(std::ceil(length / edge_length), 1.0, 1e7)), 0);
   }
   for (const Vec3& p : mesh.positions) {
     for (int side = 0; side < 4; ++side) {
@@ -61,8 +62,8 @@ std::vector<double> wall_weights(const TriangleMesh& mesh, Axis up, const TankWa
     for (int side = 0; side < 4; ++side) {
       if (!walls.wall[side]) continue;
       const int axis = axes[side / 2];
-      distance = std::min(distance, side % 2 ? walls.box.max[axis] - p[axis]
-                                             : p[axis] - walls.box.min[axis]);
+      distance = std::min(distance,
+                          side % 2 ? walls.box.max[axis] - p[axis] : p[axis] - walls.box.min[axis]);
     }
     const double x = std::clamp((distance - near) / (far - near), 0.0, 1.0);
     weight[v] = x * x * (3.0 - 2.0 * x);

@@ -30,7 +30,9 @@ struct TankWalls {
   // axis; true where the side is a wall.
   std::array<bool, 4> wall{};
   Box3 box;  // the mesh's bounding box
-  std::size_t count() const { return static_cast<std::size_t>(wall[0] + wall[1] + wall[2] + wall[3]); }
+  std::size_t count() const {
+    return static_cast<std::size_t>(wall[0] + wall[1] + wall[2] + wall[3]);
+  }
 };
 
 // For a closed mesh; `edge_length`: its median edge length (edge_length.hpp).

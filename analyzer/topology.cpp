@@ -28,38 +28,43 @@ VertexFaces build_vertex_faces(std::size_t vertex_count, std::span<const Triangl
   // on, so every row lists its faces in ascending order whatever the number of chunks.
   const std::size_t chunks = chunk_count(triangles.size());
   std::vector<std::unique_ptr<std::int32_t[]>> cursor(chunks);  // per chunk and vertex
-  parallel_chunks(triangles.size(), chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    cursor[chunk] = std::make_unique<std::int32_t[]>(vertex_count);  // zeroed by its own thread
-    std::int32_t* count = cursor[chunk].get();
-    for (std::size_t f = begin; f < end; ++f)
-      if (!has_repeated_corner(triangles[f]))
-        for (std::int32_t v : triangles[f]) ++count[v];
-  });
+  parallel_chunks(
+      triangles.size(), chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        cursor[chunk] = std::make_unique<std::int32_t[]>(vertex_count);  // zeroed by its own thread
+        std::int32_t* count = cursor[chunk].get();
+        for (std::size_t f = begin; f < end; ++f)
+          if (!has_repeated_corner(triangles[f]))
+            for (std::int32_t v : triangles[f]) ++count[v];
+      });
   VertexFaces vf;
   vf.offsets.resize(vertex_count + 1);
   vf.offsets[0] = 0;
   const std::size_t vertex_chunks = chunk_count(vertex_count);
-  parallel_chunks(vertex_count, vertex_chunks, [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      std::int32_t faces = 0;
-      for (const auto& count : cursor) faces += count[v];
-      vf.offsets[v + 1] = faces;
-    }
-  });
+  parallel_chunks(vertex_count, vertex_chunks,
+                  [&](std::size_t, std::size_t begin, std::size_t end) {
+                    for (std::size_t v = begin; v < end; ++v) {
+                      std::int32_t faces = 0;
+                      for (const auto& count : cursor) faces += count[v];
+                      vf.offsets[v + 1] = faces;
+                    }
+                  });
   std::partial_sum(vf.offsets.begin(), vf.offsets.end(), vf.offsets.begin());
-  parallel_chunks(vertex_count, vertex_chunks, [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      std::int32_t row = vf.offsets[v];  // where each chunk's faces of v start
-      for (const auto& count : cursor) row += std::exchange(count[v], row);
-    }
-  });
+  parallel_chunks(vertex_count, vertex_chunks,
+                  [&](std::size_t, std::size_t begin, std::size_t end) {
+                    for (std::size_t v = begin; v < end; ++v) {
+                      std::int32_t row = vf.offsets[v];  // where each chunk's faces of v start
+                      for (const auto& count : cursor) row += std::exchange(count[v], row);
+                    }
+                  });
   vf.face_indices.resize(static_cast<std::size_t>(vf.offsets.back()));
-  parallel_chunks(triangles.size(), chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    std::int32_t* next = cursor[chunk].get();
-    for (std::size_t f = begin; f < end; ++f)
-      if (!has_repeated_corner(triangles[f]))
-        for (std::int32_t v : triangles[f]) vf.face_indices[next[v]++] = static_cast<std::int32_t>(f);
-  });
+  parallel_chunks(triangles.size(), chunks,
+                  [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+                    std::int32_t* next = cursor[chunk].get();
+                    for (std::size_t f = begin; f < end; ++f)
+                      if (!has_repeated_corner(triangles[f]))
+                        for (std::int32_t v : triangles[f])
+                          vf.face_indices[next[v]++] = static_cast<std::int32_t>(f);
+                  });
   return vf;
 }
 
@@ -92,8 +97,9 @@ constexpr std::size_t ring_scan_limit = 32;
 
 std::int32_t ring_slot(std::vector<RingNeighbour>& ring, std::int32_t vertex, bool sorted) {
   if (sorted) {
-    const auto it = std::lower_bound(ring.begin(), ring.end(), vertex,
-                                     [](const RingNeighbour& r, std::int32_t w) { return r.vertex < w; });
+    const auto it =
+        std::lower_bound(ring.begin(), ring.end(), vertex,
+                         [](const RingNeighbour& r, std::int32_t w) { return r.vertex < w; });
     return static_cast<std::int32_t>(it - ring.begin());
   }
   for (std::size_t i = 0; i < ring.size(); ++i)
@@ -140,7 +146,8 @@ bool is_closed_consistent_fan(const TriangleMesh& mesh, std::span<const std::int
   const std::size_t k = faces.size();
   if (k > fan_test_limit) return false;
   std::int32_t a[fan_test_limit], b[fan_test_limit];
-  for (std::size_t i = 0; i < k; ++i) std::tie(a[i], b[i]) = other_corners(mesh.triangles[faces[i]], v);
+  for (std::size_t i = 0; i < k; ++i)
+    std::tie(a[i], b[i]) = other_corners(mesh.triangles[faces[i]], v);
   std::size_t face = 0;
   for (std::size_t step = 1; step <= k; ++step) {
     std::size_t next = 0;

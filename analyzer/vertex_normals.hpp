@@ -27,8 +27,10 @@ template <class Real>
   const Real ratio =
       minimum(ax, y) / maximum(maximum(ax, y), splat<Real>(std::numeric_limits<double>::min()));
   const Real r2 = ratio * ratio;
-  Real angle = ratio * (0.99997726 + r2 * (-0.33262347 + r2 * (0.19354346 +
-                        r2 * (-0.11643287 + r2 * (0.05265332 - r2 * 0.01172120)))));
+  Real angle =
+      ratio * (0.99997726 +
+               r2 * (-0.33262347 +
+                     r2 * (0.19354346 + r2 * (-0.11643287 + r2 * (0.05265332 - r2 * 0.01172120)))));
   angle = select(y > ax, std::numbers::pi / 2 - angle, angle);
   return select(x < 0.0, std::numbers::pi - angle, angle);
 }
@@ -43,7 +45,8 @@ template <class Real>
   const auto degenerate = is_degenerate_triangle(double_area, longest2);
   // Times the reciprocal, which the curvature's face pass needs as well and computes once.
   const Real weight = approximate_angle(double_area, dot) * (1.0 / double_area);
-  for (int axis = 0; axis < 3; ++axis) term[axis] = select(degenerate, Real{}, weight * cross[axis]);
+  for (int axis = 0; axis < 3; ++axis)
+    term[axis] = select(degenerate, Real{}, weight * cross[axis]);
 }
 
 inline Vec3 corner_normal_term(const Vec3& xa, const Vec3& xb) {

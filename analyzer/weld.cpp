@@ -77,7 +77,8 @@ WeldedMesh weld_coincident_vertices(TriangleMesh mesh) {
   parallel_chunks(triangles.size(), chunk_count(triangles.size()),
                   [&](std::size_t, std::size_t begin, std::size_t end) {
                     for (std::size_t f = begin; f < end; ++f)
-                      for (std::int32_t& corner : triangles[f]) corner = welded.input_to_mesh[corner];
+                      for (std::int32_t& corner : triangles[f])
+                        corner = welded.input_to_mesh[corner];
                   });
   welded.mesh = std::move(mesh);
   return welded;

@@ -80,7 +80,8 @@ fs::path ply_file(std::int64_t vertices) {
   }
   const fs::path partial = path.string() + ".partial";
   std::FILE* out = std::fopen(partial.c_str(), "wb");
-  if (!out || std::fwrite(bytes.data(), 1, bytes.size(), out) != bytes.size() || std::fclose(out) != 0)
+  if (!out || std::fwrite(bytes.data(), 1, bytes.size(), out) != bytes.size() ||
+      std::fclose(out) != 0)
     throw std::runtime_error("cannot write " + partial.string());
   fs::rename(partial, path);
   return path;
@@ -143,8 +144,7 @@ void FlowRegions(benchmark::State& state) {
   const Prepared p = prepared(state.range(0));
   const CurvatureField field = compute_curvature(p.mesh, p.topology);
   for (auto _ : state)
-    benchmark::DoNotOptimize(
-        find_flow_regions(p.mesh, p.topology, field, wave_flow_options()));
+    benchmark::DoNotOptimize(find_flow_regions(p.mesh, p.topology, field, wave_flow_options()));
   set_vertex_rate(state, p.mesh.positions.size());
 }
 
@@ -163,8 +163,7 @@ void CurvatureAndLabels(benchmark::State& state) {
   const Prepared p = prepared(state.range(0));
   for (auto _ : state) {
     const CurvatureField field = compute_curvature(p.mesh, p.topology);
-    benchmark::DoNotOptimize(
-        find_flow_regions(p.mesh, p.topology, field, wave_flow_options()));
+    benchmark::DoNotOptimize(find_flow_regions(p.mesh, p.topology, field, wave_flow_options()));
   }
   set_vertex_rate(state, p.mesh.positions.size());
 }
@@ -172,12 +171,12 @@ void CurvatureAndLabels(benchmark::State& state) {
 void CurvatureAndFlowStage(benchmark::State& state) {
   const Prepared p = prepared(state.range(0));
   FlowCoherence coherence;
-  find_flow_regions(p.mesh, p.topology, compute_curvature(p.mesh, p.topology),
-                    wave_flow_options(), &coherence);
+  find_flow_regions(p.mesh, p.topology, compute_curvature(p.mesh, p.topology), wave_flow_options(),
+                    &coherence);
   for (auto _ : state) {
     const CurvatureField field = compute_curvature(p.mesh, p.topology);
-    benchmark::DoNotOptimize(find_flow_regions(p.mesh, p.topology, field,
-                                               wave_flow_options(), &coherence));
+    benchmark::DoNotOptimize(
+        find_flow_regions(p.mesh, p.topology, field, wave_flow_options(), &coherence));
   }
   set_vertex_rate(state, p.mesh.positions.size());
 }
@@ -200,7 +199,8 @@ void AnalyzeCommand(benchmark::State& state) {
     ::wait4(pid, &status, 0, &usage);
     state.SetIterationTime(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) state.SkipWithError("toonwater analyze failed");
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+      state.SkipWithError("toonwater analyze failed");
     peak_kib = std::max(peak_kib, usage.ru_maxrss);
   }
   const auto n = static_cast<double>(wave_mesh(state.range(0)).positions.size());
@@ -222,4 +222,3 @@ BENCHMARK(AnalyzeCommand)->Arg(1000)->UseManualTime()->Iterations(3)->Unit(bench
 
 }  // namespace
 }  // namespace toonwater
-

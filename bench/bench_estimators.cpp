@@ -70,4 +70,3 @@ BENCHMARK(Smoothing2)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace toonwater
-

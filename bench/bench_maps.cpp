@@ -51,7 +51,8 @@ void Rasterize(benchmark::State& state) {
   planner.add(a);
   const MapView view = planner.view(size_1024());
   for (auto _ : state) {
-    const TopDownMap map = rasterize_top_down(a.surface, a.curvature, a.flow.label, a.flow.free_surface, view);
+    const TopDownMap map =
+        rasterize_top_down(a.surface, a.curvature, a.flow.label, a.flow.free_surface, view);
     benchmark::DoNotOptimize(map.covered_pixels);
   }
   state.counters["pixels"] = static_cast<double>(view.width) * view.height;
@@ -61,7 +62,8 @@ void Rasterize(benchmark::State& state) {
 // re-run; ext4 then flushes the replaced files' data on rename, which costs real time).
 void WriteMaps(benchmark::State& state) {
   const Analysis& a = wave_analysis();
-  const fs::path dir = fs::temp_directory_path() / ("toonwater-bench-maps-" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("toonwater-bench-maps-" + std::to_string(::getpid()));
   const bool replace = state.range(0) != 0;
   std::uintmax_t bytes = 0;
   for (auto _ : state) {
@@ -80,8 +82,12 @@ void WriteMaps(benchmark::State& state) {
 
 BENCHMARK(Plan)->Unit(benchmark::kMillisecond);
 BENCHMARK(Rasterize)->Unit(benchmark::kMillisecond);
-BENCHMARK(WriteMaps)->Arg(0)->Arg(1)->ArgName("replace")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(WriteMaps)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("replace")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace toonwater
-

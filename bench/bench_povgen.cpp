@@ -34,8 +34,8 @@ using namespace toonwater;
 TriangleMesh wave_field(int n) { return make_wave_field(n, 0.1, 6.0, 1.0).mesh; }
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() /
-                       ("toonwater-bench-" + std::to_string(::getpid()) + "-" + name);
+  const fs::path dir =
+      fs::temp_directory_path() / ("toonwater-bench-" + std::to_string(::getpid()) + "-" + name);
   fs::create_directories(dir);
   return dir;
 }
@@ -52,7 +52,8 @@ void BM_PovgenFrame(benchmark::State& state) {
     const povgen::CameraPlacement camera =
         povgen::frame_camera(config, Axis::z, s.mesh.min, s.mesh.max);
     const std::string text = povgen::mesh_include(
-        s, "Water", povgen::texture_coordinates(s, light), povgen::shell_offsets(config.outline, s.mesh, camera, config.render.width));
+        s, "Water", povgen::texture_coordinates(s, light),
+        povgen::shell_offsets(config.outline, s.mesh, camera, config.render.width));
     write_file_atomically(dir / "water_0001.inc", text);
     writing += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     analysis += s.analysis_seconds;
@@ -113,7 +114,8 @@ void BM_PovrayRender(benchmark::State& state) {
     FILE* pipe = ::popen(command.c_str(), "r");
     std::string log;
     char buffer[4096];
-    for (std::size_t k; (k = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) log.append(buffer, k);
+    for (std::size_t k; (k = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
+      log.append(buffer, k);
     if (::pclose(pipe) != 0) state.SkipWithError("povray failed");
     parse += povray_seconds(log, "Parse");
     trace += povray_seconds(log, "Trace");
@@ -124,7 +126,12 @@ void BM_PovrayRender(benchmark::State& state) {
   fs::remove_all(dir);
 }
 // 55,225 and 499,849 vertices.
-BENCHMARK(BM_PovrayRender)->Arg(235)->Arg(707)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_PovrayRender)
+    ->Arg(235)
+    ->Arg(707)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 // The water's render mesh simplified (water.simplify, scene/simplify.hpp) against the full mesh:
 // an n×n calm frame (n = 1000: one million vertices) with one ripple packet, the default scene
@@ -258,14 +265,19 @@ void BM_SimplifiedRender(benchmark::State& state) {
   state.counters["trace_full_s"] = full.trace;
   state.counters["trace_s"] = simplified.trace;
   state.counters["bytes_ratio"] = bytes / bytes_full;
-  state.counters["differing_pct"] = 100.0 * static_cast<double>(differing) /
-                                    static_cast<double>(full.pixels.size() / 3);
+  state.counters["differing_pct"] =
+      100.0 * static_cast<double>(differing) / static_cast<double>(full.pixels.size() / 3);
   state.counters["simplify_s"] = report.simplify_seconds;
   state.counters["simplify_per_parse_saved"] =
       report.simplify_seconds / std::max(full.parse - simplified.parse, 1e-9);
   fs::remove_all(dir);
 }
-BENCHMARK(BM_SimplifiedRender)->Arg(300)->Arg(1000)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_SimplifiedRender)
+    ->Arg(300)
+    ->Arg(1000)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 // Outline shells culled by the camera (scene/shell_culling.hpp) on an n×n wave frame (n = 707:
 // 499,849 vertices), opaque water (where the rule culls), 320×180 without antialiasing: POV-Ray's
@@ -293,13 +305,15 @@ void BM_PovrayShellCulling(benchmark::State& state) {
   auto generate = [&](const std::string& name, bool outline, bool cull) {
     povgen::ConfigSources sources;
     sources.overrides = {"render.antialias=false", "render.width=320", "render.height=180",
-                         "water.transmit=0", std::string("outline.enabled=") + (outline ? "true" : "false")};
+                         "water.transmit=0",
+                         std::string("outline.enabled=") + (outline ? "true" : "false")};
     povgen::PovgenRequest request;
     request.water_pattern = (dir / "water.obj").string();
     request.up = Axis::z;
     request.out_dir = dir / name;
     request.cull_shells = cull;
-    const povgen::PovgenReport r = povgen::generate_scene(povgen::load_config(sources), request, {}, nullptr);
+    const povgen::PovgenReport r =
+        povgen::generate_scene(povgen::load_config(sources), request, {}, nullptr);
     if (outline && cull) culled_report = r;
   };
   generate("plain", false, true);
@@ -350,4 +364,3 @@ void BM_PovrayShellCulling(benchmark::State& state) {
 BENCHMARK(BM_PovrayShellCulling)->Arg(707)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
 
 }  // namespace
-

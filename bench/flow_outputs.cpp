@@ -77,8 +77,7 @@ void write_wave_cases(const fs::path& dir) {
                dump(find_flow_regions(mesh, topology, curvature, options), 0.0));
     FlowCoherence coherence;
     find_flow_regions(mesh, topology, curvature, options, &coherence);
-    const FlowRegions second =
-        find_flow_regions(mesh, topology, curvature, options, &coherence);
+    const FlowRegions second = find_flow_regions(mesh, topology, curvature, options, &coherence);
     write_file(dir / (name + "-coherent.txt"), dump(second, coherence.last_flicker()));
   }
 }
@@ -117,7 +116,8 @@ std::vector<std::string> lines_of(const fs::path& path) {
 std::size_t compare_case(const fs::path& a, const fs::path& b, double& largest_difference) {
   const std::vector<std::string> expected = lines_of(a), actual = lines_of(b);
   if (expected.size() != actual.size()) {
-    std::cout << b.string() << ": " << actual.size() << " lines, expected " << expected.size() << '\n';
+    std::cout << b.string() << ": " << actual.size() << " lines, expected " << expected.size()
+              << '\n';
     return 1;
   }
   std::size_t mismatches = 0;
@@ -126,8 +126,9 @@ std::size_t compare_case(const fs::path& a, const fs::path& b, double& largest_d
     std::istringstream e(expected[i]), o(actual[i]);
     int e_surface = 0, e_label = 0, o_surface = 0, o_label = 0;
     double e_field[2] = {}, o_field[2] = {};
-    const bool vertex_line = static_cast<bool>(e >> e_surface >> e_label >> e_field[0] >> e_field[1]) &&
-                             static_cast<bool>(o >> o_surface >> o_label >> o_field[0] >> o_field[1]);
+    const bool vertex_line =
+        static_cast<bool>(e >> e_surface >> e_label >> e_field[0] >> e_field[1]) &&
+        static_cast<bool>(o >> o_surface >> o_label >> o_field[0] >> o_field[1]);
     bool same = vertex_line && e_surface == o_surface && e_label == o_label;
     for (int k = 0; k < 2 && same; ++k) {
       const double scale = std::max({std::abs(e_field[k]), std::abs(o_field[k]), 1e-300});

@@ -16,7 +16,6 @@
 #include "analyzer/stopwatch.hpp"
 #include "images/image_codec.hpp"
 
-
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -35,9 +34,9 @@ struct AnalyzeArgs {
   LevelSetOptions level_set;
   std::string csv;
   std::string ply;
-  std::string maps;                // directory for the curvature maps
-  std::optional<int> maps_size;    // pixels along the longer side
-  std::vector<double> maps_box;    // u_min, v_min, u_max, v_max
+  std::string maps;              // directory for the curvature maps
+  std::optional<int> maps_size;  // pixels along the longer side
+  std::vector<double> maps_box;  // u_min, v_min, u_max, v_max
   Axis up = Axis::y;
   AnalysisSettings analysis;
 };
@@ -58,16 +57,16 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
                "ridge %zu, valley %zu\n"
                "  time: read %.3f s, weld %.3f s, topology %.3f s, curvature %.3f s, "
                "flow %.3f s, write %.3f s\n",
-               printable(mesh_path).c_str(), a.input_vertices, a.merged_vertices, a.surface.triangles.size(),
-               t.boundary_vertices, t.nonmanifold_vertices, t.isolated_vertices,
-               a.curvature.degenerate_faces, a.curvature.cap_faces, a.curvature.mollified_faces,
-               a.curvature.intrinsic_flips, a.flipped_faces, a.curvature.extrapolated_vertices,
-               a.curvature.undefined_vertices,
+               printable(mesh_path).c_str(), a.input_vertices, a.merged_vertices,
+               a.surface.triangles.size(), t.boundary_vertices, t.nonmanifold_vertices,
+               t.isolated_vertices, a.curvature.degenerate_faces, a.curvature.cap_faces,
+               a.curvature.mollified_faces, a.curvature.intrinsic_flips, a.flipped_faces,
+               a.curvature.extrapolated_vertices, a.curvature.undefined_vertices,
                f.criterion == FlowCriterion::mean ? "mean" : "paper", f.threshold, f.scale_length,
-               f.sequence_noise_floor, f.walls, f.normal_noise, f.rest_height, f.free_surface_vertices, f.free_surface_patches_dropped, f.regions,
-               f.specks_faded, f.min_region_area, f.ridge_vertices, f.valley_vertices,
-               read_seconds, a.times.weld, a.times.topology,
-               a.times.curvature, a.times.flow, write_seconds);
+               f.sequence_noise_floor, f.walls, f.normal_noise, f.rest_height,
+               f.free_surface_vertices, f.free_surface_patches_dropped, f.regions, f.specks_faded,
+               f.min_region_area, f.ridge_vertices, f.valley_vertices, read_seconds, a.times.weld,
+               a.times.topology, a.times.curvature, a.times.flow, write_seconds);
 }
 
 // Two names of one file: the same existing file (hard links included), or the same file to be
@@ -97,7 +96,8 @@ void check_outputs(const AnalyzeArgs& args) {
   if (args.maps.empty()) return;
   const MapFiles maps = map_files(args.maps, frame_stem(args.mesh));
   for (const auto& [option, path] : outputs)
-    for (const std::filesystem::path& map : {maps.exr, maps.gaussian_png, maps.mean_png, maps.label_png})
+    for (const std::filesystem::path& map :
+         {maps.exr, maps.gaussian_png, maps.mean_png, maps.label_png})
       if (!path.empty() && same_file(path, map.string()))
         throw InputError(path + ": given to both " + option + " and --maps (" +
                          map.filename().string() + ")");
@@ -138,9 +138,10 @@ void run_analyze(const AnalyzeArgs& args) {
       MapOptions map_options;
       map_options.size = args.maps_size;
       if (args.maps_box.size() == 4)
-        map_options.box = MapBox{args.maps_box[0], args.maps_box[1], args.maps_box[2], args.maps_box[3]};
-      map_ranges = write_frame_maps(args.maps, frame_stem(args.mesh),
-                                    analysis, args.up, map_options);
+        map_options.box =
+            MapBox{args.maps_box[0], args.maps_box[1], args.maps_box[2], args.maps_box[3]};
+      map_ranges =
+          write_frame_maps(args.maps, frame_stem(args.mesh), analysis, args.up, map_options);
     }
     outputs.commit();
   } catch (...) {
@@ -149,8 +150,8 @@ void run_analyze(const AnalyzeArgs& args) {
   }
   print_summary(args.mesh, analysis, read_seconds, seconds_since(start));
   if (map_ranges)
-    std::fprintf(stderr, "  maps in %s: colour ranges K \u00b1%.6g, H \u00b1%.6g\n", printable(args.maps).c_str(),
-                 map_ranges->gaussian, map_ranges->mean);
+    std::fprintf(stderr, "  maps in %s: colour ranges K \u00b1%.6g, H \u00b1%.6g\n",
+                 printable(args.maps).c_str(), map_ranges->gaussian, map_ranges->mean);
 }
 
 }  // namespace
@@ -159,7 +160,9 @@ void add_analyze_command(CLI::App& app) {
   auto args = std::make_shared<AnalyzeArgs>();
   CLI::App* cmd = app.add_subcommand(
       "analyze", "Compute per-vertex curvature and water-flow regions of a surface mesh");
-  cmd->add_option("mesh", args->mesh, "Surface mesh: OBJ, OFF, PLY, STL, Mantaflow .bobj.gz or an OpenVDB level set (.vdb)")
+  cmd->add_option(
+         "mesh", args->mesh,
+         "Surface mesh: OBJ, OFF, PLY, STL, Mantaflow .bobj.gz or an OpenVDB level set (.vdb)")
       ->required()
       ->check(NonEmptyPath);
   add_transform_options(*cmd, args->transform);

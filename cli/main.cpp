@@ -35,7 +35,6 @@ int fail(std::string message, int code) {
   return code;
 }
 
-
 // Most threads the program may use, from TOONWATER_THREADS: the analysis gives the same bits
 // with any number (common/parallel.hpp), so the variable only shares the cores with other work.
 constexpr unsigned long most_threads = 1024;
@@ -78,15 +77,16 @@ int main(int argc, char** argv) {
   toonwater::remove_temporaries_on_signals();  // an interrupted run leaves no temporary file
   // A closed standard error or output is a failed write, not an end (cli/stop_signals.hpp).
   std::signal(SIGPIPE, SIG_IGN);
-  toonwater::keep_large_arrays_in_the_heap();     // analyze and every povgen frame reuse pages
+  toonwater::keep_large_arrays_in_the_heap();  // analyze and every povgen frame reuse pages
   CLI::App app{"toonwater: cartoon water from fluid-simulation meshes, rendered with POV-Ray"};
   app.name("toonwater");
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("toonwater ") + TOONWATER_VERSION);
-  app.footer("Run `toonwater help SUBCOMMAND` or `toonwater SUBCOMMAND --help` for its options.\n"
-             "Exit codes: 0 success, 2 bad input, 3 output failure, 4 interrupted, "
-             "5 POV-Ray failed, 6 image module missing, 1 internal error.\n"
-             "TOONWATER_THREADS=N uses at most N threads (1-1024; default: every core).");
+  app.footer(
+      "Run `toonwater help SUBCOMMAND` or `toonwater SUBCOMMAND --help` for its options.\n"
+      "Exit codes: 0 success, 2 bad input, 3 output failure, 4 interrupted, "
+      "5 POV-Ray failed, 6 image module missing, 1 internal error.\n"
+      "TOONWATER_THREADS=N uses at most N threads (1-1024; default: every core).");
   // Parse errors in one line, like every other error (CLI11 adds a second by default).
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return "toonwater: error: " + printable(e.what()) + " (see --help)\n";
@@ -112,15 +112,15 @@ int main(int argc, char** argv) {
           std::cout << sub->help();
           return exit_code::success;
         }
-      return fail("unknown subcommand '" + printable(topic) + "' (subcommands: " +
-                      subcommand_names(app) + ")",
+      return fail("unknown subcommand '" + printable(topic) +
+                      "' (subcommands: " + subcommand_names(app) + ")",
                   exit_code::bad_input);
     }
     bool known = false;
     for (const CLI::App* sub : app.get_subcommands({})) known = known || sub->get_name() == word;
     if (!known)
-      return fail("unknown subcommand '" + printable(word) + "' (subcommands: " +
-                      subcommand_names(app) + "; see --help)",
+      return fail("unknown subcommand '" + printable(word) +
+                      "' (subcommands: " + subcommand_names(app) + "; see --help)",
                   exit_code::bad_input);
   }
 

@@ -25,7 +25,6 @@
 namespace toonwater::cli {
 namespace {
 
-
 struct PovgenArgs {
   std::string water;
   std::vector<std::string> objects;
@@ -84,23 +83,26 @@ void run_povgen(const PovgenArgs& args) {
   remove_temporaries_on_signals();
   // A signal that came after the last frame's check found the scene complete and in place.
   if (stop->load())
-    std::fprintf(stderr, "povgen: the stop signal came once the scene was complete; it is in place\n");
+    std::fprintf(stderr,
+                 "povgen: the stop signal came once the scene was complete; it is in place\n");
   for (const std::string& empty : r.empty_frames)
-    std::fprintf(stderr, "povgen: warning: %s; that frame shows no water\n", printable(empty).c_str());
+    std::fprintf(stderr, "povgen: warning: %s; that frame shows no water\n",
+                 printable(empty).c_str());
   std::fprintf(stderr,
                "povgen: %zu frame(s) -> %s (%zu water vertices, %zu degenerate faces left out, "
                "%zu normals replaced, ridge %zu, valley %zu%s)\n"
                "  render mesh: %zu of %zu water faces kept (water.simplify)\n"
                "  time: read %.3f s, analysis %.3f s, simplification %.3f s, scene writing %.3f s\n"
                "  render: cd %s && povray scene.ini   (or: toonwater render %s)\n",
-               r.frames, printable(args.out).c_str(), r.vertices, r.degenerate_faces, r.replaced_normals,
-               r.ridge_vertices, r.valley_vertices,
+               r.frames, printable(args.out).c_str(), r.vertices, r.degenerate_faces,
+               r.replaced_normals, r.ridge_vertices, r.valley_vertices,
                r.empty_frames.empty() ? "" : "; frames without water listed above", r.faces_kept,
                r.faces, r.read_seconds, r.analysis_seconds, r.simplify_seconds, r.write_seconds,
                printable_shell_word(args.out).c_str(), printable_shell_word(args.out).c_str());
   if (!args.maps.empty()) {
-    std::fprintf(stderr, "  maps: %zu frame(s) -> %s, shared colour ranges K \u00b1%.6g, H \u00b1%.6g\n",
-                 r.map_frames, printable(args.maps).c_str(), r.map_ranges.gaussian, r.map_ranges.mean);
+    std::fprintf(
+        stderr, "  maps: %zu frame(s) -> %s, shared colour ranges K \u00b1%.6g, H \u00b1%.6g\n",
+        r.map_frames, printable(args.maps).c_str(), r.map_ranges.gaussian, r.map_ranges.mean);
   }
 }
 

@@ -18,7 +18,6 @@
 namespace toonwater::cli {
 namespace {
 
-
 struct RenderArgs {
   std::string dir;
   int jobs = 0;
@@ -51,8 +50,9 @@ void run_render(const RenderArgs& args, bool force) {
   }
   for (const auto& f : r.failures)
     std::fprintf(stderr, "render: frame %ld failed: %s\n", f.frame, f.message.c_str());
-  std::fprintf(stderr, "render: %zu frame(s) rendered, %zu skipped (already rendered), %zu failed, %.2f s\n",
-               r.rendered, r.skipped, r.failures.size(), r.seconds);
+  std::fprintf(
+      stderr, "render: %zu frame(s) rendered, %zu skipped (already rendered), %zu failed, %.2f s\n",
+      r.rendered, r.skipped, r.failures.size(), r.seconds);
   if (!r.failures.empty())
     throw povgen::PovrayError(args.dir + ": " + std::to_string(r.failures.size()) +
                               " frame(s) failed to render");
@@ -66,7 +66,9 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("dir", args->dir, "Scene directory written by toonwater povgen")
       ->required()
       ->check(NonEmptyPath);
-  cmd->add_option("--jobs", args->jobs, "POV-Ray processes at the same time, each over a range of frames (default: four a core)")
+  cmd->add_option(
+         "--jobs", args->jobs,
+         "POV-Ray processes at the same time, each over a range of frames (default: four a core)")
       ->check(PositiveNumber);
   cmd->add_option("--frames", args->frames, "Frame range A-B (default: all)");
   auto farm = std::make_shared<FarmArgs>();

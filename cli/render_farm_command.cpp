@@ -38,7 +38,8 @@ void print_progress(const std::string& line) { std::fprintf(stderr, "render: %s\
 }  // namespace
 
 void add_render_farm_options(CLI::App* cmd, const std::shared_ptr<FarmArgs>& farm) {
-  cmd->add_option("--on", farm->on, "Render on a farm: slurm (a job array) or parallel (GNU parallel)")
+  cmd->add_option("--on", farm->on,
+                  "Render on a farm: slurm (a job array) or parallel (GNU parallel)")
       ->check(CLI::IsMember({"slurm", "parallel"}));
   cmd->add_option("--partition", farm->partition, "Slurm partition (default: the cluster's)");
   cmd->add_option("--frames-per-task", farm->frames_per_task, "Frames a farm task renders (10)")
@@ -47,7 +48,8 @@ void add_render_farm_options(CLI::App* cmd, const std::shared_ptr<FarmArgs>& far
       ->allow_extra_args(false);
   cmd->add_flag("--no-wait", farm->no_wait, "Slurm: print the job id and return at once");
   cmd->add_flag("--status", farm->status, "Report on the farm job last submitted for DIR");
-  cmd->add_option("--hosts", farm->hosts, "GNU parallel: ssh login file (--sshloginfile; ':' is this machine)")
+  cmd->add_option("--hosts", farm->hosts,
+                  "GNU parallel: ssh login file (--sshloginfile; ':' is this machine)")
       ->check(NonEmptyPath);
   cmd->add_flag("--force", farm->force, "Render frames that already have an image too");
 }
@@ -64,8 +66,9 @@ bool run_render_on_farm(const std::string& dir, const std::string& frames, const
   if (farm.on.empty()) {
     if (!farm.partition.empty() || farm.frames_per_task || !farm.sbatch_args.empty() ||
         farm.no_wait || !farm.hosts.empty())
-      throw InputError("--partition, --frames-per-task, --sbatch-arg, --no-wait and --hosts "
-                       "need --on slurm|parallel");
+      throw InputError(
+          "--partition, --frames-per-task, --sbatch-arg, --no-wait and --hosts "
+          "need --on slurm|parallel");
     return false;
   }
   povgen::FarmRequest request;
@@ -86,8 +89,10 @@ bool run_render_on_farm(const std::string& dir, const std::string& frames, const
     options.wait = !farm.no_wait;
     r = povgen::render_on_slurm(request, options, print_progress);
     if (farm.no_wait) {
-      if (r.job_id.empty()) std::fprintf(stderr, "render: every frame has its image already\n");
-      else std::printf("%s\n", r.job_id.c_str());
+      if (r.job_id.empty())
+        std::fprintf(stderr, "render: every frame has its image already\n");
+      else
+        std::printf("%s\n", r.job_id.c_str());
       return true;
     }
   } else {
@@ -111,7 +116,8 @@ bool run_render_on_farm(const std::string& dir, const std::string& frames, const
 void add_render_task_command(CLI::App& app) {
   auto dir = std::make_shared<std::string>();
   auto frames = std::make_shared<std::string>();
-  CLI::App* cmd = app.add_subcommand("render-task", "One render farm task (run by Slurm or GNU parallel)");
+  CLI::App* cmd =
+      app.add_subcommand("render-task", "One render farm task (run by Slurm or GNU parallel)");
   cmd->group("");  // hidden: `render --on` writes these command lines
   cmd->add_option("dir", *dir, "Scene directory")->required()->check(NonEmptyPath);
   cmd->add_option("--frames", *frames, "Frame range A-B")->required();
@@ -119,7 +125,8 @@ void add_render_task_command(CLI::App& app) {
     povgen::RenderRequest request;
     request.scene_dir = *dir;
     request.frames = povgen::parse_frame_range(*frames, "--frames");
-    // Slurm ends a cancelled or preempted task with SIGTERM: povray is stopped, nothing partial stays.
+    // Slurm ends a cancelled or preempted task with SIGTERM: povray is stopped, nothing partial
+    // stays.
     request.stop = stop_on_signals();
     char host[256] = "?";
     ::gethostname(host, sizeof host - 1);

@@ -44,8 +44,9 @@ void run_report(const ReportArgs& args) {
 void add_report_command(CLI::App& app) {
   auto args = std::make_shared<ReportArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "report", "Measure curvature error against run time and the pipeline's time per frame; "
-                "write a Markdown report with plots and CSV");
+      "report",
+      "Measure curvature error against run time and the pipeline's time per frame; "
+      "write a Markdown report with plots and CSV");
   cmd->add_option("--out", args->out, "Directory for report.md, the CSV files and the plots")
       ->capture_default_str()
       ->check(NonEmptyPath);

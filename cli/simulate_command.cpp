@@ -34,7 +34,7 @@ void run_simulate(const SimulateArgs& args) {
   std::size_t files = 0, water_vertices = 0;
   auto sink = [&](const std::string& name, const TriangleMesh& mesh) {
     write_obj(fs::path(args.out) / name, mesh,
-               "toonwater simulate " + args.scenario + ": " + name + " (y up)");
+              "toonwater simulate " + args.scenario + ": " + name + " (y up)");
     ++files;
     if (name.starts_with("water_")) water_vertices = mesh.positions.size();
   };
@@ -58,8 +58,8 @@ void run_simulate(const SimulateArgs& args) {
   std::fprintf(stderr,
                "simulate: %s, %d frame(s), %zu water vertices a frame -> %s (%zu OBJ files, "
                "y up), %.2f s\n",
-               args.scenario.c_str(), args.frames, water_vertices, printable(args.out).c_str(), files,
-               seconds);
+               args.scenario.c_str(), args.frames, water_vertices, printable(args.out).c_str(),
+               files, seconds);
 }
 
 }  // namespace

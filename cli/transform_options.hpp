@@ -12,8 +12,8 @@
 namespace toonwater::cli {
 
 struct TransformArgs {
-  std::vector<double> rows;       // 3x4 [A | b] row by row
-  std::optional<double> scale;    // or x -> scale x + translate
+  std::vector<double> rows;     // 3x4 [A | b] row by row
+  std::optional<double> scale;  // or x -> scale x + translate
   std::vector<double> translate;
 };
 

@@ -29,8 +29,7 @@ CLI::Validator finite_number(bool (*accept)(double), const char* what) {
 
 }  // namespace
 
-const CLI::Validator FiniteNumber =
-    finite_number([](double) { return true; }, "a finite number");
+const CLI::Validator FiniteNumber = finite_number([](double) { return true; }, "a finite number");
 const CLI::Validator PositiveNumber =
     finite_number([](double v) { return v > 0; }, "a positive finite number");
 

@@ -101,7 +101,8 @@ class RenamesUninterrupted {
 
   // After the renames (and after this object): the signal that waited, as it would have acted.
   static void end_deferred() {
-    if (const int signal_number = deferred_signal.exchange(0)) remove_temporaries_and_end(signal_number);
+    if (const int signal_number = deferred_signal.exchange(0))
+      remove_temporaries_and_end(signal_number);
   }
 };
 
@@ -188,7 +189,8 @@ void keep_access(const struct stat& replaced, int fd) {
   mode_t mode = replaced.st_mode & 07777;
   if (::fchown(fd, replaced.st_uid, replaced.st_gid) != 0) {
     mode &= ~static_cast<mode_t>(S_ISUID);
-    if (::fchown(fd, static_cast<uid_t>(-1), replaced.st_gid) != 0) mode &= ~static_cast<mode_t>(S_ISGID);
+    if (::fchown(fd, static_cast<uid_t>(-1), replaced.st_gid) != 0)
+      mode &= ~static_cast<mode_t>(S_ISGID);
   }
   ::fchmod(fd, mode);
 }
@@ -331,7 +333,8 @@ void remove_stale_temporaries(const fs::path& directory,
     if (is_stale_temporary(entry.path().filename().string())) stale.push_back(entry.path());
   for (const fs::path& entry : stale) {
     std::error_code ignored;
-    if (recover && fs::is_directory(fs::symlink_status(entry, ignored)) && !recover(entry)) continue;
+    if (recover && fs::is_directory(fs::symlink_status(entry, ignored)) && !recover(entry))
+      continue;
     fs::remove_all(entry, ignored);
   }
 }

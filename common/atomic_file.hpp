@@ -47,7 +47,7 @@ class AtomicFileWriter {
   std::filesystem::path path_;  // the file replaced: name_ with its links followed
   std::filesystem::path temporary_;
   int fd_ = -1;
-  int slot_ = -1;  // in the table remove_temporaries_on_signals() reads
+  int slot_ = -1;        // in the table remove_temporaries_on_signals() reads
   bool stream_ = false;  // written in place: standard output, a FIFO or a device
 };
 
@@ -93,8 +93,9 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 // processes and of other machines stay. `recover`, when given, is called first for each stale
 // directory: one it returns false for stays. Best effort: what cannot be listed or removed is
 // left as it is.
-void remove_stale_temporaries(const std::filesystem::path& directory,
-                              const std::function<bool(const std::filesystem::path&)>& recover = {});
+void remove_stale_temporaries(
+    const std::filesystem::path& directory,
+    const std::function<bool(const std::filesystem::path&)>& recover = {});
 
 // Installs handlers for SIGINT, SIGTERM and SIGHUP that delete the temporary files of the
 // AtomicFileWriters in progress, then let the signal end the process as it would have: an

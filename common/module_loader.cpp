@@ -13,7 +13,8 @@ LoadedModule load_module_beside_program(const char* module_name, const char* ent
   const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
   if (error) {
     loaded.path = module_name;
-    loaded.error = "cannot find the toonwater program's directory: /proc/self/exe: " + error.message();
+    loaded.error =
+        "cannot find the toonwater program's directory: /proc/self/exe: " + error.message();
     return loaded;
   }
   loaded.path = executable.parent_path() / module_name;

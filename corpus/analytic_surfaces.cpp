@@ -76,9 +76,9 @@ AnalyticSurface make_graph(int n, double half_extent, Jitter jitter, Function f)
       const double w2 = 1.0 + d.fx * d.fx + d.fy * d.fy;
       s.mesh.positions.emplace_back(x, y, d.f);
       s.gaussian.push_back((d.fxx * d.fyy - d.fxy * d.fxy) / (w2 * w2));
-      s.mean.push_back(-((1.0 + d.fy * d.fy) * d.fxx - 2.0 * d.fx * d.fy * d.fxy +
-                         (1.0 + d.fx * d.fx) * d.fyy) /
-                       (2.0 * w2 * std::sqrt(w2)));
+      s.mean.push_back(
+          -((1.0 + d.fy * d.fy) * d.fxx - 2.0 * d.fx * d.fy * d.fxy + (1.0 + d.fx * d.fx) * d.fyy) /
+          (2.0 * w2 * std::sqrt(w2)));
       s.interior.push_back(i >= 2 && j >= 2 && i < n - 2 && j < n - 2);
     }
   }
@@ -103,7 +103,8 @@ TriangleMesh unit_icosphere(int subdivisions, Jitter jitter) {
     std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> midpoints;
     auto midpoint = [&](std::int32_t a, std::int32_t b) {
       const auto key = std::minmax(a, b);
-      auto [it, inserted] = midpoints.try_emplace(key, static_cast<std::int32_t>(m.positions.size()));
+      auto [it, inserted] =
+          midpoints.try_emplace(key, static_cast<std::int32_t>(m.positions.size()));
       if (inserted) m.positions.push_back((m.positions[a] + m.positions[b]).normalized());
       return it->second;
     };
@@ -151,9 +152,8 @@ AnalyticSurface make_uv_sphere(int rings, int segments, double radius, Jitter ji
   for (int i = 1; i < rings; ++i) {
     for (int j = 0; j < segments; ++j) {
       const double theta = i * dtheta + rng.offset(dtheta), phi = j * dphi + rng.offset(dphi);
-      s.mesh.positions.push_back(
-          radius * Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-                        std::cos(theta)));
+      s.mesh.positions.push_back(radius * Vec3(std::sin(theta) * std::cos(phi),
+                                               std::sin(theta) * std::sin(phi), std::cos(theta)));
       s.interior.push_back(true);
     }
   }
@@ -246,8 +246,8 @@ AnalyticSurface make_wave_field(int n, double amplitude, double wave_number, dou
   return make_graph(n, half_extent, jitter, [A, k](double x, double y) {
     const double sx = std::sin(k * x), cx = std::cos(k * x), sy = std::sin(k * y),
                  cy = std::cos(k * y);
-    return GraphDerivatives{A * sx * cy,          A * k * cx * cy,          -A * k * sx * sy,
-                            -A * k * k * sx * cy, -A * k * k * sx * cy,     -A * k * k * cx * sy};
+    return GraphDerivatives{A * sx * cy,          A * k * cx * cy,      -A * k * sx * sy,
+                            -A * k * k * sx * cy, -A * k * k * sx * cy, -A * k * k * cx * sy};
   });
 }
 

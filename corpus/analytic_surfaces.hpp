@@ -44,5 +44,4 @@ AnalyticSurface make_saddle(int n, double half_extent = 0.5, Jitter jitter = {})
 AnalyticSurface make_wave_field(int n, double amplitude = 0.1, double wave_number = 6.0,
                                 double half_extent = 1.0, Jitter jitter = {});
 
-
 }  // namespace toonwater

@@ -11,7 +11,8 @@ const ImageCodec* load_image_codec() {
   const LoadedModule module =
       load_module_beside_program("toonwater-images.so", "toonwater_image_codec_entry");
   if (!module.entry)
-    throw ImageModuleError(module.path.string() + ": cannot load the image module (" + module.error +
+    throw ImageModuleError(module.path.string() + ": cannot load the image module (" +
+                           module.error +
                            "); it must lie beside the toonwater program for images to be read "
                            "or written");
   using Entry = const ImageCodec* (*)();

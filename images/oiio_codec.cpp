@@ -52,8 +52,8 @@ std::vector<unsigned char> encode_exr(const FloatPlanes& image,
 }
 
 std::vector<unsigned char> encode_png(int width, int height, const std::uint8_t* rgb,
-                                      const std::vector<ImageText>& metadata,
-                                      int compression_level, int filter) {
+                                      const std::vector<ImageText>& metadata, int compression_level,
+                                      int filter) {
   OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
   spec.attribute("png:compressionLevel", compression_level);
   spec.attribute("png:filter", filter);

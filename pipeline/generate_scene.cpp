@@ -52,8 +52,7 @@ AnalyzeOptions analysis_options(const FlowConfig& flow, Axis up, WaterShading sh
 }
 
 const FlowConfig* scene_flow(const SceneConfig& config) {
-  return config.flow.enabled || config.water.shading != WaterShading::toon ? &config.flow
-                                                                           : nullptr;
+  return config.flow.enabled || config.water.shading != WaterShading::toon ? &config.flow : nullptr;
 }
 
 std::optional<AnalyzeOptions> water_analysis(const SceneConfig& config, Axis up, bool maps) {
@@ -114,11 +113,10 @@ Sequence select_frames(const SceneConfig& config, const PovgenRequest& request) 
     // A range beyond the sequence is a mistake to report, not to clip.
     const long have_first = f.begin()->first, have_last = f.rbegin()->first;
     if (config.render.frames->first < have_first || config.render.frames->last > have_last)
-      throw InputError(request.water_pattern + ": render.frames " +
-                       std::to_string(config.render.frames->first) + "-" +
-                       std::to_string(config.render.frames->last) +
-                       " is outside the sequence's frames " + std::to_string(have_first) + "-" +
-                       std::to_string(have_last));
+      throw InputError(
+          request.water_pattern + ": render.frames " + std::to_string(config.render.frames->first) +
+          "-" + std::to_string(config.render.frames->last) + " is outside the sequence's frames " +
+          std::to_string(have_first) + "-" + std::to_string(have_last));
     std::erase_if(f, [&](const auto& kv) {
       return kv.first < config.render.frames->first || kv.first > config.render.frames->last;
     });
@@ -131,8 +129,8 @@ Sequence select_frames(const SceneConfig& config, const PovgenRequest& request) 
   for (long f = first; f <= last; ++f)
     if (!water.frames.count(f))
       throw InputError(request.water_pattern + ": frame " + std::to_string(f) +
-                       " is missing (frames " + std::to_string(first) + "-" +
-                       std::to_string(last) + " must all exist)");
+                       " is missing (frames " + std::to_string(first) + "-" + std::to_string(last) +
+                       " must all exist)");
   return water;
 }
 
@@ -197,8 +195,8 @@ WaterPlan plan_water(const SceneConfig& config, const PovgenRequest& request, st
 struct SequenceSurvey {
   bool have_box = false;
   Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();  // POV-Ray frame
-  std::vector<double> normal_noise;                      // each frame's with water
-  CurvatureRanges view;                                  // the curvature view's colour range
+  std::vector<double> normal_noise;                     // each frame's with water
+  CurvatureRanges view;                                 // the curvature view's colour range
   std::optional<MapPlanner> maps;
   void grow_box(const Vec3& lower, const Vec3& upper, Axis up) {
     const Vec3 a = to_povray(lower, up), b = to_povray(upper, up);  // a signed permutation
@@ -266,10 +264,10 @@ struct SceneRun {
   PreparedSurface prepare(SourceFrame& f) {
     Analysis a = f.analysis ? std::move(*f.analysis) : geometry_analysis(std::move(f.mesh));
     const auto start = Clock::now();
-    PreparedSurface s =
-        f.analysis ? prepare_surface(std::move(a), request.up, plan.flow, plan.shading,
-                                     plan.frames.coherent ? &strokes : nullptr)
-                   : prepare_surface(std::move(a), request.up, nullptr);
+    PreparedSurface s = f.analysis
+                            ? prepare_surface(std::move(a), request.up, plan.flow, plan.shading,
+                                              plan.frames.coherent ? &strokes : nullptr)
+                            : prepare_surface(std::move(a), request.up, nullptr);
     s.analysis_seconds = seconds_since(start);
     return s;
   }
@@ -375,7 +373,8 @@ void write_object(SceneRun& run, std::size_t i, const fs::path& path, long frame
           ? shell_offsets(run.config.outline, s.mesh, run.layout.camera, run.config.render.width)
           : std::vector<double>{};
   count_whole_shell(run, s.mesh, offsets);
-  std::string text = mesh_include(s, "Obj_" + oc.name, texture_coordinates(s, run.light), offsets, nullptr, nullptr);
+  std::string text = mesh_include(s, "Obj_" + oc.name, texture_coordinates(s, run.light), offsets,
+                                  nullptr, nullptr);
   run.report.write_seconds += seconds_since(start);
   run.write(object_include_name(oc.name, run.objects[i].placement.animated, frame), text);
   // The object with its shell: the water's shell faces keep away from it to be dropped.
@@ -412,7 +411,8 @@ std::string object_waters(SceneRun& run, const SceneMesh* frame_water) {
     const double line = frame_water ? water_line(*frame_water, b.min, b.max)
                                     : b.min.y() - (b.max - b.min).norm() - 1.0;
     run.submerged[i] = run.submerged[i] || line > b.min.y();
-    text += object_water_declaration(oc.name, frame_water && frame_water->closed ? frame_water : nullptr,
+    text += object_water_declaration(oc.name,
+                                     frame_water && frame_water->closed ? frame_water : nullptr,
                                      line, run.contact_depth[i]);
   }
   return text;
@@ -430,7 +430,8 @@ void write_empty_frame(SceneRun& run, long frame, long written_frame, const std:
 void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long written_frame) {
   const SceneConfig& config = run.config;
   // The band limits are the sequence's from its first frame on (no survey: this frame's).
-  if (!run.have_water_box && run.layout.normal_noise == 0.0) run.layout.normal_noise = s.normal_noise;
+  if (!run.have_water_box && run.layout.normal_noise == 0.0)
+    run.layout.normal_noise = s.normal_noise;
   s.view_range = run.view_range;
   run.report.analysis_seconds += s.analysis_seconds;
   run.report.vertices += s.mesh.positions.size();
@@ -478,8 +479,7 @@ void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long writt
   const std::vector<bool> shell_faces =
       kept_water_shell_faces(run, s.mesh, offsets, s.flow_lines.empty(), run.keep_out,
                              free_surface_shell ? &upward : nullptr);
-  const std::string text = mesh_include(s, "Water", uv, offsets,
-                                        textures ? &*textures : nullptr,
+  const std::string text = mesh_include(s, "Water", uv, offsets, textures ? &*textures : nullptr,
                                         shell_faces.empty() ? nullptr : &shell_faces) +
                            object_waters(run, &s.mesh);
   run.report.write_seconds += seconds_since(start);
@@ -583,7 +583,8 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
     }
     run.layout.camera = frame_camera(config, request.up, survey.box_min, survey.box_max);
     if (!survey.normal_noise.empty()) {
-      auto middle = survey.normal_noise.begin() + static_cast<std::ptrdiff_t>(survey.normal_noise.size() / 2);
+      auto middle =
+          survey.normal_noise.begin() + static_cast<std::ptrdiff_t>(survey.normal_noise.size() / 2);
       std::nth_element(survey.normal_noise.begin(), middle, survey.normal_noise.end());
       run.layout.normal_noise = *middle;
     }

@@ -82,7 +82,8 @@ int take_lock(const fs::path& path) {
       if (error == EWOULDBLOCK) return -1;
       fail(path, "cannot lock", error);
     }
-    struct stat held {}, named {};
+    struct stat held {
+    }, named{};
     if (::fstat(fd, &held) == 0 && ::stat(path.c_str(), &named) == 0 &&
         held.st_ino == named.st_ino && held.st_dev == named.st_dev)
       return fd;
@@ -227,8 +228,9 @@ void SceneDirectory::commit() {
   if (target_exists && !merge_into_target_) {
     const fs::path clash = clashing_file(staging_, target_, target_marker);
     if (!clash.empty())
-      fail(clash, "is not a file toonwater povgen wrote, and the new scene has a file of that "
-                  "name; rename or move it (nothing was replaced)");
+      fail(clash,
+           "is not a file toonwater povgen wrote, and the new scene has a file of that "
+           "name; rename or move it (nothing was replaced)");
   }
   if (merge_into_target_) {
     // Forced into a directory of other files: the files are moved in one by one (scene.pov
@@ -245,7 +247,8 @@ void SceneDirectory::commit() {
       std::error_code ignored;
       for (std::size_t j = 0; j < moved; ++j) {
         fs::rename(target_ / files[j].filename(), files[j], ignored);
-        if (replaced[j]) fs::rename(aside / files[j].filename(), target_ / files[j].filename(), ignored);
+        if (replaced[j])
+          fs::rename(aside / files[j].filename(), target_ / files[j].filename(), ignored);
       }
     };
     for (std::size_t i = 0; i < files.size(); ++i) {

@@ -31,7 +31,9 @@ long last_number(const std::string& name) {
   while (end > 0 && !std::isdigit(static_cast<unsigned char>(name[end - 1]))) --end;
   std::size_t begin = end;
   while (begin > 0 && std::isdigit(static_cast<unsigned char>(name[begin - 1]))) --begin;
-  return begin == end || end - begin > 9 ? -1 : to_frame(std::string_view(name).substr(begin, end - begin));
+  return begin == end || end - begin > 9
+             ? -1
+             : to_frame(std::string_view(name).substr(begin, end - begin));
 }
 
 // A backslash before one of these makes it literal; before anything else it is itself.
@@ -45,8 +47,10 @@ bool escapes(std::string_view text, std::size_t i) {
 // The position of the first of `chars` in `name` that no backslash escapes, or npos.
 std::size_t find_unescaped(const std::string& name, std::string_view chars) {
   for (std::size_t i = 0; i < name.size(); ++i) {
-    if (escapes(name, i)) ++i;
-    else if (chars.find(name[i]) != std::string_view::npos) return i;
+    if (escapes(name, i))
+      ++i;
+    else if (chars.find(name[i]) != std::string_view::npos)
+      return i;
   }
   return std::string::npos;
 }
@@ -110,9 +114,8 @@ Sequence find_sequence(const std::string& pattern, const fs::path& base_dir) {
       if (frame < 0) continue;
     }
     if (!seq.frames.emplace(frame, entry.path()).second)
-      throw InputError(full.string() + ": frame " + std::to_string(frame) +
-                       " matches two files: " + seq.frames[frame].string() + " and " +
-                       entry.path().string());
+      throw InputError(full.string() + ": frame " + std::to_string(frame) + " matches two files: " +
+                       seq.frames[frame].string() + " and " + entry.path().string());
   }
   if (ec) throw InputError(dir.string() + ": cannot list directory: " + ec.message());
   if (seq.frames.empty()) throw InputError(full.string() + ": no file matches the pattern");

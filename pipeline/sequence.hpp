@@ -15,7 +15,7 @@ namespace toonwater::povgen {
 
 struct Sequence {
   std::map<long, std::filesystem::path> frames;  // frame number -> file
-  bool single_file = false;                       // one file: the same for every frame
+  bool single_file = false;                      // one file: the same for every frame
 };
 
 // Throws InputError (mesh_reader.hpp) naming the pattern when nothing matches.

@@ -117,7 +117,8 @@ CommandOutput run_command(const std::vector<std::string>& argv) {
     }
   }
   int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
   result.status = exit_status(status);
   return result;
 }
@@ -155,8 +156,10 @@ std::optional<FarmState> read_farm_state(const fs::path& dir) {
     std::istringstream words(line);
     std::string key;
     words >> key;
-    if (key == "scheduler") words >> state.scheduler;
-    else if (key == "job") words >> state.job_id;
+    if (key == "scheduler")
+      words >> state.scheduler;
+    else if (key == "job")
+      words >> state.job_id;
     else if (key == "frames")
       for (long f; words >> f;) state.frames.push_back(f);
   }

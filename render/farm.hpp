@@ -23,7 +23,7 @@ struct FarmRequest {
   std::optional<FrameRange> frames;  // default: all frames in scene.ini
   bool force = false;                // render frames that already have an image
   long frames_per_task = 10;
-  std::string toonwater;             // the executable the tasks run (the same path on every host)
+  std::string toonwater;  // the executable the tasks run (the same path on every host)
   const std::atomic<bool>* stop = nullptr;  // set: stop the tasks and throw InterruptedError
 };
 
@@ -32,7 +32,7 @@ struct FarmReport {
   std::size_t skipped = 0;             // frames that had an image before (not forced)
   std::vector<FrameFailure> failures;  // frames without an image at the end, by frame
   std::size_t resubmitted_tasks = 0;
-  std::string job_id;                  // Slurm's job id (the first submission)
+  std::string job_id;  // Slurm's job id (the first submission)
   double seconds = 0;
 };
 
@@ -66,9 +66,9 @@ std::vector<FrameFailure> missing_frames(const std::filesystem::path& dir, const
 void remove_task_leftovers(const std::filesystem::path& dir);
 
 struct CommandOutput {
-  int status = 0;     // exit status, 128 + signal, 127 when it could not be run
-  std::string out;    // stdout
-  std::string err;    // stderr
+  int status = 0;   // exit status, 128 + signal, 127 when it could not be run
+  std::string out;  // stdout
+  std::string err;  // stderr
 };
 
 // Runs argv (no shell) and collects its output.
@@ -81,9 +81,9 @@ std::string shell_command(const std::vector<std::string>& argv);
 // The farm state of a scene directory (DIR/.farm/job), written when a job is submitted so that
 // `toonwater render DIR --status` can report on it later.
 struct FarmState {
-  std::string scheduler;      // "slurm"
+  std::string scheduler;  // "slurm"
   std::string job_id;
-  std::vector<long> frames;   // the frames the job renders
+  std::vector<long> frames;  // the frames the job renders
 };
 void write_farm_state(const std::filesystem::path& dir, const FarmState& state);
 std::optional<FarmState> read_farm_state(const std::filesystem::path& dir);

@@ -36,7 +36,8 @@ void throw_if_hosts_unreachable(const fs::path& joblog, const fs::path& dir,
     std::istringstream fields(line);
     for (std::string column; std::getline(fields, column, '\t');) columns.push_back(column);
     if (columns.size() < 7 || columns[6] != "255") continue;
-    if (unreachable.find(" " + columns[1] + ",") == std::string::npos) unreachable += " " + columns[1] + ",";
+    if (unreachable.find(" " + columns[1] + ",") == std::string::npos)
+      unreachable += " " + columns[1] + ",";
   }
   if (unreachable.empty()) return;
   unreachable.pop_back();
@@ -98,15 +99,18 @@ FarmReport render_on_parallel(const FarmRequest& request, const ParallelOptions&
       if (request.stop && request.stop->load()) {
         if (terms_sent < 2) {
           ::kill(pid, SIGTERM);
-          if (++terms_sent == 2) kill_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+          if (++terms_sent == 2)
+            kill_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
         } else if (std::chrono::steady_clock::now() > kill_deadline) {
           ::kill(pid, SIGKILL);
         }
       }
       const pid_t r = ::waitpid(pid, &status, WNOHANG);
-      if (r < 0 && errno != EINTR) throw OutputError("lost GNU parallel: " + std::string(strerror(errno)));
+      if (r < 0 && errno != EINTR)
+        throw OutputError("lost GNU parallel: " + std::string(strerror(errno)));
       if (r == pid && terms_sent > 0)
-        throw InterruptedError(dir.string() + ": interrupted: GNU parallel and its tasks were "
+        throw InterruptedError(dir.string() +
+                               ": interrupted: GNU parallel and its tasks were "
                                "stopped; the frames rendered so far are kept");
       const std::string line = "GNU parallel: " + std::to_string(count_images(dir, scene, frames)) +
                                "/" + std::to_string(frames.size()) + " frames";

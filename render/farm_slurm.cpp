@@ -30,8 +30,10 @@ QueueCounts query_queue(const std::string& job_id) {
   QueueCounts counts;
   std::istringstream lines(r.out);
   for (std::string state; std::getline(lines, state);) {
-    if (state == "RUNNING" || state == "COMPLETING") ++counts.running;
-    else if (!state.empty()) ++counts.pending;
+    if (state == "RUNNING" || state == "COMPLETING")
+      ++counts.running;
+    else if (!state.empty())
+      ++counts.pending;
   }
   return counts;
 }
@@ -51,12 +53,15 @@ std::string submit(const fs::path& dir, const std::vector<FrameRange>& tasks, in
   write_file_atomically(task_list, lines);
   // Array task i renders line i + 1 of the task list.
   write_file_atomically(
-      script, "#!/bin/sh\n# Written by toonwater render --on slurm: one array task, one frame range.\n"
-              "range=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" " +
-                  shell_quote(task_list.string()) + ")\nexec " + shell_quote(request.toonwater) +
-                  " render-task " + shell_quote(dir.string()) + " --frames \"$range\"\n");
+      script,
+      "#!/bin/sh\n# Written by toonwater render --on slurm: one array task, one frame range.\n"
+      "range=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" " +
+          shell_quote(task_list.string()) + ")\nexec " + shell_quote(request.toonwater) +
+          " render-task " + shell_quote(dir.string()) + " --frames \"$range\"\n");
 
-  std::vector<std::string> argv{"sbatch", "--parsable", "--job-name=toonwater-render",
+  std::vector<std::string> argv{"sbatch",
+                                "--parsable",
+                                "--job-name=toonwater-render",
                                 "--array=0-" + std::to_string(tasks.size() - 1),
                                 "--output=" + (farm / "slurm-%A_%a.log").string(),
                                 "--chdir=" + dir.string()};
@@ -67,7 +72,8 @@ std::string submit(const fs::path& dir, const std::vector<FrameRange>& tasks, in
   std::string err = r.err;
   while (!err.empty() && (err.back() == '\n' || err.back() == '\r')) err.pop_back();
   if (r.status == 127)
-    throw OutputError("cannot run '" + shell_command(argv) + "' (is Slurm installed? sbatch not found)");
+    throw OutputError("cannot run '" + shell_command(argv) +
+                      "' (is Slurm installed? sbatch not found)");
   if (r.status != 0)
     throw OutputError("'" + shell_command(argv) + "' failed: " +
                       (err.empty() ? "exit status " + std::to_string(r.status) : err));
@@ -94,11 +100,10 @@ void wait_for_job(const std::string& job_id, const fs::path& dir, const SceneFra
                              " cancelled; the frames rendered so far are kept");
     }
     const QueueCounts q = query_queue(job_id);
-    const std::string line = "slurm job " + job_id + ": " +
-                             std::to_string(count_images(dir, scene, frames)) + "/" +
-                             std::to_string(frames.size()) + " frames, " +
-                             std::to_string(q.running) + " task(s) running, " +
-                             std::to_string(q.pending) + " pending";
+    const std::string line =
+        "slurm job " + job_id + ": " + std::to_string(count_images(dir, scene, frames)) + "/" +
+        std::to_string(frames.size()) + " frames, " + std::to_string(q.running) +
+        " task(s) running, " + std::to_string(q.pending) + " pending";
     if (progress && line != last_line) progress(line);
     last_line = line;
     if (q.empty()) return;
@@ -137,8 +142,8 @@ FarmReport render_on_slurm(const FarmRequest& request, const SlurmOptions& optio
       write_farm_state(dir, {"slurm", retry_id, frames});
       if (progress)
         progress("slurm job " + report.job_id + ": " + std::to_string(missing.size()) +
-                 " frame(s) missing after the tasks ended; resubmitted as job " + retry_id +
-                 " (" + std::to_string(retry.size()) + " task(s))");
+                 " frame(s) missing after the tasks ended; resubmitted as job " + retry_id + " (" +
+                 std::to_string(retry.size()) + " task(s))");
       wait_for_job(retry_id, dir, scene, frames, options, progress, request.stop);
     }
     remove_task_leftovers(dir);
@@ -165,8 +170,9 @@ FarmStatus slurm_status(const fs::path& scene_dir) {
                 std::to_string(state->frames.size()) + " frames, " + std::to_string(q.running) +
                 " task(s) running, " + std::to_string(q.pending) + " pending";
   if (status.finished)
-    status.failures = missing_frames(dir, scene, state->frames,
-                                     "the task ended without its image (task logs: .farm/slurm-*.log)");
+    status.failures =
+        missing_frames(dir, scene, state->frames,
+                       "the task ended without its image (task logs: .farm/slurm-*.log)");
   return status;
 }
 

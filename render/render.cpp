@@ -59,14 +59,15 @@ SceneFrames read_ini_frames(const fs::path& ini) {
   const std::string& name = f.output_name;
   if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos ||
       std::any_of(name.begin(), name.end(), [](unsigned char c) { return c < 32 || c == 127; }))
-    throw InputError(ini.string() + ": Output_File_Name must be a file name in the scene directory, "
-                                    "without a directory or control characters");
+    throw InputError(ini.string() +
+                     ": Output_File_Name must be a file name in the scene directory, "
+                     "without a directory or control characters");
   f.animation = has_first && has_last;
   // An edited or foreign scene.ini: a range that renders nothing would be a false success, and
   // one of billions of frames would be planned (and its memory taken) before any is rendered.
-  if (f.animation && !(f.first <= f.last && static_cast<unsigned long>(f.last) -
-                                                  static_cast<unsigned long>(f.first) <
-                                              largest_frame_count))
+  if (f.animation && !(f.first <= f.last &&
+                       static_cast<unsigned long>(f.last) - static_cast<unsigned long>(f.first) <
+                           largest_frame_count))
     throw InputError(ini.string() + ": frames " + std::to_string(f.first) + "-" +
                      std::to_string(f.last) + " are not a range of 1 to " +
                      std::to_string(largest_frame_count) + " frames");
@@ -152,14 +153,16 @@ void check_writable(const fs::path& dir) {
   const fs::path probe = dir / temporary_name("render-probe");
   std::error_code ec;
   if (!fs::create_directory(probe, ec) && !ec) ec = std::make_error_code(std::errc::file_exists);
-  if (ec) throw OutputError(dir.string() + ": cannot write into the scene directory: " + ec.message());
+  if (ec)
+    throw OutputError(dir.string() + ": cannot write into the scene directory: " + ec.message());
   fs::remove(probe, ec);
 }
 
 // Whether `image` is a whole PNG file: it ends with the IEND chunk, which a PNG writer writes
 // last (an empty chunk: length 0, type IEND, its CRC). A file still being written ends elsewhere.
 bool is_whole_png(const fs::path& image) {
-  static constexpr unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+  static constexpr unsigned char iend[12] = {0,   0,   0,    0,    'I',  'E',
+                                             'N', 'D', 0xAE, 0x42, 0x60, 0x82};
   const int fd = ::open(image.c_str(), O_RDONLY);
   if (fd < 0) return false;
   unsigned char tail[sizeof iend];
@@ -266,11 +269,14 @@ void render_range(const RangeRun& run, const std::vector<long>& frames, const Fr
       std::error_code e;
       std::string failure;
       // A full disk can leave an empty file behind a zero exit status.
-      if (fs::file_size(image, e) == 0 || e) failure = "POV-Ray wrote an empty image";
-      else fs::rename(image, frame_image_path(run.dir, run.ini, frames[i]), e);
+      if (fs::file_size(image, e) == 0 || e)
+        failure = "POV-Ray wrote an empty image";
+      else
+        fs::rename(image, frame_image_path(run.dir, run.ini, frames[i]), e);
       if (failure.empty() && e)
         failure = "cannot move " + image.string() + " into place: " + e.message();
-      if (failure.empty()) fs::remove(run.dir / ("render_" + std::to_string(frames[i]) + ".log"), e);
+      if (failure.empty())
+        fs::remove(run.dir / ("render_" + std::to_string(frames[i]) + ".log"), e);
       done(frames[i], failure);
     };
     auto has_image = [&](std::size_t i) {
@@ -312,10 +318,14 @@ void render_range(const RangeRun& run, const std::vector<long>& frames, const Fr
       std::string failure;
       if (status == child_cannot_execute)
         failure = "cannot run '" + request.povray + "' (is POV-Ray installed?)";
-      else if (status == child_cannot_write_output) failure = "cannot write " + log.string();
-      else if (status == child_cannot_enter_directory) failure = "cannot enter " + run.dir.string();
-      else if (status != 0) failure = povray_failure(status, read_all(log));
-      else failure = "POV-Ray wrote no image";
+      else if (status == child_cannot_write_output)
+        failure = "cannot write " + log.string();
+      else if (status == child_cannot_enter_directory)
+        failure = "cannot enter " + run.dir.string();
+      else if (status != 0)
+        failure = povray_failure(status, read_all(log));
+      else
+        failure = "POV-Ray wrote no image";
       const fs::path kept_log = run.dir / ("render_" + std::to_string(frames[end]) + ".log");
       fs::rename(log, kept_log, ec);
       done(frames[end], ec ? failure : failure + " (log: " + kept_log.filename().string() + ")");
@@ -333,8 +343,10 @@ class RunReport {
       : total_(total), progress_(progress), start_(std::chrono::steady_clock::now()) {}
   void done(long frame, const std::string& failure) {
     std::lock_guard lock(mutex_);
-    if (failure.empty()) ++report_.rendered;
-    else report_.failures.push_back({frame, failure});
+    if (failure.empty())
+      ++report_.rendered;
+    else
+      report_.failures.push_back({frame, failure});
     ++done_;
     if (progress_) progress_(done_, total_, elapsed());
   }
@@ -408,7 +420,9 @@ RenderReport render_frames(const RenderRequest& request, const RenderProgressFn&
   run.threads = povray_threads(static_cast<int>(processes));
 
   RunReport report(frames.size(), progress);
-  const FrameDoneFn done = [&](long frame, const std::string& failure) { report.done(frame, failure); };
+  const FrameDoneFn done = [&](long frame, const std::string& failure) {
+    report.done(frame, failure);
+  };
   std::atomic<std::size_t> next_range{0};
   auto work = [&] {
     for (std::size_t r = next_range++; r < ranges.size(); r = next_range++)
@@ -438,10 +452,12 @@ RenderReport render_frames_in_one_process(const RenderRequest& request,
   const std::vector<long> frames = requested_frames(run.dir, run.ini, request.frames);
   if (!frames.empty()) check_writable(run.dir);
   RunReport report(frames.size(), progress);
-  render_range(run, frames, [&](long frame, const std::string& failure) { report.done(frame, failure); });
+  render_range(run, frames,
+               [&](long frame, const std::string& failure) { report.done(frame, failure); });
   if (stop_requested(request.stop))
-    throw OutputError(run.dir.string() + ": interrupted after " + std::to_string(report.rendered()) +
-                      " of " + std::to_string(frames.size()) + " frame(s)");
+    throw OutputError(run.dir.string() + ": interrupted after " +
+                      std::to_string(report.rendered()) + " of " + std::to_string(frames.size()) +
+                      " frame(s)");
   return report.finish();
 }
 

@@ -74,7 +74,8 @@ SceneFrames read_scene_frames(const std::filesystem::path& scene_dir);
 
 // The frames of `range` (default: every frame; 0 for a single image). Throws InputError naming
 // `scene_dir` when the range is outside the scene's.
-std::vector<long> requested_frames(const std::filesystem::path& scene_dir, const SceneFrames& frames,
+std::vector<long> requested_frames(const std::filesystem::path& scene_dir,
+                                   const SceneFrames& frames,
                                    const std::optional<FrameRange>& range);
 
 // Where POV-Ray writes the image of `frame` (ignored for a single image) in `scene_dir`.
@@ -104,11 +105,12 @@ RenderReport render_frames(const RenderRequest& request, const RenderProgressFn&
 
 // Renders the request's frames in one POV-Ray process over the range (+SF/+EF): POV-Ray's start-up
 // is paid once, not per frame. This is what a render-farm task runs. `request.jobs` is ignored
-// (POV-Ray gets every core), and so is `request.skip_rendered`: every frame of the request is rendered
-// (the farm chose them with frames_without_image). Images are published as in render_frames. When POV-Ray fails, the
-// images of the frames before the failed one are kept (POV-Ray had moved on from them; after a
-// signal the last image is not trusted), the failed frame is reported with POV-Ray's message and
-// its log, and a new process takes the frames after it; render_frames does the same per range.
+// (POV-Ray gets every core), and so is `request.skip_rendered`: every frame of the request is
+// rendered (the farm chose them with frames_without_image). Images are published as in
+// render_frames. When POV-Ray fails, the images of the frames before the failed one are kept
+// (POV-Ray had moved on from them; after a signal the last image is not trusted), the failed frame
+// is reported with POV-Ray's message and its log, and a new process takes the frames after it;
+// render_frames does the same per range.
 RenderReport render_frames_in_one_process(const RenderRequest& request,
                                           const RenderProgressFn& progress);
 

@@ -17,8 +17,10 @@ AnalyticSurface make_surface(const std::string& surface, std::size_t target, Jit
   const double n = static_cast<double>(target);
   if (surface == "sphere" || surface == "ellipsoid") {
     // 10·4^s + 2 vertices.
-    const int level = std::max(1, static_cast<int>(std::lround(std::log(n / 10.0) / std::log(4.0))));
-    return surface == "sphere" ? make_icosphere(level, 1.0, j) : make_ellipsoid(level, 1.0, 0.8, 0.6, j);
+    const int level =
+        std::max(1, static_cast<int>(std::lround(std::log(n / 10.0) / std::log(4.0))));
+    return surface == "sphere" ? make_icosphere(level, 1.0, j)
+                               : make_ellipsoid(level, 1.0, 0.8, 0.6, j);
   }
   if (surface == "uv sphere") {  // rings × 2 rings
     const int rings = std::max(8, static_cast<int>(std::lround(std::sqrt(n / 2.0))));
@@ -73,8 +75,8 @@ RelativeError relative_error(const std::vector<double>& estimate, const Analysis
 
 }  // namespace
 
-const std::vector<std::string> study_surfaces = {"sphere", "uv sphere", "torus", "ellipsoid",
-                                                 "saddle", "height field"};
+const std::vector<std::string> study_surfaces = {"sphere",    "uv sphere", "torus",
+                                                 "ellipsoid", "saddle",    "height field"};
 const std::vector<std::string> study_samplings = {"regular", "jittered", "noisy"};
 
 const std::vector<Method>& study_methods() {
@@ -95,7 +97,8 @@ std::vector<StudySample> run_curvature_study(const StudyOptions& options) {
   for (const std::string& surface : study_surfaces) {
     for (const std::string& sampling : study_samplings) {
       for (std::size_t target : options.target_vertices) {
-        AnalyticSurface s = make_surface(surface, target, sampling == "jittered" ? jitter : Jitter{});
+        AnalyticSurface s =
+            make_surface(surface, target, sampling == "jittered" ? jitter : Jitter{});
         if (sampling == "noisy") add_noise(s.mesh);
         if (options.progress)
           options.progress("[" + std::to_string(++done) + "/" + std::to_string(meshes) + "] " +

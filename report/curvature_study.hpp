@@ -1,8 +1,8 @@
 // Curvature error against run time: every estimator on analytic surfaces —
-// sphere (icosphere), UV sphere (thin pole fans), torus, ellipsoid, saddle, height field — sampled regularly, with jittered vertices
-// (moved within the surface by up to 0.2 of the grid step, an irregular triangulation) and with
-// noise (moved off the surface in a random direction by up to 2% of the mean edge length, as
-// marching-cubes output is), at several resolutions.
+// sphere (icosphere), UV sphere (thin pole fans), torus, ellipsoid, saddle, height field — sampled
+// regularly, with jittered vertices (moved within the surface by up to 0.2 of the grid step, an
+// irregular triangulation) and with noise (moved off the surface in a random direction by up to 2%
+// of the mean edge length, as marching-cubes output is), at several resolutions.
 //
 // Errors are over interior vertices, relative to the RMS of the exact value: RMS and maximum of
 // |estimate − exact| / RMS(exact), for K and for H. Noisy meshes are compared with the exact
@@ -28,7 +28,8 @@ struct Method {
 // The estimators the study compares.
 const std::vector<Method>& study_methods();
 
-extern const std::vector<std::string> study_surfaces;   // sphere, uv sphere, torus, ellipsoid, saddle, height field
+extern const std::vector<std::string>
+    study_surfaces;  // sphere, uv sphere, torus, ellipsoid, saddle, height field
 extern const std::vector<std::string> study_samplings;  // regular, jittered, noisy
 
 struct StudySample {

@@ -86,8 +86,8 @@ std::vector<RippleRow> run_ripple_study(const std::vector<int>& resolutions) {
     for (const bool jittered : {false, true})
       for (const int n : resolutions) {
         const Analysis a = analyze_mesh(ripple_mesh(n, jittered ? 0.3 : 0.0), options);
-        rows.push_back({criterion == FlowCriterion::mean ? "mean" : "paper", n, jittered,
-                        ripple_coverage(a)});
+        rows.push_back(
+            {criterion == FlowCriterion::mean ? "mean" : "paper", n, jittered, ripple_coverage(a)});
       }
   }
   return rows;
@@ -104,8 +104,9 @@ FlowMask flow_mask(const Image& image, const std::array<float, 3>& ridge,
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {
       const auto c = image.pixel(x, y);
-      mask.classes[static_cast<std::size_t>(y) * image.width + x] =
-          near(c, ridge) ? 1 : near(c, valley) ? -1 : 0;
+      mask.classes[static_cast<std::size_t>(y) * image.width + x] = near(c, ridge)    ? 1
+                                                                    : near(c, valley) ? -1
+                                                                                      : 0;
     }
   return mask;
 }
@@ -127,8 +128,10 @@ double boundary_length(const FlowMask& m) {
         };
         const bool a = in(0, 0), b = in(1, 0), c = in(0, 1), d = in(1, 1);
         const int count = a + b + c + d;
-        if (count == 1 || count == 3) length += corner;
-        else if (count == 2) length += a == d ? 2 * corner : 1.0;  // a == d: the diagonal pair
+        if (count == 1 || count == 3)
+          length += corner;
+        else if (count == 2)
+          length += a == d ? 2 * corner : 1.0;  // a == d: the diagonal pair
       }
   return length;
 }
@@ -140,7 +143,9 @@ FlowMask box_smoothed(const FlowMask& m, int size) {
   for (const std::int8_t cls : {std::int8_t{1}, std::int8_t{-1}}) {
     // Summed-area table of the class's indicator.
     std::vector<std::int64_t> sum(static_cast<std::size_t>(m.width + 1) * (m.height + 1), 0);
-    auto at = [&](int x, int y) -> std::int64_t& { return sum[static_cast<std::size_t>(y) * (m.width + 1) + x]; };
+    auto at = [&](int x, int y) -> std::int64_t& {
+      return sum[static_cast<std::size_t>(y) * (m.width + 1) + x];
+    };
     for (int y = 0; y < m.height; ++y)
       for (int x = 0; x < m.width; ++x)
         at(x + 1, y + 1) = at(x, y + 1) + at(x + 1, y) - at(x, y) +
@@ -178,7 +183,8 @@ FlowPictureMetrics measure_flow_mask(const FlowMask& m, double pixels_per_cell) 
   const double speck_pixels = 4.0 * pixels_per_cell * pixels_per_cell;
   std::size_t in_specks = 0;
   for (std::size_t i = 0; i < n; ++i)
-    if (m.classes[i] != 0 && static_cast<double>(piece_size[pieces.root(static_cast<std::int32_t>(i))]) < speck_pixels)
+    if (m.classes[i] != 0 &&
+        static_cast<double>(piece_size[pieces.root(static_cast<std::int32_t>(i))]) < speck_pixels)
       ++in_specks;
   metrics.speck_share = static_cast<double>(in_specks) / static_cast<double>(metrics.flow_pixels);
   const double smoothed =
@@ -195,7 +201,8 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
                                                        std::optional<povgen::FrameRange> frames) {
   povgen::Sequence sequence = povgen::find_sequence(pattern, fs::current_path());
   if (frames)
-    std::erase_if(sequence.frames, [&](const auto& f) { return f.first < frames->first || f.first > frames->last; });
+    std::erase_if(sequence.frames,
+                  [&](const auto& f) { return f.first < frames->first || f.first > frames->last; });
   if (sequence.frames.empty()) throw InputError(pattern + ": no frame in the range");
   // The overhead camera and the picture size from the first frame: cells of the median edge.
   const TriangleMesh first = read_mesh(sequence.frames.begin()->second).mesh;
@@ -216,7 +223,8 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
   povgen::SceneConfig config;
   config.camera.location = location;
   config.camera.look_at = centre;
-  config.camera.angle = 2.0 * std::atan(0.5 * across / (height + max[w] - centre[w])) * 180.0 / std::numbers::pi;
+  config.camera.angle =
+      2.0 * std::atan(0.5 * across / (height + max[w] - centre[w])) * 180.0 / std::numbers::pi;
   config.render.width = std::max(16, static_cast<int>(std::ceil(across / cell * pixels_per_cell)));
   config.render.height = std::max(16, static_cast<int>(std::ceil(down / cell * pixels_per_cell)));
   config.render.antialias = false;
@@ -243,9 +251,8 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
     std::size_t flow_pixels = 0;
     double speck_pixels = 0;
     for (const auto& [frame, path] : sequence.frames) {
-      const FlowMask mask =
-          flow_mask(read_rgb(scene_dir / povgen::frame_image_name(layout, frame)),
-                    {1, 0, 0}, {0, 1, 0});
+      const FlowMask mask = flow_mask(read_rgb(scene_dir / povgen::frame_image_name(layout, frame)),
+                                      {1, 0, 0}, {0, 1, 0});
       const FlowPictureMetrics m = measure_flow_mask(mask, pixels_per_cell);
       ++study.frames;
       study.flow_pixels_by_frame[frame] = m.flow_pixels;

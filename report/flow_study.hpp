@@ -33,10 +33,10 @@ namespace toonwater::report {
 TriangleMesh ripple_mesh(int n, double jitter);
 
 struct RippleCoverage {
-  double crest_ridge = 0;    // share of the vertices within 0.08 λ of a crest circle
-  double trough_valley = 0;  // likewise for the trough circles and valley
-  double calm_labelled = 0;  // share of the calm water's vertices (beyond 3 λ) labelled
-  double labelled_share = 0; // labelled area over the sheet's area
+  double crest_ridge = 0;     // share of the vertices within 0.08 λ of a crest circle
+  double trough_valley = 0;   // likewise for the trough circles and valley
+  double calm_labelled = 0;   // share of the calm water's vertices (beyond 3 λ) labelled
+  double labelled_share = 0;  // labelled area over the sheet's area
 };
 
 RippleCoverage ripple_coverage(const Analysis& ripple);
@@ -62,8 +62,8 @@ FlowMask flow_mask(const Image& image, const std::array<float, 3>& ridge,
 
 struct FlowPictureMetrics {
   std::size_t flow_pixels = 0;
-  double speck_share = 0;      // of the flow pixels, in 4-connected pieces under 4 cells²
-  double boundary_ratio = 0;   // boundary length over its one-cell-smoothed length (0: none)
+  double speck_share = 0;     // of the flow pixels, in 4-connected pieces under 4 cells²
+  double boundary_ratio = 0;  // boundary length over its one-cell-smoothed length (0: none)
 };
 
 FlowPictureMetrics measure_flow_mask(const FlowMask& mask, double pixels_per_cell);
@@ -72,22 +72,20 @@ struct SequenceFlowStudy {
   std::string criterion;
   std::size_t frames = 0;
   std::size_t frames_with_regions = 0;
-  double speck_share = 0;      // all frames' flow pixels together
-  double boundary_ratio = 0;   // median over the frames with regions
+  double speck_share = 0;     // all frames' flow pixels together
+  double boundary_ratio = 0;  // median over the frames with regions
   std::map<long, std::size_t> flow_pixels_by_frame;
   std::filesystem::path picture;  // one rendered frame (the middle one)
 };
 
-// Renders the water sequence `pattern` (up axis `up`; `frames` of it, default all) from straight above with each criterion's
-// regions in flat red (ridge) and green (valley), coherence on, and measures every frame. Scenes
-// and frames go under `work_dir`; the middle frame is copied to `picture_dir` as
-// flow_<criterion>.png. Throws std::runtime_error when a frame fails to render.
-std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& pattern, Axis up,
-                                                       const std::filesystem::path& work_dir,
-                                                       const std::filesystem::path& picture_dir,
-                                                       double pixels_per_cell,
-                                                       const std::vector<FlowCriterion>& criteria =
-                                                           {FlowCriterion::mean, FlowCriterion::paper},
-                                                       std::optional<povgen::FrameRange> frames = {});
+// Renders the water sequence `pattern` (up axis `up`; `frames` of it, default all) from straight
+// above with each criterion's regions in flat red (ridge) and green (valley), coherence on, and
+// measures every frame. Scenes and frames go under `work_dir`; the middle frame is copied to
+// `picture_dir` as flow_<criterion>.png. Throws std::runtime_error when a frame fails to render.
+std::vector<SequenceFlowStudy> run_sequence_flow_study(
+    const std::string& pattern, Axis up, const std::filesystem::path& work_dir,
+    const std::filesystem::path& picture_dir, double pixels_per_cell,
+    const std::vector<FlowCriterion>& criteria = {FlowCriterion::mean, FlowCriterion::paper},
+    std::optional<povgen::FrameRange> frames = {});
 
 }  // namespace toonwater::report

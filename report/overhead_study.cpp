@@ -19,7 +19,8 @@ namespace fs = std::filesystem;
 
 // The classes of a pixel, in the pure colours the scene draws them in.
 enum Class : std::int8_t { other = -1, bright, medium, dark, ridge, valley };
-constexpr std::array<povgen::Color, 5> kColours{{{1, 1, 0}, {0, 0, 1}, {0, 1, 1}, {1, 0, 0}, {0, 1, 0}}};
+constexpr std::array<povgen::Color, 5> kColours{
+    {{1, 1, 0}, {0, 0, 1}, {0, 1, 1}, {1, 0, 0}, {0, 1, 0}}};
 
 std::vector<std::int8_t> classify(const Image& image) {
   std::vector<std::int8_t> classes(static_cast<std::size_t>(image.width) * image.height, other);
@@ -28,14 +29,16 @@ std::vector<std::int8_t> classify(const Image& image) {
       const auto p = image.pixel(x, y);
       for (std::size_t c = 0; c < kColours.size(); ++c)
         if (std::abs(p[0] - kColours[c][0]) + std::abs(p[1] - kColours[c][1]) +
-                std::abs(p[2] - kColours[c][2]) < 0.1f)
+                std::abs(p[2] - kColours[c][2]) <
+            0.1f)
           classes[static_cast<std::size_t>(y) * image.width + x] = static_cast<std::int8_t>(c);
     }
   return classes;
 }
 
 // The sizes of the 4-connected pieces of each class, per pixel (0 for `other`).
-std::vector<std::size_t> piece_sizes(const std::vector<std::int8_t>& classes, int width, int height) {
+std::vector<std::size_t> piece_sizes(const std::vector<std::int8_t>& classes, int width,
+                                     int height) {
   const std::size_t n = classes.size();
   DisjointSets pieces(n);
   for (int y = 0; y < height; ++y)
@@ -71,7 +74,8 @@ std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
   centre[w] = options.tank_max[w];
   Vec3 location = centre;
   location[w] += distance;
-  location[v] -= 1e-4 * distance;  // not exactly overhead: POV-Ray's sky vector must not be the view
+  location[v] -=
+      1e-4 * distance;  // not exactly overhead: POV-Ray's sky vector must not be the view
 
   povgen::SceneConfig config;
   config.camera.location = location;
@@ -148,13 +152,17 @@ std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
       const std::int8_t c = classes[i];
       if (c == other) continue;
       const double share = 1.0 / static_cast<double>(size[i]);
-      if ((c == ridge || c == valley) && static_cast<double>(size[i]) >= cell_pixels) flow_pieces += share;
-      if (c != ridge && c != valley && static_cast<double>(size[i]) < cell_pixels) band_specks += share;
+      if ((c == ridge || c == valley) && static_cast<double>(size[i]) >= cell_pixels)
+        flow_pieces += share;
+      if (c != ridge && c != valley && static_cast<double>(size[i]) < cell_pixels)
+        band_specks += share;
     }
     f.flow_pieces = static_cast<std::size_t>(std::lround(flow_pieces));
     f.band_specks = static_cast<std::size_t>(std::lround(band_specks));
-    f.changed_share = f.water_pixels ? static_cast<double>(changed) / static_cast<double>(f.water_pixels) : 0.0;
-    f.contrast_share = f.water_pixels ? static_cast<double>(contrast) / static_cast<double>(f.water_pixels) : 0.0;
+    f.changed_share =
+        f.water_pixels ? static_cast<double>(changed) / static_cast<double>(f.water_pixels) : 0.0;
+    f.contrast_share =
+        f.water_pixels ? static_cast<double>(contrast) / static_cast<double>(f.water_pixels) : 0.0;
     frames.push_back(f);
     previous = classes;
   }

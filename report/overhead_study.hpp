@@ -23,7 +23,7 @@ namespace toonwater::report {
 
 struct OverheadOptions {
   Axis up = Axis::z;
-  double cell = 0;        // the simulation's cell, scene units
+  double cell = 0;          // the simulation's cell, scene units
   Vec3 tank_min, tank_max;  // input axes: the picture frames the box, its sides across up are walls
   std::vector<std::string> objects;  // mesh patterns, drawn in a colour of their own
   std::optional<povgen::FrameRange> frames;
@@ -38,7 +38,8 @@ struct OverheadFrame {
   std::size_t flow_pieces = 0, band_specks = 0;
   double contrast_share = 0;
   double flow_share() const {
-    return water_pixels ? static_cast<double>(flow_pixels) / static_cast<double>(water_pixels) : 0.0;
+    return water_pixels ? static_cast<double>(flow_pixels) / static_cast<double>(water_pixels)
+                        : 0.0;
   }
 };
 

@@ -25,9 +25,12 @@ namespace fs = std::filesystem;
 
 std::vector<std::size_t> study_targets(ReportSize size) {
   switch (size) {
-    case ReportSize::quick: return {1000, 4000, 16000};
-    case ReportSize::standard: return {1000, 4000, 16000, 64000, 250000};
-    case ReportSize::full: return {1000, 4000, 16000, 64000, 250000, 1000000};
+    case ReportSize::quick:
+      return {1000, 4000, 16000};
+    case ReportSize::standard:
+      return {1000, 4000, 16000, 64000, 250000};
+    case ReportSize::full:
+      return {1000, 4000, 16000, 64000, 250000, 1000000};
   }
   return {};
 }
@@ -124,12 +127,14 @@ ReportResult write_report(const ReportOptions& options) {
   }
 
   progress("flow criteria: analytic ripples");
-  result.ripples = run_ripple_study(options.size == ReportSize::quick ? std::vector<int>{81, 161}
-                                                                      : std::vector<int>{81, 161, 321});
+  result.ripples =
+      run_ripple_study(options.size == ReportSize::quick ? std::vector<int>{81, 161}
+                                                         : std::vector<int>{81, 161, 321});
   const fs::path wake_frames = options.data_dir / "mantaflow-wake" / "water_####.obj";
   const double pixels_per_cell = options.size == ReportSize::quick ? 2.0 : 8.0;
   if (!fs::exists(options.data_dir / "mantaflow-wake" / "water_0001.obj")) {
-    result.flow_sequence_failure = "the sample simulation was not found in " + options.data_dir.string();
+    result.flow_sequence_failure =
+        "the sample simulation was not found in " + options.data_dir.string();
   } else {
     progress("flow criteria: mantaflow-wake from above");
     try {
@@ -137,9 +142,9 @@ ReportResult write_report(const ReportOptions& options) {
       std::optional<povgen::FrameRange> frames;
       if (options.size == ReportSize::quick) frames = povgen::FrameRange{10, 15};
       // The pictures go to the work directory first, and into DIR with the other outputs.
-      result.flow_sequence = run_sequence_flow_study(fs::absolute(wake_frames).string(), Axis::z,
-                                                     work, work, pixels_per_cell,
-                                                     {FlowCriterion::mean, FlowCriterion::paper}, frames);
+      result.flow_sequence = run_sequence_flow_study(
+          fs::absolute(wake_frames).string(), Axis::z, work, work, pixels_per_cell,
+          {FlowCriterion::mean, FlowCriterion::paper}, frames);
     } catch (const std::exception& e) {
       result.flow_sequence_failure = e.what();
       if (!first_failure) first_failure = std::current_exception();

@@ -15,7 +15,8 @@ std::string study_csv(const std::vector<StudySample>& samples) {
 }
 
 std::string pipeline_csv(const std::vector<PipelineTiming>& rows) {
-  std::string csv = "input,vertices,analysis_one_ring_s,analysis_jet_s,scene_writing_s,povray_s,total_s\n";
+  std::string csv =
+      "input,vertices,analysis_one_ring_s,analysis_jet_s,scene_writing_s,povray_s,total_s\n";
   for (const PipelineTiming& t : rows) {
     const std::string povray = t.povray ? format("%.6g", *t.povray) : "";
     const std::string total =

@@ -11,9 +11,9 @@
 
 namespace toonwater::report {
 
-std::string study_csv(const std::vector<StudySample>& samples);        // curvature_errors.csv
-std::string pipeline_csv(const std::vector<PipelineTiming>& rows);     // pipeline.csv
-std::string ripple_csv(const std::vector<RippleRow>& rows);            // flow_ripples.csv
-std::string render_quality_csv(const RenderQualityResult& r);          // render_quality.csv
+std::string study_csv(const std::vector<StudySample>& samples);     // curvature_errors.csv
+std::string pipeline_csv(const std::vector<PipelineTiming>& rows);  // pipeline.csv
+std::string ripple_csv(const std::vector<RippleRow>& rows);         // flow_ripples.csv
+std::string render_quality_csv(const RenderQualityResult& r);       // render_quality.csv
 
 }  // namespace toonwater::report

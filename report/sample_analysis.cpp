@@ -11,7 +11,8 @@ const StudySample* find(const std::vector<StudySample>& samples, const std::stri
                         const std::string& sampling, const std::string& method,
                         std::size_t vertices) {
   for (const StudySample& s : samples)
-    if (s.surface == surface && s.sampling == sampling && s.method == method && s.vertices == vertices)
+    if (s.surface == surface && s.sampling == sampling && s.method == method &&
+        s.vertices == vertices)
       return &s;
   return nullptr;
 }

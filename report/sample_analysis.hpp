@@ -28,8 +28,12 @@ double order(const StudySample& coarse, const StudySample& fine, bool mean);
 
 // The smallest and largest of a set of values, as text "lo to hi" ("n/a" when empty).
 struct Range {
-  double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
-  void add(double v) { lo = std::min(lo, v); hi = std::max(hi, v); }
+  double lo = std::numeric_limits<double>::infinity(),
+         hi = -std::numeric_limits<double>::infinity();
+  void add(double v) {
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
   bool empty() const { return lo > hi; }
   std::string text() const;
 };

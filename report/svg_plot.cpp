@@ -16,11 +16,20 @@ std::string escaped(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -69,10 +78,11 @@ std::string render_svg(const LogLogPlot& plot) {
   };
 
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + number(width) +
-                    "\" height=\"" + number(height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+                    "\" height=\"" + number(height) +
+                    "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  svg += "<text x=\"" + number((left + right) / 2) + "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" +
-         escaped(plot.title) + "</text>\n";
+  svg += "<text x=\"" + number((left + right) / 2) +
+         "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" + escaped(plot.title) + "</text>\n";
   for (int d = x_first; d <= x_last; ++d) {
     const double x = left + double(d - x_first) / (x_last - x_first) * (right - left);
     svg += "<line x1=\"" + number(x) + "\" y1=\"" + number(top) + "\" x2=\"" + number(x) +

@@ -11,8 +11,8 @@ namespace toonwater::report {
 
 struct PlotSeries {
   std::string label;
-  std::string color;   // an SVG colour: "#1f77b4"
-  std::string dashes;  // an SVG stroke-dasharray ("" for a solid line)
+  std::string color;                              // an SVG colour: "#1f77b4"
+  std::string dashes;                             // an SVG stroke-dasharray ("" for a solid line)
   std::vector<std::pair<double, double>> points;  // (x, y), drawn in the given order
 };
 

@@ -19,9 +19,12 @@ namespace toonwater::povgen {
 
 inline Vec3 to_povray(const Vec3& p, Axis up) {
   switch (up) {
-    case Axis::x: return {p.y(), p.x(), p.z()};
-    case Axis::z: return {p.x(), p.z(), p.y()};
-    case Axis::y: break;
+    case Axis::x:
+      return {p.y(), p.x(), p.z()};
+    case Axis::z:
+      return {p.x(), p.z(), p.y()};
+    case Axis::y:
+      break;
   }
   return {p.x(), p.y(), -p.z()};
 }

@@ -64,8 +64,7 @@ SceneConfig load_config(const ConfigSources& sources) {
       root = parse_toml(text, sources.file->string());
     } catch (const toml::parse_error& e) {
       std::ostringstream msg;
-      msg << sources.file->string() << ":" << e.source().begin.line << ": "
-          << e.description();
+      msg << sources.file->string() << ":" << e.source().begin.line << ": " << e.description();
       throw ConfigError(msg.str());
     }
     config_dir = fs::absolute(*sources.file).parent_path();
@@ -110,8 +109,8 @@ SceneConfig load_config(const ConfigSources& sources) {
     std::string base = o.name;
     if (base.empty()) {  // from the file name, without the pattern's # * ? and the digits
       base = fs::path(o.mesh).stem().string();
-      while (!base.empty() && std::string_view("#*?[]_-.0123456789").find(base.back()) !=
-                                  std::string_view::npos)
+      while (!base.empty() &&
+             std::string_view("#*?[]_-.0123456789").find(base.back()) != std::string_view::npos)
         base.pop_back();
     }
     base = sanitize_identifier(base);

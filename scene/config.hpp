@@ -122,11 +122,13 @@ struct FlowConfig {
   bool enabled = true;
   AnalysisSettings analysis;
   FlowStyle style = FlowStyle::regions;
-  double line_width = 2.0;                     // pixels
-  std::optional<Color> line_color;  // default: the region colours (lines), the outline colour (both)
+  double line_width = 2.0;  // pixels
+  std::optional<Color>
+      line_color;  // default: the region colours (lines), the outline colour (both)
   Color ridge_color{1.0, 1.0, 1.0};
   Color valley_color{0.02, 0.06, 0.22};
-  bool coherence = true;                   // carry regions and strokes from frame to frame (flow_coherence.hpp, stroke_persistence.hpp)
+  bool coherence = true;  // carry regions and strokes from frame to frame (flow_coherence.hpp,
+                          // stroke_persistence.hpp)
 };
 
 enum class ReflectionTarget { concrete, abstract, none };
@@ -149,8 +151,8 @@ struct RenderConfig {
   int width = 640;
   int height = 480;
   RenderQuality quality = RenderQuality::final;  // render_presets.hpp
-  bool antialias = true;  // false: off whatever the quality
-  std::optional<FrameRange> frames;  // default: every frame found
+  bool antialias = true;                         // false: off whatever the quality
+  std::optional<FrameRange> frames;              // default: every frame found
   Color background{0.93, 0.96, 1.0};
 };
 

@@ -44,8 +44,8 @@ struct Number {
   double lo, hi;
   double read(const toml::node& node, const std::string& key) const {
     const double v = read_double(node, key);
-    if (v < lo || v > hi) throw key_error(key, "must be between " + show_number(lo) + " and " +
-                                                   show_number(hi));
+    if (v < lo || v > hi)
+      throw key_error(key, "must be between " + show_number(lo) + " and " + show_number(hi));
     return v;
   }
   std::string type() const { return "number " + show_range(lo, hi); }
@@ -66,7 +66,9 @@ struct Integer {
       if (!std::isfinite(d)) throw key_error(key, "must be finite");
       if (d != std::floor(d)) throw key_error(key, "must be a whole number");
       using limits = std::numeric_limits<std::int64_t>;
-      v = std::fabs(d) < 1e18 ? static_cast<std::int64_t>(d) : d < 0 ? limits::min() : limits::max();
+      v = std::fabs(d) < 1e18 ? static_cast<std::int64_t>(d)
+          : d < 0             ? limits::min()
+                              : limits::max();
     } else {
       throw key_error(key, "must be a whole number");
     }
@@ -128,7 +130,8 @@ struct Vector {
   Vec3 read(const toml::node& node, const std::string& key) const {
     // Within what a POV-Ray scene takes (mesh2_writer.hpp): a camera beyond it would put the
     // outline shells, sized by the distance to it, out of reach too.
-    const auto t = read_triple(node, key, -largest_scene_coordinate, largest_scene_coordinate, type());
+    const auto t =
+        read_triple(node, key, -largest_scene_coordinate, largest_scene_coordinate, type());
     return {t[0], t[1], t[2]};
   }
   std::string type() const { return "a vector [x, y, z] of numbers between -1e18 and 1e18"; }
@@ -204,7 +207,6 @@ struct Section {
   std::function<void(S&, const std::set<std::string>& given)> check;
 };
 
-
 const toml::table& as_table(const toml::node& node, const std::string& key) {
   const toml::table* t = node.as_table();
   if (!t) throw ConfigError(source_location(node) + key_error(key, "must be a table").what());
@@ -221,7 +223,8 @@ void read_keys(const Section<S>& section, const toml::node& node, const std::str
     const Key<S>* found = nullptr;
     for (const Key<S>& candidate : section.keys)
       if (candidate.name == name) found = &candidate;
-    if (!found) throw ConfigError(source_location(v) + key_error(full, "is not a known key").what());
+    if (!found)
+      throw ConfigError(source_location(v) + key_error(full, "is not a known key").what());
     try {
       found->read(out, v, full);
     } catch (const ConfigError& e) {
@@ -359,8 +362,8 @@ Key<FlowConfig> analysis_key(const AnalysisSetting& setting) {
               throw key_error(key, "must be one of " + setting.type());
             }
             if (!v.is_number())
-              throw key_error(key, setting.is_whole_number() ? "must be a whole number"
-                                                            : "must be a number");
+              throw key_error(
+                  key, setting.is_whole_number() ? "must be a whole number" : "must be a number");
             const double value = read_double(v, key);
             if (const std::string why = setting.refusal(value); !why.empty())
               throw key_error(key, why);
@@ -371,9 +374,8 @@ Key<FlowConfig> analysis_key(const AnalysisSetting& setting) {
 const Section<FlowConfig>& flow_section() {
   using C = FlowConfig;
   static const Section<C> section = [] {
-    Section<C> flow{"flow",
-                    {key("enabled", &C::enabled, Boolean{}, "draw the water-flow regions")},
-                    nullptr};
+    Section<C> flow{
+        "flow", {key("enabled", &C::enabled, Boolean{}, "draw the water-flow regions")}, nullptr};
     for (const AnalysisSetting& setting : analysis_settings())
       flow.keys.push_back(analysis_key(setting));
     for (Key<C>& k : std::vector<Key<C>>{
@@ -456,15 +458,17 @@ void read_section(const std::string& name, const toml::node& node, SceneConfig& 
       known = true;
     }
   });
-  if (!known) throw ConfigError(source_location(node) + key_error(name, "is not a known section").what());
+  if (!known)
+    throw ConfigError(source_location(node) + key_error(name, "is not a known section").what());
 }
 
 ObjectConfig read_object(const toml::node& node, const std::string& prefix) {
   ObjectConfig object;
   read_keys(object_section(), node, prefix, object);
   if (object.mesh.empty())
-    throw ConfigError(source_location(node) +
-                      key_error(prefix + ".mesh", "is required (a mesh file or sequence pattern)").what());
+    throw ConfigError(
+        source_location(node) +
+        key_error(prefix + ".mesh", "is required (a mesh file or sequence pattern)").what());
   return object;
 }
 

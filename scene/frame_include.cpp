@@ -12,7 +12,8 @@ namespace toonwater::povgen {
 
 double water_line(const SceneMesh& water, const Vec3& lo, const Vec3& hi) {
   const Vec3 grow = 0.25 * (hi - lo);
-  const double x0 = lo.x() - grow.x(), x1 = hi.x() + grow.x(), z0 = lo.z() - grow.z(), z1 = hi.z() + grow.z();
+  const double x0 = lo.x() - grow.x(), x1 = hi.x() + grow.x(), z0 = lo.z() - grow.z(),
+               z1 = hi.z() + grow.z();
   // Faces, not vertices: a simplified calm surface is a few large faces whose corners all lie
   // outside a small object's footprint.
   std::vector<double> heights;
@@ -39,9 +40,8 @@ std::string empty_water_include() {
 
 std::vector<TextureCoordinate> texture_coordinates(const PreparedSurface& surface,
                                                    const LightGeometry& light) {
-  return surface.view_values.empty()
-             ? toon_coordinates(surface.mesh, light, surface.flow_field)
-             : value_coordinates(surface.view_values, surface.view_range);
+  return surface.view_values.empty() ? toon_coordinates(surface.mesh, light, surface.flow_field)
+                                     : value_coordinates(surface.view_values, surface.view_range);
 }
 
 std::vector<TextureCoordinate> water_coordinates(const PreparedSurface& surface,
@@ -58,14 +58,15 @@ std::vector<TextureCoordinate> water_coordinates(const PreparedSurface& surface,
   IslandLimits island;
   island.radius_pixels = config.water.min_patch;
   merge_toon_islands(surface.mesh, layout.camera.location,
-                     pixel_widths(surface.mesh, layout.camera, config.render.width), limits,
-                     island, uv);
+                     pixel_widths(surface.mesh, layout.camera, config.render.width), limits, island,
+                     uv);
   return uv;
 }
 
 std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
-                         std::span<const TextureCoordinate> uv, std::span<const double> shell_offsets,
-                         const FaceTextures* textures, const std::vector<bool>* shell_faces) {
+                         std::span<const TextureCoordinate> uv,
+                         std::span<const double> shell_offsets, const FaceTextures* textures,
+                         const std::vector<bool>* shell_faces) {
   std::string text = "// Written by toonwater povgen: meshes for scene.pov.\n";
   append_mesh2(text, prefix + "_mesh", surface.mesh, uv, textures);
   if (!shell_offsets.empty())

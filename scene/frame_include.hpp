@@ -29,7 +29,8 @@ std::string empty_water_include();
 // face when given), and `Prefix_shell` when `shell_offsets` (one per vertex, world units) is not
 // empty, of the faces `shell_faces` marks (all when null).
 std::string mesh_include(const PreparedSurface& surface, const std::string& prefix,
-                         std::span<const TextureCoordinate> uv, std::span<const double> shell_offsets,
+                         std::span<const TextureCoordinate> uv,
+                         std::span<const double> shell_offsets,
                          const FaceTextures* textures = nullptr,
                          const std::vector<bool>* shell_faces = nullptr);
 

@@ -55,8 +55,8 @@ class Writer {
     }
     size_ = static_cast<std::size_t>(p - out_.data());
   }
-  static constexpr double kPowersOfTen[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9,
-                                            1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16};
+  static constexpr double kPowersOfTen[] = {1e0, 1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7, 1e8,
+                                            1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16};
   void integer(std::int64_t value) {
     reserve(24);
     const auto r = std::to_chars(out_.data() + size_, out_.data() + out_.size(), value);
@@ -111,8 +111,9 @@ void check_scene_extent(const SceneMesh& mesh, const std::filesystem::path& sour
   const double largest = std::max(mesh.min.cwiseAbs().maxCoeff(), mesh.max.cwiseAbs().maxCoeff());
   if (largest < largest_scene_coordinate) return;
   char message[160];
-  std::snprintf(message, sizeof message, ": coordinates reach %.3g; a POV-Ray scene takes them below %.0e",
-                largest, largest_scene_coordinate);
+  std::snprintf(message, sizeof message,
+                ": coordinates reach %.3g; a POV-Ray scene takes them below %.0e", largest,
+                largest_scene_coordinate);
   throw InputError(source.string() + message);
 }
 
@@ -156,7 +157,8 @@ void append(std::string& out, std::string_view identifier, const SceneMesh& mesh
   out += identifier;
   out += " = mesh2 {\n";
   block(out, "vertex_vectors", n, 32, [&](Writer& w, std::size_t i) {
-    w.vector(offsets.empty() ? mesh.positions[i] : Vec3(mesh.positions[i] + offsets[i] * mesh.normals[i]),
+    w.vector(offsets.empty() ? mesh.positions[i]
+                             : Vec3(mesh.positions[i] + offsets[i] * mesh.normals[i]),
              decimals);
   });
   if (normals)

@@ -15,8 +15,8 @@ bool is_closed(const MeshTopology& t) { return t.boundary_edges == 0 && t.nonman
 
 }  // namespace
 
-PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow,
-                                WaterShading shading, StrokePersistence* persistence) {
+PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow, WaterShading shading,
+                                StrokePersistence* persistence) {
   PreparedSurface out;
   if (!flow) {
     const std::vector<Vec3> normals = angle_weighted_normals(a.surface, a.topology.vertex_faces);

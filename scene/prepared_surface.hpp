@@ -17,10 +17,10 @@ namespace toonwater::povgen {
 
 struct PreparedSurface {
   SceneMesh mesh;
-  std::vector<double> flow_field;   // per vertex s (flow_regions.hpp); empty without flow regions
+  std::vector<double> flow_field;    // per vertex s (flow_regions.hpp); empty without flow regions
   std::vector<FlowLine> flow_lines;  // POV-Ray frame; only with a flow style that draws lines
-  std::vector<double> view_values;  // per vertex K or H for a curvature view; else empty
-  double view_range = 0;            // the sequence's colour range of view_values
+  std::vector<double> view_values;   // per vertex K or H for a curvature view; else empty
+  double view_range = 0;             // the sequence's colour range of view_values
   std::size_t ridge_vertices = 0, valley_vertices = 0;
   double normal_noise = 0;      // of the shading normals (flow_regions.hpp); 0 without flow
   double analysis_seconds = 0;  // its analysis and preparation, as the pipeline timed them
@@ -40,7 +40,7 @@ PreparedSurface prepare_surface(Analysis analysis, Axis up, const FlowConfig* fl
 // through it. Each list unpacks its struct into exactly as many names as it has members, so a
 // member added to the struct and not to its list does not compile.
 template <class Line, class F>
-  requires std::same_as<std::remove_const_t<Line>, FlowLine>
+requires std::same_as<std::remove_const_t<Line>, FlowLine>
 void for_each_field(Line& line, F&& f) {
   auto& [sign, closed, points, taper] = line;
   f(sign);
@@ -50,7 +50,7 @@ void for_each_field(Line& line, F&& f) {
 }
 
 template <class Mesh, class F>
-  requires std::same_as<std::remove_const_t<Mesh>, SceneMesh>
+requires std::same_as<std::remove_const_t<Mesh>, SceneMesh>
 void for_each_field(Mesh& mesh, F&& f) {
   auto& [positions, normals, triangles, closed, degenerate_faces, replaced_normals, min, max] =
       mesh;
@@ -65,7 +65,7 @@ void for_each_field(Mesh& mesh, F&& f) {
 }
 
 template <class Surface, class F>
-  requires std::same_as<std::remove_const_t<Surface>, PreparedSurface>
+requires std::same_as<std::remove_const_t<Surface>, PreparedSurface>
 void for_each_field(Surface& s, F&& f) {
   auto& [mesh, flow_field, flow_lines, view_values, view_range, ridge_vertices, valley_vertices,
          normal_noise, analysis_seconds] = s;

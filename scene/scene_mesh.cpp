@@ -14,13 +14,15 @@ SceneMesh make_scene_mesh(const TriangleMesh& surface, std::span<const Vec3> nor
   SceneMesh out;
   out.closed = closed;
   const std::size_t n = surface.positions.size();
-  if (normals.size() != n) throw std::logic_error("make_scene_mesh: one normal per vertex expected");
+  if (normals.size() != n)
+    throw std::logic_error("make_scene_mesh: one normal per vertex expected");
   out.triangles.reserve(surface.triangles.size());
   for (const Triangle& t : surface.triangles) {
     if (is_degenerate_triangle(surface.positions[t[0]], surface.positions[t[1]],
                                surface.positions[t[2]]))
       ++out.degenerate_faces;
-    else out.triangles.push_back(t);
+    else
+      out.triangles.push_back(t);
   }
 
   std::vector<Vec3> normal(normals.begin(), normals.end());

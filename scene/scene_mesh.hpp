@@ -22,12 +22,12 @@
 namespace toonwater::povgen {
 
 struct SceneMesh {
-  std::vector<Vec3> positions;      // POV-Ray frame
-  std::vector<Vec3> normals;        // unit length, POV-Ray frame
-  std::vector<Triangle> triangles;  // non-degenerate faces only (geometry_tolerances.hpp)
-  bool closed = false;              // no boundary or non-manifold edge: has an inside
-  std::size_t degenerate_faces = 0;     // left out
-  std::size_t replaced_normals = 0;     // zero normals replaced by a face normal (or up)
+  std::vector<Vec3> positions;       // POV-Ray frame
+  std::vector<Vec3> normals;         // unit length, POV-Ray frame
+  std::vector<Triangle> triangles;   // non-degenerate faces only (geometry_tolerances.hpp)
+  bool closed = false;               // no boundary or non-manifold edge: has an inside
+  std::size_t degenerate_faces = 0;  // left out
+  std::size_t replaced_normals = 0;  // zero normals replaced by a face normal (or up)
   Vec3 min = Vec3::Zero(), max = Vec3::Zero();  // bounding box
 
   double diagonal() const { return (max - min).norm(); }

@@ -61,8 +61,12 @@ std::string padded(long frame, int digits) {
   return s;
 }
 
-std::string mesh_id(const std::string& name) { return std::string("Obj_").append(name).append("_mesh"); }
-std::string shell_id(const std::string& name) { return std::string("Obj_").append(name).append("_shell"); }
+std::string mesh_id(const std::string& name) {
+  return std::string("Obj_").append(name).append("_mesh");
+}
+std::string shell_id(const std::string& name) {
+  return std::string("Obj_").append(name).append("_shell");
+}
 
 void camera(std::string& s, const SceneLayout& l) {
   const CameraPlacement& c = l.camera;
@@ -92,8 +96,8 @@ std::string flat_finish() { return "finish { emission 1 diffuse 0 ambient 0 }"; 
 
 std::string finish(const SceneConfig& c, bool water) {
   const WaterConfig& w = c.water;
-  std::string s = "finish { Toon_flat_shading(" + num(w.ka) + ", <1, 1, 1>, " + num(w.kd) +
-                  ", " + vec({c.light.color[0], c.light.color[1], c.light.color[2]}) + ")";
+  std::string s = "finish { Toon_flat_shading(" + num(w.ka) + ", <1, 1, 1>, " + num(w.kd) + ", " +
+                  vec({c.light.color[0], c.light.color[1], c.light.color[2]}) + ")";
   if (w.ks > 0) s += " phong " + num(w.ks) + " phong_size " + num(w.phong_size);
   if (water && w.reflection > 0) s += " reflection { " + num(w.reflection) + " }";
   return s + " }";
@@ -140,7 +144,8 @@ CameraPlacement frame_camera(const SceneConfig& config, Axis up, const Vec3& sce
     double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
     bool behind = false;
     for (int corner = 0; corner < 8; ++corner) {
-      const Vec3 p((corner & 1 ? scene_max : scene_min).x(), (corner & 2 ? scene_max : scene_min).y(),
+      const Vec3 p((corner & 1 ? scene_max : scene_min).x(),
+                   (corner & 2 ? scene_max : scene_min).y(),
                    (corner & 4 ? scene_max : scene_min).z());
       const double depth = (p - eye).dot(d);
       if (depth < 0.05 * radius) behind = true;
@@ -154,7 +159,8 @@ CameraPlacement frame_camera(const SceneConfig& config, Axis up, const Vec3& sce
     }
     if (!c.look_at)
       target += distance * (0.5 * (lo_x + hi_x) * right + 0.5 * (lo_y + hi_y) * upward);
-    const double scale = std::max((hi_x - lo_x) / tan_x, (hi_y - lo_y) / tan_y) / (2.0 * kFrameFill);
+    const double scale =
+        std::max((hi_x - lo_x) / tan_x, (hi_y - lo_y) / tan_y) / (2.0 * kFrameFill);
     distance *= std::clamp(scale, 0.5, 2.0);
   }
   out.look_at = target;
@@ -179,10 +185,12 @@ std::vector<double> shell_offsets(const OutlineConfig& outline, const SceneMesh&
                                   const CameraPlacement& camera, int image_width) {
   const std::size_t n = mesh.positions.size();
   switch (outline.units) {
-    case WidthUnits::world: return std::vector<double>(n, outline.width.value_or(0.01));
+    case WidthUnits::world:
+      return std::vector<double>(n, outline.width.value_or(0.01));
     case WidthUnits::relative:
       return std::vector<double>(n, outline.width.value_or(0.006) * mesh.diagonal());
-    case WidthUnits::pixels: break;
+    case WidthUnits::pixels:
+      break;
   }
   std::vector<double> offsets = pixel_widths(mesh, camera, image_width);
   for (double& offset : offsets) offset *= outline.width.value_or(2.0);
@@ -299,8 +307,8 @@ std::string scene_pov(const SceneLayout& l) {
   if (curvature_view)
     water_pigment = curvature_view_pigment();
   else if (flow_regions)
-    water_pigment = "Toon_bands_with_flow(" + bands + ",\n      " + rgb(flow.valley_color) +
-                    ", " + rgb(flow.ridge_color) + ", " + num(w.transmit) + ")";
+    water_pigment = "Toon_bands_with_flow(" + bands + ",\n      " + rgb(flow.valley_color) + ", " +
+                    rgb(flow.ridge_color) + ", " + num(w.transmit) + ")";
   else
     water_pigment = "Toon_bands(" + bands + ", " + num(w.transmit) + ")";
   const std::string water_finish = curvature_view ? flat_finish() : finish(c, true);
@@ -369,7 +377,8 @@ std::string scene_pov(const SceneLayout& l) {
     const bool both = flow.style == FlowStyle::regions_and_lines;
     const Color ridge = flow.line_color.value_or(both ? c.outline.color : flow.ridge_color);
     const Color valley = flow.line_color.value_or(both ? c.outline.color : flow.valley_color);
-    for (const auto& [id, colour] : {std::pair{"Water_ridge_lines", ridge}, std::pair{"Water_valley_lines", valley}})
+    for (const auto& [id, colour] :
+         {std::pair{"Water_ridge_lines", ridge}, std::pair{"Water_valley_lines", valley}})
       s += std::string("#ifdef (") + id + ")\n  object { " + id + " texture { pigment { color " +
            rgb(colour) + " } finish { emission 1 diffuse 0 ambient 0 } } no_shadow" +
            (reflects ? " no_reflection" : "") + " }\n#end\n";
@@ -397,7 +406,8 @@ std::string scene_pov(const SceneLayout& l) {
       const Color tint = linear_from_srgb(submerged_tint(oc.color, w.medium));
       std::string under = "Toon_bands(";
       for (const double share : {1.0, 0.6, 0.3}) {
-        const Color band{share * tint[0] * gain[0], share * tint[1] * gain[1], share * tint[2] * gain[2]};
+        const Color band{share * tint[0] * gain[0], share * tint[1] * gain[1],
+                         share * tint[2] * gain[2]};
         under += linear_rgb(seen_through_water(band, gain, look.calm, look)) + ", ";
       }
       under += num(w.t_bright) + ", " + num(w.t_medium) + ", 0)\n    " + finish(c, false);

@@ -20,7 +20,7 @@ namespace toonwater::povgen {
 
 struct ObjectPlacement {
   const ObjectConfig* config = nullptr;
-  bool animated = false;   // one mesh per frame
+  bool animated = false;  // one mesh per frame
   // Below its water line in some frame. Then, when the water refracts, the object is drawn
   // apart in the frame's water and out of it (object_water_declaration): its texture in the
   // water tinted as seen through the surface, with a contact line along the surface
@@ -104,7 +104,7 @@ LightGeometry light_geometry(const LightConfig& light, Axis up);
 // it than `nearest_distance`, for any sequence the box is part of.
 struct CameraReach {
   double nearest_distance = 0;
-  double angle_degrees = 0;  // horizontal field of view
+  double angle_degrees = 0;   // horizontal field of view
   int width = 0, height = 0;  // image size
 };
 CameraReach camera_reach(const SceneLayout& layout, const Vec3& min, const Vec3& max);

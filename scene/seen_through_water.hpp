@@ -29,10 +29,10 @@ Color linear_from_srgb(const Color& srgb);
 // The water's surface as it composes what is seen through it: linear colours.
 struct WaterSurfaceLook {
   double transmit = 0.0;  // kt
-  Color gain{};           // e: the flat finish's, ka + kd·Id (Toon_flat_shading), of water and objects
-  Color calm{};           // e⊙W of the medium band, as shown
-  Color brightest{};      // e⊙W of the bright band, as shown
-  Color reflected{};      // r·S
+  Color gain{};       // e: the flat finish's, ka + kd·Id (Toon_flat_shading), of water and objects
+  Color calm{};       // e⊙W of the medium band, as shown
+  Color brightest{};  // e⊙W of the bright band, as shown
+  Color reflected{};  // r·S
 };
 WaterSurfaceLook water_surface_look(const SceneConfig& config);
 

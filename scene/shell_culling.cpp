@@ -22,7 +22,8 @@ constexpr double kMinimumOffset = 10 * kPovrayMinimumDepth;
 
 bool shell_met_by_camera_rays_only(const SceneConfig& config, bool shell_no_reflection) {
   const WaterConfig& w = config.water;
-  const bool toon = w.shading == WaterShading::toon;  // a curvature view neither reflects nor refracts
+  const bool toon =
+      w.shading == WaterShading::toon;  // a curvature view neither reflects nor refracts
   const bool refracts = toon && w.transmit > 0;
   const bool reflects = toon && w.reflection > 0;
   return !refracts && (!reflects || shell_no_reflection);
@@ -51,9 +52,10 @@ std::vector<bool> shell_faces_seen_from_behind(const SceneMesh& mesh,
     }
     const Vec3 lo = a.cwiseMin(b).cwiseMin(c).array() - kMinimumOffset;
     const Vec3 hi = a.cwiseMax(b).cwiseMax(c).array() + kMinimumOffset;
-    const bool near_object = std::any_of(keep_out.begin(), keep_out.end(), [&](const KeepOutBox& box) {
-      return (lo.array() <= box.max.array()).all() && (hi.array() >= box.min.array()).all();
-    });
+    const bool near_object =
+        std::any_of(keep_out.begin(), keep_out.end(), [&](const KeepOutBox& box) {
+          return (lo.array() <= box.max.array()).all() && (hi.array() >= box.min.array()).all();
+        });
     if (near_object) {
       seen[f] = true;
       continue;
@@ -63,8 +65,7 @@ std::vector<bool> shell_faces_seen_from_behind(const SceneMesh& mesh,
     // Moving each vertex (and the eye) by up to delta moves N by at most
     // 2δ(|a−b| + |c−b|) + 4δ² and E − a by at most 2δ, so (E − a)·N by at most this:
     const double n_error = 2 * delta * (ab.norm() + cb.norm()) + 4 * delta * delta;
-    const double bound =
-        2 * delta * ab.cross(cb).norm() + (to_eye.norm() + 2 * delta) * n_error;
+    const double bound = 2 * delta * ab.cross(cb).norm() + (to_eye.norm() + 2 * delta) * n_error;
     seen[f] = !(front > 2 * bound);  // twice the bound: a margin for our own rounding
   }
   // The faces around the kept ones stay too (see the header: a front face beside a back face).

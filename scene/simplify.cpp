@@ -109,8 +109,13 @@ class Decimation {
  public:
   Decimation(RenderMesh& mesh, const std::vector<Vec3>& positions,
              const std::vector<TextureCoordinate>& uv, const SimplifyOptions& options)
-      : m_(mesh), p_(positions), o_(options), quadric_(positions.size()),
-        range_(positions.size()), settled_(positions.size(), 0), mark_(positions.size(), 0),
+      : m_(mesh),
+        p_(positions),
+        o_(options),
+        quadric_(positions.size()),
+        range_(positions.size()),
+        settled_(positions.size(), 0),
+        mark_(positions.size(), 0),
         bound_(mesh.n_faces(), 0.0) {
     for (std::size_t v = 0; v < uv.size(); ++v)
       range_[v] = {uv[v][0], uv[v][0], uv[v][1], uv[v][1]};
@@ -338,7 +343,7 @@ class Decimation {
   std::vector<std::uint8_t> settled_;  // removed, or refused for good
   std::vector<std::uint32_t> mark_;    // == stamp_: a neighbour of the vertex being evaluated
   std::uint32_t stamp_ = 0;
-  std::vector<double> bound_;          // per face: the estimate of its distance (simplify.hpp)
+  std::vector<double> bound_;  // per face: the estimate of its distance (simplify.hpp)
   std::vector<Spoke> spokes_;
   std::vector<Collapse> candidates_;
 };
@@ -372,8 +377,9 @@ std::vector<T> select(const std::vector<T>& values, const std::vector<int>& kept
 
 }  // namespace
 
-SimplifyOptions simplify_options(const WaterConfig& water, std::pair<double, double> band_thresholds,
-                                 const FlowConfig* flow, double tolerance) {
+SimplifyOptions simplify_options(const WaterConfig& water,
+                                 std::pair<double, double> band_thresholds, const FlowConfig* flow,
+                                 double tolerance) {
   SimplifyOptions o;
   o.tolerance = tolerance;
   const bool toon = water.shading == WaterShading::toon;

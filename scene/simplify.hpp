@@ -40,11 +40,11 @@
 namespace toonwater::povgen {
 
 struct SimplifyOptions {
-  double tolerance = 0;            // world units; 0 leaves the mesh as it is
-  std::vector<double> u_levels;    // iso-values of u that must not move
-  std::vector<double> v_levels;    // iso-values of v that must not move
-  double u_tolerance = 0;          // largest change of u
-  double v_tolerance = 0;          // largest change of v
+  double tolerance = 0;          // world units; 0 leaves the mesh as it is
+  std::vector<double> u_levels;  // iso-values of u that must not move
+  std::vector<double> v_levels;  // iso-values of v that must not move
+  double u_tolerance = 0;        // largest change of u
+  double v_tolerance = 0;        // largest change of v
 };
 
 struct SimplifyStats {
@@ -55,8 +55,9 @@ struct SimplifyStats {
 // The options of the toon (or curvature-view) coordinates written for `water`, whose bands
 // change at L·n = `band_thresholds` (scene_writer.hpp's water_thresholds), with a geometric
 // `tolerance` in world units.
-SimplifyOptions simplify_options(const WaterConfig& water, std::pair<double, double> band_thresholds,
-                                 const FlowConfig* flow, double tolerance);
+SimplifyOptions simplify_options(const WaterConfig& water,
+                                 std::pair<double, double> band_thresholds, const FlowConfig* flow,
+                                 double tolerance);
 
 // The largest world distance that moves no point nearer than `nearest_distance` to the camera
 // by more than `pixels` on a `width`×`height` image with a horizontal field of view of

@@ -30,7 +30,8 @@ FlowLine cleaned(const FlowLine& line) {
   FlowLine out;
   out.sign = line.sign;
   for (std::size_t i = 0; i < line.points.size(); ++i) {
-    if (!out.points.empty() && (line.points[i] - out.points.back()).norm() <= 1e-9 * (1.0 + line.points[i].norm()))
+    if (!out.points.empty() &&
+        (line.points[i] - out.points.back()).norm() <= 1e-9 * (1.0 + line.points[i].norm()))
       continue;
     out.points.push_back(line.points[i]);
     out.taper.push_back(line.taper[i]);

@@ -49,8 +49,9 @@ void check_before_parsing(std::string_view text, const std::string& where) {
 toml::table parse_toml(std::string_view text, std::string_view source) {
   check_before_parsing(text, std::string(source));
   std::string masked(text);
-  std::replace_if(masked.begin(), masked.end(),
-                  [](char c) { return static_cast<unsigned char>(c) >= 0x80; }, '?');
+  std::replace_if(
+      masked.begin(), masked.end(), [](char c) { return static_cast<unsigned char>(c) >= 0x80; },
+      '?');
   if (masked != text) static_cast<void>(toml::parse(masked, source));  // throws if not TOML
   return toml::parse(text, source);
 }

@@ -28,7 +28,8 @@ constexpr double class_margin = 1e-4;
 
 // `x` moved to just inside (lo, hi].
 float inside(float x, double lo, double hi) {
-  const double margin = std::isfinite(hi - lo) ? std::min(class_margin, 0.25 * (hi - lo)) : class_margin;
+  const double margin =
+      std::isfinite(hi - lo) ? std::min(class_margin, 0.25 * (hi - lo)) : class_margin;
   return static_cast<float>(std::clamp(static_cast<double>(x), lo + margin, hi - margin));
 }
 
@@ -77,7 +78,8 @@ std::size_t merge_small_islands(std::span<const Triangle> triangles, std::span<c
   using Entry = std::pair<double, std::int32_t>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> smallest;
   for (std::size_t i = 0; i < islands.size(); ++i)
-    if (size_of(islands[i]) < 1.0) smallest.emplace(size_of(islands[i]), static_cast<std::int32_t>(i));
+    if (size_of(islands[i]) < 1.0)
+      smallest.emplace(size_of(islands[i]), static_cast<std::int32_t>(i));
 
   DisjointSets island_sets(islands.size());
   std::size_t merges = 0;
@@ -152,7 +154,8 @@ std::size_t merge_toon_islands(const SceneMesh& mesh, const Vec3& eye,
   for (std::size_t v = 0; v < n; ++v) {
     const Vec3 view = eye - mesh.positions[v];
     const double distance = view.norm(), width = pixel_width[v];
-    const double facing = distance > 0.0 ? std::max(0.0, mesh.normals[v].dot(view)) / distance : 1.0;
+    const double facing =
+        distance > 0.0 ? std::max(0.0, mesh.normals[v].dot(view)) / distance : 1.0;
     pixels[v] = width > 0.0 ? area[v] * facing / (width * width) : 0.0;
   }
   const double edge = median_edge_length(mesh.positions, mesh.triangles);

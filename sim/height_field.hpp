@@ -10,9 +10,9 @@
 namespace toonwater::sim {
 
 struct HeightField {
-  int nx = 0, nz = 0;       // nodes along x and z
-  double x0 = 0, z0 = 0;    // position of node (0, 0)
-  double spacing = 1;       // distance between neighbouring nodes
+  int nx = 0, nz = 0;            // nodes along x and z
+  double x0 = 0, z0 = 0;         // position of node (0, 0)
+  double spacing = 1;            // distance between neighbouring nodes
   std::vector<double> height;    // surface elevation above the rest level
   std::vector<double> velocity;  // ∂height/∂t
 

@@ -21,7 +21,9 @@ TriangleMesh lat_long(int rings, int segments, Position position) {
   }
   m.positions.push_back(position(1.0, 0.0));  // north pole
   const std::size_t north = m.positions.size() - 1;
-  auto ring = [&](int k, int s) { return id(1 + static_cast<std::size_t>((k - 1) * segments + (s % segments))); };
+  auto ring = [&](int k, int s) {
+    return id(1 + static_cast<std::size_t>((k - 1) * segments + (s % segments)));
+  };
   for (int s = 0; s < segments; ++s) {
     m.triangles.push_back({0, ring(1, s + 1), ring(1, s)});
     for (int k = 1; k + 1 < rings; ++k) {
@@ -39,7 +41,8 @@ TriangleMesh height_field_mesh(const HeightField& f) {
   TriangleMesh m;
   m.positions.reserve(f.height.size());
   for (int j = 0; j < f.nz; ++j)
-    for (int i = 0; i < f.nx; ++i) m.positions.emplace_back(f.x(i), f.height[f.index(i, j)], f.z(j));
+    for (int i = 0; i < f.nx; ++i)
+      m.positions.emplace_back(f.x(i), f.height[f.index(i, j)], f.z(j));
   m.triangles.reserve(2 * static_cast<std::size_t>(f.nx - 1) * static_cast<std::size_t>(f.nz - 1));
   for (int j = 0; j + 1 < f.nz; ++j)
     for (int i = 0; i + 1 < f.nx; ++i) {

@@ -32,7 +32,10 @@ void run(const WaveScene& scene, const std::string& sphere_stem, const Simulatio
 void wake(const SimulationRequest& r, const MeshSink& sink, const SimulationProgress& progress) {
   WaveScene s;
   s.field = make_height_field(-2.0, 2.0, -1.0, 1.0, r.resolution);
-  s.waves = {.wave_speed = 1.0, .damping = 0.3, .sponge_width = 0.4, .sponge_damping = 8.0,
+  s.waves = {.wave_speed = 1.0,
+             .damping = 0.3,
+             .sponge_width = 0.4,
+             .sponge_damping = 8.0,
              .viscosity = 0.006};
   s.sphere = MovingSphere{[](double t) { return Vec3(-2.0 + 1.5 * t, 0.0, 0.0); }, 0.22, 0.7};
   s.record_start = 0.6;  // the wake has formed: sphere at x = -1.1
@@ -103,9 +106,7 @@ const std::vector<std::string>& scenario_names() {
   return names;
 }
 
-int default_resolution(const std::string& scenario) {
-  return scenario == "refraction" ? 96 : 128;
-}
+int default_resolution(const std::string& scenario) { return scenario == "refraction" ? 96 : 128; }
 
 std::string frame_file_name(const std::string& stem, int frame) {
   std::string number = std::to_string(frame);

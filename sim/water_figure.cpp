@@ -30,7 +30,7 @@ TriangleMesh water_figure_body(double time, int segments) {
 
 TriangleMesh water_figure_bones(int segments) {
   const int s = std::max(6, segments / 4);
-  TriangleMesh bones = uv_sphere(Vec3(0.62, 0.05, 0.0), 0.14, s / 2 + 1, s);  // skull
+  TriangleMesh bones = uv_sphere(Vec3(0.62, 0.05, 0.0), 0.14, s / 2 + 1, s);    // skull
   append(bones, capsule(Vec3(-0.75, 0.0, 0.0), Vec3(0.5, 0.0, 0.0), 0.03, s));  // spine
   for (double x : {-0.35, -0.15, 0.05, 0.25})
     for (double side : {-1.0, 1.0})

@@ -12,8 +12,8 @@ std::vector<double> damping_per_node(const HeightField& f, const WaveParameters&
   const double x_max = f.x(f.nx - 1), z_max = f.z(f.nz - 1);
   for (int j = 0; j < f.nz; ++j)
     for (int i = 0; i < f.nx; ++i) {
-      const double to_border = std::min({f.x(i) - f.x0, x_max - f.x(i), f.z(j) - f.z0,
-                                         z_max - f.z(j)});
+      const double to_border =
+          std::min({f.x(i) - f.x0, x_max - f.x(i), f.z(j) - f.z0, z_max - f.z(j)});
       const double depth = std::max(0.0, 1.0 - to_border / p.sponge_width);
       gamma[f.index(i, j)] += p.sponge_damping * depth * depth;
     }

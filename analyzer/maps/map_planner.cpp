@@ -12,9 +12,8 @@
 namespace toonwater {
 
 void MapPlanner::add(const Analysis& analysis) {
-  const double edge = analysis.flow.median_edge_length > 0.0
-                          ? analysis.flow.median_edge_length
-                          : median_edge_length(analysis.surface);
+  const double edge = analysis.flow.median_edge_length > 0.0 ? analysis.flow.median_edge_length
+                                                             : median_edge_length(analysis.surface);
   add(analysis.surface, analysis.curvature, analysis.flow.free_surface, edge);
 }
 
@@ -50,8 +49,8 @@ void MapPlanner::add(const TriangleMesh& surface, const CurvatureField& curvatur
 MapView MapPlanner::view(const MapOptions& options) const {
   if (!options.box && !has_extent_)
     throw InputError(std::string("maps: no free-surface face faces up along +") +
-                             "xyz"[static_cast<int>(up_)] +
-                             ", so there is no top-down map (is the up axis right?)");
+                     "xyz"[static_cast<int>(up_)] +
+                     ", so there is no top-down map (is the up axis right?)");
   MapView view;
   view.up = up_;
   view.box = options.box.value_or(extent_);

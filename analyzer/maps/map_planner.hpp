@@ -9,11 +9,11 @@
 //   for (frame : frames) write_maps(dir, stem, analyze(frame), view, ranges);  // pass 2
 //
 // Extent: the union of the frames' mapped faces (n·up > 0, on the free surface: see
-// top_down_map.hpp) seen from above, unless a box is given. Pixel size: the smallest median edge length of the frames over
-// `pixels_per_edge`, unless a size is given; the longer side is capped at `max_size`.
-// Ranges: CurvatureRanges (robust_range.hpp) over the mapped faces of all frames pooled, each
-// vertex weighted by the area it covers in the map (a third of the projected area of its upward
-// faces), i.e. the share of map pixels.
+// top_down_map.hpp) seen from above, unless a box is given. Pixel size: the smallest median edge
+// length of the frames over `pixels_per_edge`, unless a size is given; the longer side is capped at
+// `max_size`. Ranges: CurvatureRanges (robust_range.hpp) over the mapped faces of all frames
+// pooled, each vertex weighted by the area it covers in the map (a third of the projected area of
+// its upward faces), i.e. the share of map pixels.
 #pragma once
 
 #include "analyzer/analysis.hpp"
@@ -25,11 +25,11 @@
 namespace toonwater {
 
 struct MapOptions {
-  std::optional<MapBox> box;   // default: the upward-facing surface's extent
-  std::optional<int> size;     // pixels along the longer side; default from the edge length
+  std::optional<MapBox> box;  // default: the upward-facing surface's extent
+  std::optional<int> size;    // pixels along the longer side; default from the edge length
   double pixels_per_edge = 2.0;
   int max_size = 4096;
-  double percentile = 0.98;    // of |value|, for the colour ranges
+  double percentile = 0.98;  // of |value|, for the colour ranges
 };
 
 class MapPlanner {

@@ -24,7 +24,8 @@ namespace {
 
 constexpr const char* exr_compression = "rle";
 constexpr int png_compression_level = 1;
-constexpr int png_filter_none = 0x08;  // libpng's PNG_FILTER_NONE: row filters cost more than they save here
+constexpr int png_filter_none =
+    0x08;  // libpng's PNG_FILTER_NONE: row filters cost more than they save here
 
 const char* axis_name(Axis a) { return a == Axis::x ? "x" : a == Axis::y ? "y" : "z"; }
 
@@ -113,10 +114,10 @@ MapFiles write_maps(const fs::path& dir, const std::string& stem, const TopDownM
   const ImageCodec& codec = image_codec();
   // The thread's exception is carried out through the future.
   auto exr = std::async(std::launch::async, [&] { write_exr(codec, files.exr, map, ranges); });
-  write_png(codec, files.gaussian_png, signed_preview(map, map.gaussian, ranges.gaussian, "K"), map.view,
-            ranges, "Gaussian curvature K, top-down, diverging colours over +-K_range");
-  write_png(codec, files.mean_png, signed_preview(map, map.mean, ranges.mean, "H"), map.view, ranges,
-            "Mean curvature H, top-down, diverging colours over +-H_range");
+  write_png(codec, files.gaussian_png, signed_preview(map, map.gaussian, ranges.gaussian, "K"),
+            map.view, ranges, "Gaussian curvature K, top-down, diverging colours over +-K_range");
+  write_png(codec, files.mean_png, signed_preview(map, map.mean, ranges.mean, "H"), map.view,
+            ranges, "Mean curvature H, top-down, diverging colours over +-H_range");
   write_png(codec, files.label_png, label_preview(map), map.view, ranges,
             "Flow labels, top-down: valley, none, ridge");
   exr.get();

@@ -34,7 +34,9 @@ PreviewImage label_preview(const TopDownMap& map);
 // The colour bar of a signed preview spans these columns of the panel's bar rows:
 // value −range at bar_left, +range at bar_right(image width), 0 half-way (an even span).
 inline constexpr int bar_left = 12;
-inline int bar_right(int image_width) { return bar_left + 2 * ((image_width - 2 * bar_left - 1) / 2); }
+inline int bar_right(int image_width) {
+  return bar_left + 2 * ((image_width - 2 * bar_left - 1) / 2);
+}
 inline constexpr int bar_top_offset = 24;  // rows below the map where the bar starts
 inline constexpr int bar_rows = 16;
 

@@ -4,8 +4,8 @@
 //     the face and barycentric weights of the highest point seen so far (a depth test on the
 //     interpolated height: the topmost layer wins);
 //  2. resolve (split over the cores): every covered pixel interpolates its face's corner
-//     values with those weights, once, however much overdraw there was. Labels are categorical, so a
-//     pixel takes the label of its nearest corner (largest weight) instead of a blend.
+//     values with those weights, once, however much overdraw there was. Labels are categorical, so
+//     a pixel takes the label of its nearest corner (largest weight) instead of a blend.
 #include "analyzer/maps/top_down_map.hpp"
 
 #include "common/parallel.hpp"
@@ -21,9 +21,12 @@ Vec3 map_u_axis(Axis up) { return up == Axis::x ? Vec3::UnitY() : Vec3::UnitX();
 
 Vec3 map_v_axis(Axis up) {
   switch (up) {
-    case Axis::x: return Vec3::UnitZ();
-    case Axis::y: return -Vec3::UnitZ();
-    case Axis::z: return Vec3::UnitY();
+    case Axis::x:
+      return Vec3::UnitZ();
+    case Axis::y:
+      return -Vec3::UnitZ();
+    case Axis::z:
+      return Vec3::UnitY();
   }
   return Vec3::UnitY();
 }
@@ -87,9 +90,11 @@ Coverage cover_pixels(const TriangleMesh& mesh, std::span<const std::uint8_t> fr
     const double xs[3] = {tri.ax, tri.ax + tri.e1x, tri.ax + tri.e2x};
     const double ys[3] = {tri.ay, tri.ay + tri.e1y, tri.ay + tri.e2y};
     const int x0 = std::max(0, static_cast<int>(std::ceil(std::min({xs[0], xs[1], xs[2]}))));
-    const int x1 = std::min(view.width - 1, static_cast<int>(std::floor(std::max({xs[0], xs[1], xs[2]}))));
+    const int x1 =
+        std::min(view.width - 1, static_cast<int>(std::floor(std::max({xs[0], xs[1], xs[2]}))));
     const int y0 = std::max(0, static_cast<int>(std::ceil(std::min({ys[0], ys[1], ys[2]}))));
-    const int y1 = std::min(view.height - 1, static_cast<int>(std::floor(std::max({ys[0], ys[1], ys[2]}))));
+    const int y1 =
+        std::min(view.height - 1, static_cast<int>(std::floor(std::max({ys[0], ys[1], ys[2]}))));
     const double h0 = mesh.positions[t[0]][up], h1 = mesh.positions[t[1]][up],
                  h2 = mesh.positions[t[2]][up];
     for (int y = y0; y <= y1; ++y) {
@@ -118,8 +123,8 @@ TopDownMap rasterize_top_down(const TriangleMesh& surface, const CurvatureField&
   TopDownMap map;
   map.view = view;
   const std::size_t pixels = static_cast<std::size_t>(view.width) * view.height;
-  for (auto* channel : {&map.height, &map.gaussian, &map.mean, &map.k1, &map.k2, &map.label,
-                        &map.alpha})
+  for (auto* channel :
+       {&map.height, &map.gaussian, &map.mean, &map.k1, &map.k2, &map.label, &map.alpha})
     channel->assign(pixels, 0.0f);
   if (pixels == 0) return map;
 

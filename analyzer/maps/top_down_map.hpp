@@ -45,8 +45,8 @@ struct TopDownMap {
   std::vector<float> gaussian;  // K
   std::vector<float> mean;      // H
   std::vector<float> k1, k2;
-  std::vector<float> label;     // -1 valley, 0 none, 1 ridge: the nearest corner's label
-  std::vector<float> alpha;     // 1 on the surface, 0 outside
+  std::vector<float> label;  // -1 valley, 0 none, 1 ridge: the nearest corner's label
+  std::vector<float> alpha;  // 1 on the surface, 0 outside
   std::size_t covered_pixels = 0;
 };
 

@@ -48,7 +48,8 @@ TriMesh to_openmesh(const TriangleMesh& mesh) {
     const auto f = out.add_face(TriMesh::VertexHandle(t[0]), TriMesh::VertexHandle(t[1]),
                                 TriMesh::VertexHandle(t[2]));
     if (!f.is_valid())
-      throw std::invalid_argument("OpenMesh refuses face " + std::to_string(&t - mesh.triangles.data()) +
+      throw std::invalid_argument("OpenMesh refuses face " +
+                                  std::to_string(&t - mesh.triangles.data()) +
                                   " (non-manifold or repeated)");
   }
   return out;

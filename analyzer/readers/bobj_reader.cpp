@@ -190,18 +190,20 @@ class BobjParser {
 
     stream_.skip_rest();
     if (stream_.cut_short())
-      fail(file_, "truncated: the file ends inside the gzip stream, after the triangles (byte "
-                  "offset " + std::to_string(file_.bytes.size()) + ")");
+      fail(file_,
+           "truncated: the file ends inside the gzip stream, after the triangles (byte "
+           "offset " +
+               std::to_string(file_.bytes.size()) + ")");
     return result;
   }
 
  private:
   [[noreturn]] void fail_truncated(const std::string& where) {
-    fail(file_, std::string("truncated: ") +
-                    (stream_.cut_short() ? "the file ends inside the gzip stream"
-                                         : "the data ends") +
-                    " " + where + " (byte offset " + std::to_string(stream_.offset()) +
-                    " after decompression)");
+    fail(file_,
+         std::string("truncated: ") +
+             (stream_.cut_short() ? "the file ends inside the gzip stream" : "the data ends") +
+             " " + where + " (byte offset " + std::to_string(stream_.offset()) +
+             " after decompression)");
   }
 
   std::uint32_t read_count(const std::string& what) {

@@ -98,11 +98,11 @@ void read_face(const SourceFile& file, std::size_t line, Fields& fields, Triangl
 // geometry) is not among them: it is rejected like an unknown statement.
 bool is_skipped_statement(std::string_view keyword) {
   static constexpr std::string_view skipped[] = {
-      "vt",   "vn",    "vp",     "g",     "o",        "s",        "mg",      "usemtl",
-      "mtllib", "usemap", "maplib", "l",  "p",        "cstype",   "deg",     "bmat",
-      "step", "curv",  "curv2",  "surf",  "parm",     "trim",     "hole",    "scrv",
-      "sp",   "end",   "con",    "bevel", "c_interp", "d_interp", "lod",     "shadow_obj",
-      "trace_obj", "ctech", "stech", "csh"};
+      "vt",        "vn",     "vp",     "g",     "o",        "s",        "mg",   "usemtl",
+      "mtllib",    "usemap", "maplib", "l",     "p",        "cstype",   "deg",  "bmat",
+      "step",      "curv",   "curv2",  "surf",  "parm",     "trim",     "hole", "scrv",
+      "sp",        "end",    "con",    "bevel", "c_interp", "d_interp", "lod",  "shadow_obj",
+      "trace_obj", "ctech",  "stech",  "csh"};
   for (const std::string_view s : skipped)
     if (keyword == s) return true;
   return false;
@@ -157,8 +157,7 @@ InputMesh read_obj(const SourceFile& file) {
   if (largest_forward.index > static_cast<std::int64_t>(vertex_count))
     fail_at_line(file, largest_forward.line,
                  "face index " + std::to_string(largest_forward.index) +
-                     " out of range (the file has " + std::to_string(vertex_count) +
-                     " vertices)");
+                     " out of range (the file has " + std::to_string(vertex_count) + " vertices)");
   return result;
 }
 

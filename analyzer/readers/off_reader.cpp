@@ -83,9 +83,8 @@ void read_vertex(const SourceFile& file, std::size_t line, Fields& fields, Trian
   mesh.positions.push_back(point);
 }
 
-void read_face(const SourceFile& file, std::size_t line, Fields& fields,
-               std::uint64_t vertex_count, TriangleMesh& mesh,
-               std::vector<std::int32_t>& corners) {
+void read_face(const SourceFile& file, std::size_t line, Fields& fields, std::uint64_t vertex_count,
+               TriangleMesh& mesh, std::vector<std::int32_t>& corners) {
   const std::string_view count_field = fields.next();
   const std::optional<std::int64_t> corner_count = parse_integer(count_field);
   if (!corner_count) fail_at_line(file, line, "malformed corner count " + quote(count_field));
@@ -144,8 +143,8 @@ InputMesh read_off(const SourceFile& file) {
   for (std::uint64_t f = 0; f < counts.faces; ++f) {
     if (!next_record(lines, content))
       fail_at_line(file, lines.line_number(),
-                   "file ends after " + std::to_string(f) + " of " +
-                       std::to_string(counts.faces) + " faces");
+                   "file ends after " + std::to_string(f) + " of " + std::to_string(counts.faces) +
+                       " faces");
     Fields fields(content);
     read_face(file, lines.line_number(), fields, counts.vertices, mesh, corners);
     ++result.polygon_count;

@@ -46,13 +46,17 @@ std::optional<PlyType> parse_type(std::string_view name) {
 std::size_t size_of(PlyType type) {
   switch (type) {
     case PlyType::int8:
-    case PlyType::uint8: return 1;
+    case PlyType::uint8:
+      return 1;
     case PlyType::int16:
-    case PlyType::uint16: return 2;
+    case PlyType::uint16:
+      return 2;
     case PlyType::int32:
     case PlyType::uint32:
-    case PlyType::float32: return 4;
-    case PlyType::float64: return 8;
+    case PlyType::float32:
+      return 4;
+    case PlyType::float64:
+      return 8;
   }
   return 0;
 }
@@ -130,10 +134,14 @@ PlyHeader read_header(const SourceFile& file, LineReader& lines) {
     }
     if (keyword == "format") {
       const std::string_view format = fields.next();
-      if (format == "ascii") header.format = PlyFormat::ascii;
-      else if (format == "binary_little_endian") header.format = PlyFormat::binary_little_endian;
-      else if (format == "binary_big_endian") header.format = PlyFormat::binary_big_endian;
-      else fail_at_line(file, number, "unknown PLY format " + quote(format));
+      if (format == "ascii")
+        header.format = PlyFormat::ascii;
+      else if (format == "binary_little_endian")
+        header.format = PlyFormat::binary_little_endian;
+      else if (format == "binary_big_endian")
+        header.format = PlyFormat::binary_big_endian;
+      else
+        fail_at_line(file, number, "unknown PLY format " + quote(format));
       if (fields.next() != "1.0") fail_at_line(file, number, "unsupported PLY version");
       has_format = true;
     } else if (keyword == "element") {
@@ -165,8 +173,9 @@ std::size_t find_property(const PlyElement& element, std::string_view name) {
 PlyLayout find_layout(const SourceFile& file, const PlyHeader& header) {
   PlyLayout layout;
   for (const PlyElement& element : header.elements) {
-    const PlyElement** slot =
-        element.name == "vertex" ? &layout.vertex : element.name == "face" ? &layout.face : nullptr;
+    const PlyElement** slot = element.name == "vertex" ? &layout.vertex
+                              : element.name == "face" ? &layout.face
+                                                       : nullptr;
     if (!slot) continue;
     if (*slot)
       fail_at_line(file, element.header_line, "second " + quote(element.name) + " element");
@@ -182,8 +191,7 @@ PlyLayout find_layout(const SourceFile& file, const PlyHeader& header) {
   for (std::size_t axis = 0; axis < 3; ++axis) {
     const std::size_t at = find_property(vertex, axes[axis]);
     if (at == vertex.properties.size())
-      fail_at_line(file, vertex.header_line,
-                   "vertex element has no property " + quote(axes[axis]));
+      fail_at_line(file, vertex.header_line, "vertex element has no property " + quote(axes[axis]));
     if (vertex.properties[at].is_list)
       fail_at_line(file, vertex.properties[at].header_line,
                    "property " + quote(axes[axis]) + " must not be a list");
@@ -197,8 +205,7 @@ PlyLayout find_layout(const SourceFile& file, const PlyHeader& header) {
       fail_at_line(file, face.header_line, "face element has no property vertex_indices");
     const PlyProperty& indices = face.properties[at];
     if (!indices.is_list || !is_integer(indices.type))
-      fail_at_line(file, indices.header_line,
-                   "vertex_indices must be a list of an integer type");
+      fail_at_line(file, indices.header_line, "vertex_indices must be a list of an integer type");
     layout.indices = at;
   }
   return layout;
@@ -208,8 +215,10 @@ PlyLayout find_layout(const SourceFile& file, const PlyHeader& header) {
 std::size_t min_record_bytes(const PlyElement& element, PlyFormat format) {
   std::size_t bytes = 0;
   for (const PlyProperty& p : element.properties) {
-    if (format == PlyFormat::ascii) bytes += 2;  // a digit and a separator
-    else bytes += size_of(p.is_list ? p.count_type : p.type);
+    if (format == PlyFormat::ascii)
+      bytes += 2;  // a digit and a separator
+    else
+      bytes += size_of(p.is_list ? p.count_type : p.type);
   }
   return std::max<std::size_t>(bytes, 1);
 }
@@ -237,13 +246,15 @@ class AsciiReader {
         if (!lines_.next(line))
           fail_at_line(file_, lines_.line_number(),
                        "file ends after " + std::to_string(r) + " of " +
-                           std::to_string(element.count) + " " + quote(element.name) +
-                           " records");
+                           std::to_string(element.count) + " " + quote(element.name) + " records");
       } while (Fields(line).at_end());
       Fields fields(line);
-      if (&element == layout_.vertex) read_vertex(element, fields, result.mesh);
-      else if (&element == layout_.face) read_face(element, fields, result);
-      else skip_record(element, fields);
+      if (&element == layout_.vertex)
+        read_vertex(element, fields, result.mesh);
+      else if (&element == layout_.face)
+        read_face(element, fields, result);
+      else
+        skip_record(element, fields);
       if (!fields.at_end())
         fail_at_line(file_, lines_.line_number(),
                      "too many values in a " + quote(element.name) + " record");
@@ -366,8 +377,10 @@ class BinaryReader {
       return;
     }
     for (record_ = 0; record_ < element.count; ++record_) {
-      if (&element == layout_.vertex) read_vertex(result.mesh);
-      else if (&element == layout_.face) read_face(result);
+      if (&element == layout_.vertex)
+        read_vertex(result.mesh);
+      else if (&element == layout_.face)
+        read_face(result);
       else
         for (const PlyProperty& p : element.properties) skip_property(p);
     }
@@ -402,14 +415,22 @@ class BinaryReader {
 
   double read_number(PlyType type) {
     switch (type) {
-      case PlyType::int8: return read_raw<std::int8_t>();
-      case PlyType::uint8: return read_raw<std::uint8_t>();
-      case PlyType::int16: return read_raw<std::int16_t>();
-      case PlyType::uint16: return read_raw<std::uint16_t>();
-      case PlyType::int32: return read_raw<std::int32_t>();
-      case PlyType::uint32: return read_raw<std::uint32_t>();
-      case PlyType::float32: return read_raw<float>();
-      case PlyType::float64: return read_raw<double>();
+      case PlyType::int8:
+        return read_raw<std::int8_t>();
+      case PlyType::uint8:
+        return read_raw<std::uint8_t>();
+      case PlyType::int16:
+        return read_raw<std::int16_t>();
+      case PlyType::uint16:
+        return read_raw<std::uint16_t>();
+      case PlyType::int32:
+        return read_raw<std::int32_t>();
+      case PlyType::uint32:
+        return read_raw<std::uint32_t>();
+      case PlyType::float32:
+        return read_raw<float>();
+      case PlyType::float64:
+        return read_raw<double>();
     }
     return 0;
   }
@@ -417,14 +438,21 @@ class BinaryReader {
   // Counts and indices, which the header check guarantees to be of an integer type.
   std::int64_t read_integer(PlyType type) {
     switch (type) {
-      case PlyType::int8: return read_raw<std::int8_t>();
-      case PlyType::uint8: return read_raw<std::uint8_t>();
-      case PlyType::int16: return read_raw<std::int16_t>();
-      case PlyType::uint16: return read_raw<std::uint16_t>();
-      case PlyType::int32: return read_raw<std::int32_t>();
-      case PlyType::uint32: return read_raw<std::uint32_t>();
+      case PlyType::int8:
+        return read_raw<std::int8_t>();
+      case PlyType::uint8:
+        return read_raw<std::uint8_t>();
+      case PlyType::int16:
+        return read_raw<std::int16_t>();
+      case PlyType::uint16:
+        return read_raw<std::uint16_t>();
+      case PlyType::int32:
+        return read_raw<std::int32_t>();
+      case PlyType::uint32:
+        return read_raw<std::uint32_t>();
       case PlyType::float32:
-      case PlyType::float64: break;
+      case PlyType::float64:
+        break;
     }
     return 0;
   }
@@ -466,27 +494,48 @@ class BinaryReader {
   template <class Fn>
   static void dispatch_integer(PlyType type, Fn&& fn) {
     switch (type) {
-      case PlyType::int8: fn.template operator()<std::int8_t>(); return;
-      case PlyType::uint8: fn.template operator()<std::uint8_t>(); return;
-      case PlyType::int16: fn.template operator()<std::int16_t>(); return;
-      case PlyType::uint16: fn.template operator()<std::uint16_t>(); return;
-      case PlyType::int32: fn.template operator()<std::int32_t>(); return;
-      case PlyType::uint32: fn.template operator()<std::uint32_t>(); return;
+      case PlyType::int8:
+        fn.template operator()<std::int8_t>();
+        return;
+      case PlyType::uint8:
+        fn.template operator()<std::uint8_t>();
+        return;
+      case PlyType::int16:
+        fn.template operator()<std::int16_t>();
+        return;
+      case PlyType::uint16:
+        fn.template operator()<std::uint16_t>();
+        return;
+      case PlyType::int32:
+        fn.template operator()<std::int32_t>();
+        return;
+      case PlyType::uint32:
+        fn.template operator()<std::uint32_t>();
+        return;
       case PlyType::float32:
-      case PlyType::float64: break;
+      case PlyType::float64:
+        break;
     }
   }
 
   double load_number(PlyType type, const char* at) const {
     switch (type) {
-      case PlyType::int8: return load<std::int8_t>(at);
-      case PlyType::uint8: return load<std::uint8_t>(at);
-      case PlyType::int16: return load<std::int16_t>(at);
-      case PlyType::uint16: return load<std::uint16_t>(at);
-      case PlyType::int32: return load<std::int32_t>(at);
-      case PlyType::uint32: return load<std::uint32_t>(at);
-      case PlyType::float32: return load<float>(at);
-      case PlyType::float64: return load<double>(at);
+      case PlyType::int8:
+        return load<std::int8_t>(at);
+      case PlyType::uint8:
+        return load<std::uint8_t>(at);
+      case PlyType::int16:
+        return load<std::int16_t>(at);
+      case PlyType::uint16:
+        return load<std::uint16_t>(at);
+      case PlyType::int32:
+        return load<std::int32_t>(at);
+      case PlyType::uint32:
+        return load<std::uint32_t>(at);
+      case PlyType::float32:
+        return load<float>(at);
+      case PlyType::float64:
+        return load<double>(at);
     }
     return 0;
   }
@@ -506,14 +555,13 @@ class BinaryReader {
     const std::array<PlyType, 3> type{properties[layout_.xyz[0]].type,
                                       properties[layout_.xyz[1]].type,
                                       properties[layout_.xyz[2]].type};
-    const std::uint64_t complete =
-        std::min<std::uint64_t>(layout_.vertex->count,
-                                static_cast<std::size_t>(end_ - position_) / record_size);
+    const std::uint64_t complete = std::min<std::uint64_t>(
+        layout_.vertex->count, static_cast<std::size_t>(end_ - position_) / record_size);
     const std::size_t first = mesh.positions.size();
     mesh.positions.resize(first + complete);
     Vec3* out = mesh.positions.data() + first;
-    const bool all_float = type[0] == PlyType::float32 && type[1] == PlyType::float32 &&
-                           type[2] == PlyType::float32;
+    const bool all_float =
+        type[0] == PlyType::float32 && type[1] == PlyType::float32 && type[2] == PlyType::float32;
     // On every core; each chunk notes its first bad record, and the first of all is reported.
     const std::size_t chunks = chunk_count(complete);
     std::vector<std::uint64_t> first_bad(chunks, complete);
@@ -599,7 +647,8 @@ class BinaryReader {
     const std::vector<PlyProperty>& properties = layout_.face->properties;
     std::size_t before = 0, after = 0;  // bytes of the scalar properties around the list
     for (std::size_t p = 0; p < properties.size(); ++p)
-      if (p != layout_.indices) (p < layout_.indices ? before : after) += size_of(properties[p].type);
+      if (p != layout_.indices)
+        (p < layout_.indices ? before : after) += size_of(properties[p].type);
     if (read_triangle_records<Count, Index>(before, after, result)) return;
     const std::uint64_t vertex_count = layout_.vertex->count;
     std::vector<Triangle>& triangles = result.mesh.triangles;
@@ -611,9 +660,8 @@ class BinaryReader {
       const auto corner_count = static_cast<std::int64_t>(load<Count>(position_ + before));
       position_ += before + sizeof(Count);
       if (corner_count < 0)
-        fail(file_, "negative list count " + std::to_string(corner_count) + " (" +
-                        record_label() + ", byte offset " + std::to_string(position_ - begin_) +
-                        ")");
+        fail(file_, "negative list count " + std::to_string(corner_count) + " (" + record_label() +
+                        ", byte offset " + std::to_string(position_ - begin_) + ")");
       if (corner_count < 3)
         fail(file_, face_count_error(corner_count) + " (face " + std::to_string(record_) + ")");
       const auto available = static_cast<std::size_t>(end_ - position_) / sizeof(Index);
@@ -630,8 +678,10 @@ class BinaryReader {
       position_ += readable * sizeof(Index);
       if (static_cast<std::size_t>(end_ - position_) < after) truncated();
       position_ += after;
-      if (corners_.size() == 3) triangles.push_back({corners_[0], corners_[1], corners_[2]});
-      else add_polygon(result.mesh, corners_);
+      if (corners_.size() == 3)
+        triangles.push_back({corners_[0], corners_[1], corners_[2]});
+      else
+        add_polygon(result.mesh, corners_);
       ++result.polygon_count;
     }
   }
@@ -641,8 +691,10 @@ class BinaryReader {
     Vec3 position;
     for (std::size_t p = 0; p < properties.size(); ++p) {
       const auto axis = std::find(layout_.xyz.begin(), layout_.xyz.end(), p);
-      if (axis == layout_.xyz.end()) skip_property(properties[p]);
-      else position[axis - layout_.xyz.begin()] = read_number(properties[p].type);
+      if (axis == layout_.xyz.end())
+        skip_property(properties[p]);
+      else
+        position[axis - layout_.xyz.begin()] = read_number(properties[p].type);
     }
     if (!position.allFinite())
       fail(file_, "coordinate is NaN or infinite (vertex " + std::to_string(record_) + ")");
@@ -692,11 +744,11 @@ InputMesh read_ply(const SourceFile& file) {
   const std::string_view body = lines.rest();
 
   InputMesh result;
-  result.mesh.positions.reserve(
-      capped_reserve(layout.vertex->count, body.size(), min_record_bytes(*layout.vertex, header.format)));
+  result.mesh.positions.reserve(capped_reserve(layout.vertex->count, body.size(),
+                                               min_record_bytes(*layout.vertex, header.format)));
   if (layout.face)
-    result.mesh.triangles.reserve(
-        capped_reserve(layout.face->count, body.size(), min_record_bytes(*layout.face, header.format)));
+    result.mesh.triangles.reserve(capped_reserve(layout.face->count, body.size(),
+                                                 min_record_bytes(*layout.face, header.format)));
 
   if (header.format == PlyFormat::ascii) {
     AsciiReader reader(file, lines, layout);

@@ -124,11 +124,9 @@ InputMesh read_ascii(const SourceFile& file) {
       unexpected();
     }
   }
-  if (in_facet)
-    fail_at_line(file, lines.line_number(), "truncated: the file ends inside a facet");
+  if (in_facet) fail_at_line(file, lines.line_number(), "truncated: the file ends inside a facet");
   // A file cut between two facets reads as whole facets: only the missing endsolid tells.
-  if (in_solid)
-    fail_at_line(file, lines.line_number(), "truncated: the file ends before endsolid");
+  if (in_solid) fail_at_line(file, lines.line_number(), "truncated: the file ends before endsolid");
   return result;
 }
 

@@ -90,7 +90,8 @@ inline Errors relative_errors(const AnalyticSurface& s) {
   const Curvature c = curvature_of(s.mesh);
   const double k_scale = rms(s.gaussian, s.interior);
   const double h_scale = rms(s.mean, s.interior);
-  return {rms_error(c.field.gaussian, s.gaussian, s.interior, k_scale > 0 ? k_scale : h_scale * h_scale),
+  return {rms_error(c.field.gaussian, s.gaussian, s.interior,
+                    k_scale > 0 ? k_scale : h_scale * h_scale),
           rms_error(c.field.mean, s.mean, s.interior, h_scale)};
 }
 

@@ -38,10 +38,9 @@ std::string message_of(const std::array<double, 12>& rows) {
 }
 
 TEST(AffineTransform, RowsAreTheMatrixAndItsTranslation) {
-  const AffineTransform t = affine_from_rows(std::array<double, 12>{
-      0, -2, 0, 10,  //
-      1, 0, 0, 20,   //
-      0, 0, 3, 30});
+  const AffineTransform t = affine_from_rows(std::array<double, 12>{0, -2, 0, 10,  //
+                                                                    1, 0, 0, 20,   //
+                                                                    0, 0, 3, 30});
   TriangleMesh mesh{{Vec3(1, 2, 3)}, {}};
   apply_transform(t, mesh, "t.obj");
   EXPECT_EQ(mesh.positions[0], Vec3(-4 + 10, 1 + 20, 9 + 30));
@@ -73,15 +72,14 @@ TEST(AffineTransform, MirrorsReverseTheWindingSoNormalsStillPointOut) {
   const std::vector<AffineTransform> maps{
       affine_from_rows(std::array<double, 12>{-1, 0, 0, 5, 0, 1, 0, 0, 0, 0, 1, 0}),  // x mirror
       affine_from_rows(std::array<double, 12>{0, 1, 0, 0, 1, 0, 0, 0, 0, 0, 2, 0}),   // swap x, y
-      scale_then_translate(-3, Vec3(1, 2, 3)),                                       // through a point
+      scale_then_translate(-3, Vec3(1, 2, 3)),  // through a point
       affine_from_rows(std::array<double, 12>{0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0})};  // rotation
   for (std::size_t m = 0; m < maps.size(); ++m) {
     TriangleMesh mesh = sphere;
     apply_transform(maps[m], mesh, "sphere.obj");
     EXPECT_GT(six_volume(mesh), 0) << "map " << m;
     const Triangle& t = sphere.triangles[0];
-    const Triangle expected =
-        maps[m].linear.determinant() < 0 ? Triangle{t[0], t[2], t[1]} : t;
+    const Triangle expected = maps[m].linear.determinant() < 0 ? Triangle{t[0], t[2], t[1]} : t;
     EXPECT_EQ(mesh.triangles[0], expected) << "map " << m;
   }
 }
@@ -109,8 +107,9 @@ TEST(AffineTransform, NonFiniteAndSingularMapsAreRefused) {
   // det A overflows or underflows here, but the maps are exact: not singular.
   EXPECT_NO_THROW(scale_then_translate(1e300, Vec3::Zero()));
   EXPECT_NO_THROW(scale_then_translate(1e-150, Vec3::Zero()));
-  EXPECT_THROW(affine_from_rows(std::array<double, 12>{1e200, 0, 0, 0, 1e200, 0, 0, 0, 0, 0, 1e200, 0}),
-               std::invalid_argument);  // rows 0 and 1 alike, however large
+  EXPECT_THROW(
+      affine_from_rows(std::array<double, 12>{1e200, 0, 0, 0, 1e200, 0, 0, 0, 0, 0, 1e200, 0}),
+      std::invalid_argument);  // rows 0 and 1 alike, however large
 }
 
 TEST(AffineTransform, ATinyMirrorStillReversesTheWinding) {
@@ -153,7 +152,8 @@ TEST(AffineTransformCli, ATransformThatOverflowsTheMeshIsBadInputAndWritesNothin
       test::run_toonwater({"analyze", mesh.string(), "--scale", "1e10", "--csv", csv.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find(mesh.string() + ": vertex 0 lies beyond the largest double"),
-            std::string::npos) << r.output;
+            std::string::npos)
+      << r.output;
   EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << "one line: " << r.output;
   EXPECT_FALSE(std::filesystem::exists(csv));
 }

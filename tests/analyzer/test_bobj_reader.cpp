@@ -25,15 +25,14 @@
 #include <string>
 #include <vector>
 
-
 namespace toonwater {
 namespace {
 
 namespace fs = std::filesystem;
-using test::read_text;
-using test::run_toonwater;
 using test::largest_allocation;
+using test::read_text;
 using test::reset_largest_allocation;
+using test::run_toonwater;
 using test::ScratchDir;
 using test::write_text;
 
@@ -59,7 +58,8 @@ class Data {
 };
 
 // The uncompressed contents of a .bobj.gz: counts, positions, normals, triangles.
-std::string bobj_data(const std::vector<Float3>& positions, const std::vector<Triangle>& triangles) {
+std::string bobj_data(const std::vector<Float3>& positions,
+                      const std::vector<Triangle>& triangles) {
   Data d;
   d.put(static_cast<std::int32_t>(positions.size()));
   for (const Float3& p : positions) d.put(p);
@@ -130,16 +130,16 @@ void expect_tetrahedron(const InputMesh& input) {
 }
 
 TEST_F(BobjReader, TetrahedronRoundTrip) {
-  expect_tetrahedron(read_mesh(write("fluid_mesh_0001.bobj.gz",
-                                     gzip(bobj_data(tetra_positions, tetra_triangles)))));
+  expect_tetrahedron(read_mesh(
+      write("fluid_mesh_0001.bobj.gz", gzip(bobj_data(tetra_positions, tetra_triangles)))));
 }
 
 TEST_F(BobjReader, IcosphereRoundTripAtEveryCompressionLevel) {
   const AnalyticSurface sphere = make_icosphere(4, 0.4);  // 2562 vertices: several inflate chunks
   std::vector<Float3> positions;
   for (const Vec3& p : sphere.mesh.positions)
-    positions.push_back({static_cast<float>(p.x()), static_cast<float>(p.y()),
-                         static_cast<float>(p.z())});
+    positions.push_back(
+        {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
   for (const int level : {0, 1, 9}) {
     const InputMesh input = read_mesh(
         write("sphere.bobj.gz", gzip(bobj_data(positions, sphere.mesh.triangles), level)));
@@ -163,15 +163,15 @@ TEST_F(BobjReader, VortexSheetChunksAfterTheTrianglesAreIgnored) {
   for (std::size_t v = 0; v < tetra_positions.size(); ++v) extra.put(0.5f);
   for (const std::int32_t id : {0, int{'v'}, int{'x'}, int{'f'}}) extra.put(id);
   for (std::size_t v = 0; v < tetra_positions.size(); ++v) extra.put(1.0f);
-  expect_tetrahedron(read_mesh(write(
-      "sheet.bobj.gz", gzip(bobj_data(tetra_positions, tetra_triangles) + extra.bytes()))));
+  expect_tetrahedron(read_mesh(
+      write("sheet.bobj.gz", gzip(bobj_data(tetra_positions, tetra_triangles) + extra.bytes()))));
 }
 
 TEST_F(BobjReader, ConcatenatedGzipMembersFormOneStream) {
   const std::string data = bobj_data(tetra_positions, tetra_triangles);
   const std::size_t split = 30;  // inside vertex 2
-  expect_tetrahedron(read_mesh(
-      write("members.bobj.gz", gzip(data.substr(0, split)) + gzip(data.substr(split)))));
+  expect_tetrahedron(
+      read_mesh(write("members.bobj.gz", gzip(data.substr(0, split)) + gzip(data.substr(split)))));
 }
 
 TEST_F(BobjReader, DamagedGzipStreams) {
@@ -210,13 +210,13 @@ TEST_F(BobjReader, BadCountsIndicesAndCoordinates) {
   for (const std::int32_t index : {4, -1}) {
     std::vector<Triangle> triangles = tetra_triangles;
     triangles[1][2] = index;
-    expect_error(gzip(bobj_data(tetra_positions, triangles)),
-                 {"triangle 1 refers to vertex " + std::to_string(index) +
-                  ", but there are 4 vertices"});
+    expect_error(
+        gzip(bobj_data(tetra_positions, triangles)),
+        {"triangle 1 refers to vertex " + std::to_string(index) + ", but there are 4 vertices"});
   }
 
-  for (const float bad : {std::numeric_limits<float>::quiet_NaN(),
-                          std::numeric_limits<float>::infinity()}) {
+  for (const float bad :
+       {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     std::vector<Float3> positions = tetra_positions;
     positions[2][1] = bad;
     expect_error(gzip(bobj_data(positions, tetra_triangles)),

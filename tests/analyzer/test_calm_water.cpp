@@ -19,8 +19,8 @@
 namespace toonwater::test {
 namespace {
 
-constexpr int kGrid = 101;                     // vertices along a side of the tank's top
-constexpr double kCell = 2.0 / (kGrid - 1);    // its spacing: the "cell" of these tanks
+constexpr int kGrid = 101;                   // vertices along a side of the tank's top
+constexpr double kCell = 2.0 / (kGrid - 1);  // its spacing: the "cell" of these tanks
 
 // A fixed pseudo-random value in [−1, 1) for a grid point: marching-cubes-like jitter, which
 // changes from vertex to vertex and is the same in every run.
@@ -32,7 +32,6 @@ double jitter(double x, double y) {
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
   return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1.0p-52 - 1.0;
 }
-
 
 std::size_t labelled(const FlowRegions& r) { return r.ridge_vertices + r.valley_vertices; }
 
@@ -56,7 +55,8 @@ TEST(RobustSpread, IsTheNoiseWhenSomeValuesAreWaves) {
 // smooth waves without jitter has almost none: its waves are not noise.
 TEST(NoiseFloor, FollowsTheJitterAndNotTheWaves) {
   auto floor_of = [](double amplitude, double scale) {
-    TriangleMesh m = tank(kGrid, [&](double x, double y) { return amplitude * kCell * jitter(x, y); });
+    TriangleMesh m =
+        tank(kGrid, [&](double x, double y) { return amplitude * kCell * jitter(x, y); });
     for (Vec3& p : m.positions) p *= scale;
     return flow_of(m).regions.noise_floor;
   };
@@ -64,14 +64,14 @@ TEST(NoiseFloor, FollowsTheJitterAndNotTheWaves) {
   EXPECT_GT(small, 0.0);
   EXPECT_NEAR(large / small, 4.0, 0.4);
   EXPECT_NEAR(floor_of(0.2, 1000.0) * 1000.0 / large, 1.0, 1e-6);
-  const Flow waves = flow_of(tank(kGrid, [](double x, double y) {
-    return 0.05 * std::sin(6.0 * x) * std::cos(5.0 * y);
-  }));
+  const Flow waves = flow_of(
+      tank(kGrid, [](double x, double y) { return 0.05 * std::sin(6.0 * x) * std::cos(5.0 * y); }));
   double peak = 0.0;
   for (std::size_t v = 0; v < waves.regions.smoothed_field.size(); ++v)
     peak = std::max(peak, std::abs(waves.curvature.field.mean[v]));
   EXPECT_LT(waves.regions.noise_floor, 0.02 * peak);
-  EXPECT_EQ(waves.regions.threshold, 2.0 / waves.regions.scale_length) << "the floor is not binding";
+  EXPECT_EQ(waves.regions.threshold, 2.0 / waves.regions.scale_length)
+      << "the floor is not binding";
   EXPECT_GT(labelled(waves.regions), 0u);
 }
 
@@ -85,9 +85,8 @@ TEST(CalmWater, JitterIsNoFlowAndAWaveOnItIs) {
     EXPECT_EQ(labelled(calm.regions), 0u) << "jitter of " << amplitude << " cells";
     if (amplitude > 0.1) continue;
     const HeightFunction crest = bump(0.1 + amplitude, 0.0, 0.0, 0.2);
-    const Flow wave = flow_of(tank(kGrid, [&](double x, double y) {
-      return amplitude * kCell * jitter(x, y) + crest(x, y);
-    }));
+    const Flow wave = flow_of(tank(
+        kGrid, [&](double x, double y) { return amplitude * kCell * jitter(x, y) + crest(x, y); }));
     const std::size_t top = static_cast<std::size_t>(kGrid / 2) * kGrid + kGrid / 2;  // (0, 0)
     EXPECT_EQ(wave.regions.label[top], FlowLabel::ridge)
         << "jitter of " << amplitude << " cells: T " << wave.regions.threshold << ", noise floor "
@@ -100,7 +99,9 @@ TEST(CalmWater, JitterIsNoFlowAndAWaveOnItIs) {
 // still drawn.
 TEST(TankWalls, TheDroopAlongTheWallsIsCalmAndAWaveBesideThemIsNot) {
   auto to_wall = [](double x, double y) { return 1.0 - std::max(std::abs(x), std::abs(y)); };
-  const auto droop = [&](double x, double y) { return -kCell * std::exp(-to_wall(x, y) / (3 * kCell)); };
+  const auto droop = [&](double x, double y) {
+    return -kCell * std::exp(-to_wall(x, y) / (3 * kCell));
+  };
   const Flow calm = flow_of(tank(kGrid, droop));
   EXPECT_EQ(calm.regions.walls, 4u);
   EXPECT_EQ(labelled(calm.regions), 0u);
@@ -120,7 +121,8 @@ TEST(TankWalls, TheDroopAlongTheWallsIsCalmAndAWaveBesideThemIsNot) {
   double open_tilt = 1.0;
   for (std::size_t v = 0; v < open.curvature.mesh.positions.size(); ++v) {
     const Vec3& p = open.curvature.mesh.positions[v];
-    if (to_wall(p.x(), p.y()) > 2.5 * kCell) open_tilt = std::min(open_tilt, open.regions.shading_normal[v].z());
+    if (to_wall(p.x(), p.y()) > 2.5 * kCell)
+      open_tilt = std::min(open_tilt, open.regions.shading_normal[v].z());
   }
   EXPECT_LT(open_tilt, 0.995);
 

@@ -23,7 +23,8 @@ TEST(CurvatureAccuracy, IcosphereConvergesQuadraticallyPastAMillionVertices) {
   // Subdivision levels 3..9: 642 to 2.6M vertices. A single-precision implementation stops
   // improving near 55k vertices; double precision keeps the O(h²) rate throughout.
   std::vector<Errors> errors;
-  for (int level = 3; level <= 9; ++level) errors.push_back(relative_errors(make_icosphere(level, 2.0)));
+  for (int level = 3; level <= 9; ++level)
+    errors.push_back(relative_errors(make_icosphere(level, 2.0)));
   expect_convergence(errors, 3.5, 3.0);
   EXPECT_LT(errors.back().gaussian, 2e-6);
   EXPECT_LT(errors.back().mean, 2e-9);

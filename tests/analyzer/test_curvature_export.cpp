@@ -37,7 +37,7 @@ struct Fixture {
   Analysis analysis;
 
   Fixture() {
-    input.positions = {Vec3(0.1, -0.0, 1e-300), Vec3(1.0 / 3.0, 2, 3),  Vec3(5e-324, 1e300, -7),
+    input.positions = {Vec3(0.1, -0.0, 1e-300), Vec3(1.0 / 3.0, 2, 3),   Vec3(5e-324, 1e300, -7),
                        Vec3(1.0 / 3.0, 2, 3),   Vec3(0.1, -0.0, 1e-300), Vec3(123456.789, 0, 1)};
     input.triangles = {{0, 1, 2}, {3, 4, 5}};
     analysis.input_to_surface = {0, 1, 2, 1, 0, 3};
@@ -58,9 +58,16 @@ struct Fixture {
   std::vector<double> expected_row(std::size_t v) const {
     const std::size_t s = analysis.input_to_surface[v];
     const CurvatureField& c = analysis.curvature;
-    std::vector<double> row{input.positions[v].x(), input.positions[v].y(), input.positions[v].z(),
-                            c.gaussian[s], c.mean[s], c.k1[s], c.k2[s], c.area[s],
-                            static_cast<double>(analysis.flow.label[s]), analysis.flow.field[s]};
+    std::vector<double> row{input.positions[v].x(),
+                            input.positions[v].y(),
+                            input.positions[v].z(),
+                            c.gaussian[s],
+                            c.mean[s],
+                            c.k1[s],
+                            c.k2[s],
+                            c.area[s],
+                            static_cast<double>(analysis.flow.label[s]),
+                            analysis.flow.field[s]};
     for (double& value : row)
       if (!std::isfinite(value)) value = 0.0;
     return row;

@@ -29,8 +29,9 @@ constexpr Jitter jittered{0.2, 7};
 Errors errors_of(const AnalyticSurface& s, const CurvatureField& field) {
   const double h_scale = rms(s.mean, s.interior);
   const double k_scale = rms(s.gaussian, s.interior);
-  return {rms_error(field.gaussian, s.gaussian, s.interior, k_scale > 0 ? k_scale : h_scale * h_scale),
-          rms_error(field.mean, s.mean, s.interior, h_scale)};
+  return {
+      rms_error(field.gaussian, s.gaussian, s.interior, k_scale > 0 ? k_scale : h_scale * h_scale),
+      rms_error(field.mean, s.mean, s.interior, h_scale)};
 }
 
 Errors jet_errors(const AnalyticSurface& s) { return errors_of(s, jet_of(s.mesh).field); }
@@ -61,14 +62,17 @@ TEST(CurvatureJet, ConvergesQuadraticallyOnJitteredMeshes) {
   // Where the cotangent H stays near a constant error (see the next test), the fit keeps O(h²).
   std::vector<Errors> saddle, wave, sphere;
   for (int n : {33, 65, 129}) saddle.push_back(jet_errors(make_saddle(n, 0.5, jittered)));
-  for (int n : {65, 129, 257}) wave.push_back(jet_errors(make_wave_field(n, 0.1, 6.0, 1.0, jittered)));
-  for (int level = 3; level <= 5; ++level) sphere.push_back(jet_errors(make_icosphere(level, 1.0, jittered)));
+  for (int n : {65, 129, 257})
+    wave.push_back(jet_errors(make_wave_field(n, 0.1, 6.0, 1.0, jittered)));
+  for (int level = 3; level <= 5; ++level)
+    sphere.push_back(jet_errors(make_icosphere(level, 1.0, jittered)));
   for (const auto* series : {&saddle, &wave, &sphere}) expect_convergence(*series, 3.0);
 }
 
 // The requirement: on jittered triangulations of 10k vertices and more, at least 5× more
 // accurate in H than the cotangent operator, and more accurate in K.
-TEST(CurvatureJet, FiveTimesMoreAccurateInHThanTheCotangentOnJitteredMeshesFromTenThousandVertices) {
+TEST(CurvatureJet,
+     FiveTimesMoreAccurateInHThanTheCotangentOnJitteredMeshesFromTenThousandVertices) {
   struct Case {
     const char* name;
     std::function<AnalyticSurface(int)> make;  // at about 10k, then 40k vertices
@@ -270,7 +274,8 @@ TEST(CurvatureJet, AnalyzeCommandTakesEstimatorAndSmoothing) {
   EXPECT_LT(20.0 * jet, one_ring);
   EXPECT_LT(smoothed, 0.5 * one_ring);
 
-  const CommandResult bad = run_toonwater({"analyze", (dir / "saddle.obj").string(), "--estimator", "tensor"});
+  const CommandResult bad =
+      run_toonwater({"analyze", (dir / "saddle.obj").string(), "--estimator", "tensor"});
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.output.find("--estimator"), std::string::npos) << bad.output;
 }

@@ -51,7 +51,7 @@ TEST(CurvatureSmoothing, KeepsAConstantFieldAndAPlane) {
 
 TEST(CurvatureSmoothing, UndefinedVerticesNeitherChangeNorContribute) {
   TriangleMesh m = make_icosphere(2).mesh;
-  m.positions.emplace_back(5, 5, 5);  // isolated
+  m.positions.emplace_back(5, 5, 5);      // isolated
   m.positions.push_back(m.positions[3]);  // a copy of vertex 3, in one face with a zero-length edge
   const auto copy = static_cast<std::int32_t>(m.positions.size() - 1);
   m.triangles.push_back({3, copy, 4});
@@ -70,8 +70,9 @@ TEST(CurvatureSmoothing, UndefinedVerticesNeitherChangeNorContribute) {
 // The formula of the header, gathered over each vertex's faces in the order VertexFaces lists
 // them, on one thread.
 std::vector<double> gathered(const TriangleMesh& mesh, const VertexFaces& faces,
-                             const std::vector<double>& area, const std::vector<std::uint8_t>& member,
-                             std::vector<double> values, int steps) {
+                             const std::vector<double>& area,
+                             const std::vector<std::uint8_t>& member, std::vector<double> values,
+                             int steps) {
   for (int step = 0; step < steps; ++step) {
     std::vector<double> next = values;
     for (std::size_t v = 0; v < values.size(); ++v) {
@@ -105,7 +106,8 @@ TEST(CurvatureSmoothing, EqualsTheGatherOverEachVertexsFaces) {
     for (auto& m : member) m = rng() % 7 != 0;
     std::vector<double> values = c.field.mean;
     smooth_vertex_field(c.mesh, c.topology.vertex_faces, c.field.area, member, values, 3);
-    EXPECT_EQ(values, gathered(c.mesh, c.topology.vertex_faces, c.field.area, member, c.field.mean, 3))
+    EXPECT_EQ(values,
+              gathered(c.mesh, c.topology.vertex_faces, c.field.area, member, c.field.mean, 3))
         << (shuffled ? "shuffled faces" : "faces in order");
   }
 }

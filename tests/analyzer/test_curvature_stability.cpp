@@ -148,7 +148,10 @@ std::vector<CorpusMesh> corpus() {
       {"uv_sphere_10k", analytic([] { return make_uv_sphere(71, 142); }), true},
       {"torus", analytic([] { return make_torus(48, 24); }), true},
       {"ellipsoid", analytic([] { return make_ellipsoid(3); }), true},
-      {"jittered_icosphere", analytic([] { return make_icosphere(3, 1.0, {0.2, 7}); }), true},
+      {"jittered_icosphere", analytic([] {
+         return make_icosphere(3, 1.0, {0.2, 7});
+       }),
+       true},
       {"cylinder", analytic([] { return make_cylinder(32, 16); })},
       {"saddle", analytic([] { return make_saddle(33); })},
       {"wave", analytic([] { return make_wave_field(33); })},
@@ -162,13 +165,15 @@ std::vector<CorpusMesh> corpus() {
       {"single_triangle", fixed(single_triangle)},
       {"sheared_plane", fixed(sheared_plane)},
       // A hub of 100,002 faces: past the one-ring estimator's turn count and the jet's growth
-      // limit (each neighbour's two-ring would hold the whole fan: over a minute, not milliseconds).
+      // limit (each neighbour's two-ring would hold the whole fan: over a minute, not
+      // milliseconds).
       {"hub_fan_100k", [] { return std::optional<TriangleMesh>(zig_zag_fan(100002, 1e-3)); }},
   };
   const std::filesystem::path fuzz = TOONWATER_FUZZ_CORPUS;
   for (const char* dir : {"analyze", "obj", "off", "ply", "stl", "bobj"}) {
     std::set<std::filesystem::path> files;  // sorted: stable test names
-    for (const auto& entry : std::filesystem::directory_iterator(fuzz / dir)) files.insert(entry.path());
+    for (const auto& entry : std::filesystem::directory_iterator(fuzz / dir))
+      files.insert(entry.path());
     for (const auto& path : files) {
       const std::string name = std::string("fuzz_") + dir + "_" + path.stem().stem().string();
       // slivers.obj: a 1e-12 offset beside a coordinate of 1e6.
@@ -179,7 +184,8 @@ std::vector<CorpusMesh> corpus() {
   for (const char* frame : {"mantaflow-wake/water_0001.obj", "mantaflow-wake/water_0030.obj",
                             "blender-ocean/water_0001.obj"}) {
     std::string name = frame;
-    std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
+    std::replace_if(
+        name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
     // Marching-cubes slivers give the jet near-singular neighbourhoods: it accepts fits down to
     // a pivot ratio of 1e-12, whose solutions amplify rounding by up to that much more.
     meshes.push_back({"real_" + name,
@@ -225,16 +231,17 @@ void expect_close_fields(const CurvatureField& actual, const CurvatureField& exp
   for (std::size_t v = 0; v < expected.gaussian.size(); ++v) {
     const double k = actual.gaussian[v] * length_scale * length_scale;
     const double h = actual.mean[v] * length_scale;
-    const bool k_close = std::abs(k - expected.gaussian[v]) <= tolerance * (std::abs(expected.gaussian[v]) + scale_k);
-    const bool h_close = std::abs(h - expected.mean[v]) <= tolerance * (std::abs(expected.mean[v]) + scale_h);
+    const bool k_close = std::abs(k - expected.gaussian[v]) <=
+                         tolerance * (std::abs(expected.gaussian[v]) + scale_k);
+    const bool h_close =
+        std::abs(h - expected.mean[v]) <= tolerance * (std::abs(expected.mean[v]) + scale_h);
     if ((!k_close || !h_close) && reported++ < 5)
       ADD_FAILURE() << "vertex " << v << ": K " << k << " vs " << expected.gaussian[v] << ", H "
                     << h << " vs " << expected.mean[v];
   }
 }
 
-class CurvatureStability
-    : public testing::TestWithParam<std::tuple<Estimator, std::size_t>> {
+class CurvatureStability : public testing::TestWithParam<std::tuple<Estimator, std::size_t>> {
  protected:
   void SetUp() override {
     const CorpusMesh& entry = the_corpus()[std::get<1>(GetParam())];
@@ -293,7 +300,8 @@ TEST_P(CurvatureStability, FiniteOrderedAndCounted) {
     }
   EXPECT_EQ(f.degenerate_faces, shapeless);
   for (std::size_t v = 0; v < f.status.size(); ++v)
-    if (reference_.topology.kind[v] == VertexKind::interior && !at_shapeless[v] && f.area[v] > 0.0 &&
+    if (reference_.topology.kind[v] == VertexKind::interior && !at_shapeless[v] &&
+        f.area[v] > 0.0 &&
         reference_.topology.vertex_faces.of(static_cast<std::int32_t>(v)).size() <= 100000) {
       EXPECT_EQ(f.status[v], CurvatureStatus::computed) << v;
     }
@@ -413,7 +421,8 @@ TEST(CurvatureStiffCases, CapsAndNeedlesBelowATenThousandthOfADegreeOnASphere) {
   EXPECT_EQ(c.field.degenerate_faces, 0u);
   EXPECT_EQ(c.field.mollified_faces, 1u);
   const Triangle cap = m.triangles.back();
-  const Vec3 u = m.positions[cap[0]] - m.positions[cap[2]], w = m.positions[cap[1]] - m.positions[cap[2]];
+  const Vec3 u = m.positions[cap[0]] - m.positions[cap[2]],
+             w = m.positions[cap[1]] - m.positions[cap[2]];
   const double cap_angle = std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / std::numbers::pi;
   EXPECT_GT(cap_angle, 180.0 - 1e-4);
   EXPECT_LT(cap_angle, 180.0);
@@ -473,13 +482,20 @@ TEST(CurvatureStiffCases, ObtuseTrianglesNearOneEightyDegrees) {
     const Vec3 a = m.positions[t[1]] - m.positions[apex], b = m.positions[t[2]] - m.positions[apex];
     const double face_area = 0.5 * a.cross(b).norm();
     const bool obtuse_at_apex = a.dot(b) < 0.0;
-    const bool obtuse_elsewhere = (m.positions[apex] - m.positions[t[1]]).dot(m.positions[t[2]] - m.positions[t[1]]) < 0.0 ||
-                                  (m.positions[apex] - m.positions[t[2]]).dot(m.positions[t[1]] - m.positions[t[2]]) < 0.0;
-    if (obtuse_at_apex) expected_area += face_area / 2;
-    else if (obtuse_elsewhere) expected_area += face_area / 4;
+    const bool obtuse_elsewhere =
+        (m.positions[apex] - m.positions[t[1]]).dot(m.positions[t[2]] - m.positions[t[1]]) < 0.0 ||
+        (m.positions[apex] - m.positions[t[2]]).dot(m.positions[t[1]] - m.positions[t[2]]) < 0.0;
+    if (obtuse_at_apex)
+      expected_area += face_area / 2;
+    else if (obtuse_elsewhere)
+      expected_area += face_area / 4;
     else {
-      const double cot_1 = (m.positions[apex] - m.positions[t[1]]).dot(m.positions[t[2]] - m.positions[t[1]]) / (2 * face_area);
-      const double cot_2 = (m.positions[apex] - m.positions[t[2]]).dot(m.positions[t[1]] - m.positions[t[2]]) / (2 * face_area);
+      const double cot_1 =
+          (m.positions[apex] - m.positions[t[1]]).dot(m.positions[t[2]] - m.positions[t[1]]) /
+          (2 * face_area);
+      const double cot_2 =
+          (m.positions[apex] - m.positions[t[2]]).dot(m.positions[t[1]] - m.positions[t[2]]) /
+          (2 * face_area);
       expected_area += (b.squaredNorm() * cot_1 + a.squaredNorm() * cot_2) / 8;
     }
   }

@@ -55,7 +55,8 @@ TEST(PointGrid, BuiltFromAGivenBoundingBoxAnswersAsWithoutIt) {
   std::normal_distribution<double> jitter(0.0, 0.01);
   for (int trial = 0; trial < 20000; ++trial) {
     const Vec3 q = trial % 10 == 0 ? Vec3(2.4 * u(rng), 1.2 * u(rng), 0.2 * u(rng))
-                                   : points[rng() % points.size()] + Vec3(jitter(rng), jitter(rng), jitter(rng));
+                                   : points[rng() % points.size()] +
+                                         Vec3(jitter(rng), jitter(rng), jitter(rng));
     ASSERT_EQ(given.closest(q), computed.closest(q)) << "query " << trial;
   }
 }
@@ -223,7 +224,8 @@ TEST(FlowCoherence, ShadingNormalsAreCarriedOverTheNoiseButNotOverTheMotion) {
       coherence.apply(a.surface, a.curvature, a.flow);
       if (frame < 3) continue;  // the carried normals settle over the first frames
       raw += rms_difference(own, clean.flow.shading_normal, a.flow.free_surface);
-      carried += rms_difference(a.flow.shading_normal, clean.flow.shading_normal, a.flow.free_surface);
+      carried +=
+          rms_difference(a.flow.shading_normal, clean.flow.shading_normal, a.flow.free_surface);
     }
     EXPECT_LT(carried, 0.85 * raw);
   }

@@ -13,7 +13,6 @@
 namespace toonwater::test {
 namespace {
 
-
 std::size_t nearest_vertex(const TriangleMesh& m, double x, double y) {
   std::size_t best = 0;
   for (std::size_t v = 1; v < m.positions.size(); ++v)
@@ -44,7 +43,9 @@ TEST(FlowRegions, BumpIsARidgeAndDipAValley) {
   for (std::size_t v = 0; v < m.positions.size(); ++v) {
     const double s = f.regions.field[v];
     ASSERT_TRUE(std::isfinite(s));
-    EXPECT_EQ(f.regions.label[v], s >= 1.0 ? FlowLabel::ridge : s <= -1.0 ? FlowLabel::valley : FlowLabel::none);
+    EXPECT_EQ(f.regions.label[v], s >= 1.0    ? FlowLabel::ridge
+                                  : s <= -1.0 ? FlowLabel::valley
+                                              : FlowLabel::none);
     if (f.regions.label[v] == FlowLabel::none) continue;
     EXPECT_TRUE(f.regions.region_of_interest.contains(m.positions[v]));
     EXPECT_LT(std::abs(std::abs(m.positions[v].x()) - 0.5), 0.5) << "label far from the bumps";
@@ -73,7 +74,7 @@ TEST(FlowRegions, PaperCriterionIsThePapersRule) {
     if (!interior) continue;
     const std::int8_t rule = std::abs(c.gaussian[v]) > 4.0 && c.mean[v] > 0   ? FlowLabel::ridge
                              : std::abs(c.gaussian[v]) > 4.0 && c.mean[v] < 0 ? FlowLabel::valley
-                                                                             : FlowLabel::none;
+                                                                              : FlowLabel::none;
     EXPECT_EQ(f.regions.label[v], rule) << v;
     ++checked;
   }
@@ -135,7 +136,8 @@ TEST(FlowRegions, SpecksFadeOutAndGrowingRegionsFadeIn) {
     if (above_one_before_fading < 2 * options.min_region_area.value()) {
       EXPECT_GE(drawn, last_area - 1e-12) << width;  // fading in as it grows
     }
-    EXPECT_LE(drawn - last_area, 0.5 * options.min_region_area.value()) << "jump at width " << width;
+    EXPECT_LE(drawn - last_area, 0.5 * options.min_region_area.value())
+        << "jump at width " << width;
     last_area = drawn;
   }
   EXPECT_TRUE(seen_hidden);
@@ -159,7 +161,8 @@ TEST(FlowRegions, RegionOfInterestNeverRemovesARegion) {
 }
 
 TEST(FlowRegions, TankWallsFloorAndCornersNeverBecomeFlowRegions) {
-  const TriangleMesh m = tank(41, [](double x, double y) { return 0.1 * std::sin(4 * x) * std::cos(3 * y); });
+  const TriangleMesh m =
+      tank(41, [](double x, double y) { return 0.1 * std::sin(4 * x) * std::cos(3 * y); });
   FlowOptions options;
   options.threshold = 1e-6;  // a threshold every corner passes
   options.min_region_area = 0.0;

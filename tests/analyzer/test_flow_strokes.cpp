@@ -21,7 +21,9 @@ Grid grid(int n, const std::function<double(double, double)>& s) {
       g.mesh.positions.emplace_back(i, j, 0.0);
       const double v = s(i, j);
       g.flow.field.push_back(v);
-      g.flow.label.push_back(v >= 1 ? FlowLabel::ridge : v <= -1 ? FlowLabel::valley : FlowLabel::none);
+      g.flow.label.push_back(v >= 1    ? FlowLabel::ridge
+                             : v <= -1 ? FlowLabel::valley
+                                       : FlowLabel::none);
       g.flow.free_surface.push_back(1);
       g.flow.shading_normal.emplace_back(0, 0, 1);
     }
@@ -85,7 +87,8 @@ TEST(FlowStrokes, TheStrokeFollowsWhereTheFieldIsStrongest) {
 // A crest one vertex wide along the border of an open surface: its edges belong to one face
 // each, and still join it into one stroke.
 TEST(FlowStrokes, ACrestAlongTheSurfacesBorderIsOneStroke) {
-  const Grid g = grid(41, [](double x, double y) { return y == 40 && x >= 5 && x <= 35 ? 2.0 : 0.0; });
+  const Grid g =
+      grid(41, [](double x, double y) { return y == 40 && x >= 5 && x <= 35 ? 2.0 : 0.0; });
   const std::vector<FlowLine> lines = flow_strokes(g.mesh, g.flow, 3.0);
   ASSERT_EQ(lines.size(), 1u);
   EXPECT_FALSE(lines[0].closed);

@@ -55,7 +55,8 @@ TEST(FreeSurface, DropletsAreKeptAboveAGivenSize) {
     m.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
   auto droplet_vertices = [&](const FreeSurface& s) {
     std::size_t count = 0;
-    for (std::size_t v = static_cast<std::size_t>(offset); v < m.positions.size(); ++v) count += s.selected[v];
+    for (std::size_t v = static_cast<std::size_t>(offset); v < m.positions.size(); ++v)
+      count += s.selected[v];
     return count;
   };
   const FreeSurface kept = free_surface_of(m);
@@ -124,7 +125,8 @@ TEST(FreeSurface, OfEqualLargestPatchesTheOneFirstInVertexOrderSetsTheRestLevel)
     for (const Triangle& t : a.triangles)  // vertex 0 never a face's first corner: not A's root
       m.triangles.push_back(t[0] == 0 ? Triangle{a_index(t[1]), a_index(t[2]), a_index(t[0])}
                                       : Triangle{a_index(t[0]), a_index(t[1]), a_index(t[2])});
-    for (const Triangle& t : b.triangles) m.triangles.push_back({b_index(t[0]), b_index(t[1]), b_index(t[2])});
+    for (const Triangle& t : b.triangles)
+      m.triangles.push_back({b_index(t[0]), b_index(t[1]), b_index(t[2])});
     const FreeSurface s = free_surface_of(m);
     EXPECT_EQ(s.patches_kept + s.patches_dropped, 2u);
     EXPECT_EQ(s.rest_height, a_height);

@@ -17,14 +17,13 @@
 #include <new>
 #include <string>
 
-
 namespace toonwater::test {
 namespace {
 
 struct Outcome {
-  std::string error;         // empty when the file was read
+  std::string error;  // empty when the file was read
   std::size_t triangles = 0;
-  std::size_t largest = 0;   // bytes, the largest single allocation while reading
+  std::size_t largest = 0;  // bytes, the largest single allocation while reading
 };
 
 Outcome read(const ScratchDir& dir, const std::string& name, const std::string& bytes) {
@@ -49,7 +48,8 @@ std::string le32(std::uint32_t v) {
   return s;
 }
 
-const std::string ply_vertices = "element vertex %V\nproperty float x\nproperty float y\nproperty float z\n";
+const std::string ply_vertices =
+    "element vertex %V\nproperty float x\nproperty float y\nproperty float z\n";
 
 std::string ply_header(const std::string& format, const std::string& vertices,
                        const std::string& faces, const std::string& list = "uchar int") {
@@ -63,18 +63,20 @@ TEST(HostileInputs, PlyHeaderClaiming2To31VerticesFailsWithoutAllocatingThem) {
   for (const char* format : {"ascii", "binary_little_endian"}) {
     SCOPED_TRACE(format);
     const bool ascii = std::string(format) == "ascii";
-    const std::string body = ascii ? "0 0 0\n1 0 0\n0 1 0\n"
-                                   : std::string(36, '\0') + "\x03" + std::string(12, '\0');
+    const std::string body =
+        ascii ? "0 0 0\n1 0 0\n0 1 0\n" : std::string(36, '\0') + "\x03" + std::string(12, '\0');
     const std::string file = ply_header(format, "2147483647", "1") + body;
     const Outcome o = read(dir, "big.ply", file);
     EXPECT_NE(o.error.find("big.ply"), std::string::npos) << o.error;
-    EXPECT_NE(o.error.find(ascii ? "file ends after 3 of 2147483647" : "truncated"), std::string::npos)
+    EXPECT_NE(o.error.find(ascii ? "file ends after 3 of 2147483647" : "truncated"),
+              std::string::npos)
         << o.error;
     EXPECT_LT(o.largest, allowance(file));
   }
   const Outcome too_many = read(dir, "more.ply", ply_header("ascii", "2147483648", "0"));
-  EXPECT_NE(too_many.error.find("more.ply:3: vertex count 2147483648 exceeds what a mesh can index"),
-            std::string::npos)
+  EXPECT_NE(
+      too_many.error.find("more.ply:3: vertex count 2147483648 exceeds what a mesh can index"),
+      std::string::npos)
       << too_many.error;
 }
 
@@ -82,11 +84,10 @@ TEST(HostileInputs, PlyFaceAndListCountsBeyondTheDataFailWithoutAllocatingThem) 
   ScratchDir dir;
   const std::string vertices(36, '\0');
   // 2^63 - 1 faces, then a face whose uint list count claims 2^32 - 1 corners.
-  for (const std::string& file :
-       {ply_header("binary_little_endian", "3", "9223372036854775807") + vertices + "\x03" +
-            std::string(12, '\0'),
-        ply_header("binary_little_endian", "3", "1", "uint int") + vertices + le32(0xffffffffu) +
-            std::string(12, '\0')}) {
+  for (const std::string& file : {ply_header("binary_little_endian", "3", "9223372036854775807") +
+                                      vertices + "\x03" + std::string(12, '\0'),
+                                  ply_header("binary_little_endian", "3", "1", "uint int") +
+                                      vertices + le32(0xffffffffu) + std::string(12, '\0')}) {
     const Outcome o = read(dir, "faces.ply", file);
     EXPECT_NE(o.error.find("faces.ply: truncated"), std::string::npos) << o.error;
     EXPECT_LT(o.largest, allowance(file));
@@ -137,7 +138,8 @@ TEST(HostileInputs, FaceWithAMillionCornersIsReadInMemoryProportionalToIt) {
   EXPECT_EQ(fan.triangles, static_cast<std::size_t>(corners - 2));
   EXPECT_LT(fan.largest, allowance(off));
   // A face that declares a million corners and lists three.
-  const Outcome short_face = read(dir, "short.off", "OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n1000000 0 1 2\n");
+  const Outcome short_face =
+      read(dir, "short.off", "OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n1000000 0 1 2\n");
   EXPECT_NE(short_face.error.find("short.off:6: face declares 1000000 corners but lists 3"),
             std::string::npos)
       << short_face.error;

@@ -17,7 +17,6 @@
 #include <string>
 #include <vector>
 
-
 namespace toonwater {
 namespace {
 
@@ -41,7 +40,8 @@ class Bytes {
   Bytes& put(T value) {
     char raw[sizeof(T)];
     std::memcpy(raw, &value, sizeof(T));
-    if (big_endian_ != (std::endian::native == std::endian::big)) std::reverse(raw, raw + sizeof(T));
+    if (big_endian_ != (std::endian::native == std::endian::big))
+      std::reverse(raw, raw + sizeof(T));
     data_.append(raw, sizeof(T));
     return *this;
   }
@@ -111,7 +111,8 @@ TEST_F(MeshReader, ObjQuadsAreFanTriangulatedInFileOrder) {
   EXPECT_EQ(input.polygon_count, 2u);
   const std::vector<Triangle> expected{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 2}, {0, 2, 1}};
   EXPECT_EQ(input.mesh.triangles, expected);
-  EXPECT_EQ(input.mesh.positions, positions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 0.5, 0}}));
+  EXPECT_EQ(input.mesh.positions,
+            positions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 0.5, 0}}));
 }
 
 TEST_F(MeshReader, ObjCornerFormsNegativeIndicesAndIgnoredStatements) {
@@ -127,8 +128,9 @@ TEST_F(MeshReader, ObjCornerFormsNegativeIndicesAndIgnoredStatements) {
                                           "f -3 -2 -1\r\n"
                                           "l 1 2\r\np 3\r\n"
                                           "f 3 1 1\r\n"));  // repeated corner kept
-  EXPECT_EQ(input.mesh.positions,
-            positions({{0.1, 0.2, 0.30000000000000004}, {1.2345678901234567, -2e-3, 100}, {7, 8, 9}}));
+  EXPECT_EQ(
+      input.mesh.positions,
+      positions({{0.1, 0.2, 0.30000000000000004}, {1.2345678901234567, -2e-3, 100}, {7, 8, 9}}));
   const std::vector<Triangle> expected{{0, 1, 2}, {0, 1, 2}, {2, 0, 0}};
   EXPECT_EQ(input.mesh.triangles, expected);
   EXPECT_EQ(input.polygon_count, 3u);
@@ -173,7 +175,8 @@ TEST_F(MeshReader, ObjErrorsNameFileAndLine) {
 // typing errors, NUL bytes what a crash leaves at the end of a file cut short.
 TEST_F(MeshReader, ObjUnknownStatementsAndNulBytesAreErrors) {
   const std::string faces = "f 1 2 3\n";
-  expect_line_error("upper.obj", triangle_obj + faces + "F 2 3 1\n", 5, "unknown OBJ statement 'F'");
+  expect_line_error("upper.obj", triangle_obj + faces + "F 2 3 1\n", 5,
+                    "unknown OBJ statement 'F'");
   expect_line_error("glued.obj", triangle_obj + "f2 3 1\n" + faces, 4,
                     "unknown OBJ statement 'f2'");
   expect_line_error("nul.obj", triangle_obj + faces + std::string(6, '\0') + "\n", 5,
@@ -191,8 +194,8 @@ TEST_F(MeshReader, TextFormatsRejectNulBytes) {
   const std::string nul(4, '\0');
   expect_line_error("nul.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n" + nul, 7,
                     "unexpected data after the last");
-  expect_line_error("nul_vertex.off", "OFF\n3 1 0\n0 0 0\n" + nul + "\n1 0 0\n0 1 0\n3 0 1 2\n",
-                    4, "malformed number");
+  expect_line_error("nul_vertex.off", "OFF\n3 1 0\n0 0 0\n" + nul + "\n1 0 0\n0 1 0\n3 0 1 2\n", 4,
+                    "malformed number");
   const std::string ply_header =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
@@ -201,7 +204,8 @@ TEST_F(MeshReader, TextFormatsRejectNulBytes) {
   const std::string stl =
       "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
       "endloop\nendfacet\nendsolid s\n";
-  expect_line_error("nul.stl", stl + nul + "\n", 10, "unexpected '" + std::string(4, '?') + "' in ASCII STL");
+  expect_line_error("nul.stl", stl + nul + "\n", 10,
+                    "unexpected '" + std::string(4, '?') + "' in ASCII STL");
 }
 
 TEST_F(MeshReader, EmptyMeshesAreRejected) {
@@ -251,8 +255,8 @@ TEST_F(MeshReader, OffWithCommentsColoursAndPolygons) {
 TEST_F(MeshReader, OffHeaderVariants) {
   for (const std::string header : {"OFF 3 1 0\n", "OFF\n3 1\n", "3 1 3\n", "NOFF\n3 1 0\n"}) {
     const std::string normals = header.starts_with("NOFF") ? " 0 0 1" : "";
-    const std::string text = header + "0 0 0" + normals + "\n1 0 0" + normals + "\n0 1 0" +
-                             normals + "\n3 0 1 2\n";
+    const std::string text =
+        header + "0 0 0" + normals + "\n1 0 0" + normals + "\n0 1 0" + normals + "\n3 0 1 2\n";
     const InputMesh input = read_mesh(write("variant.off", text));
     EXPECT_EQ(input.mesh.positions.size(), 3u) << header;
     EXPECT_EQ(input.mesh.triangles, std::vector<Triangle>({{0, 1, 2}})) << header;
@@ -260,7 +264,8 @@ TEST_F(MeshReader, OffHeaderVariants) {
 }
 
 TEST_F(MeshReader, OffErrorsNameFileAndLine) {
-  expect_line_error("a.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n", 5, "file ends after 3 of 4 vertices");
+  expect_line_error("a.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n", 5,
+                    "file ends after 3 of 4 vertices");
   expect_line_error("b.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", 6,
                     "file ends after 1 of 2 faces");
   expect_line_error("c.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", 6,
@@ -282,7 +287,8 @@ TEST_F(MeshReader, HostileOffCountsAreRefusedWithoutAllocating) {
   expect_line_error("huge.off", "OFF\n2147483647 2147483647 0\n0 0 0\n", 3,
                     "file ends after 1 of 2147483647 vertices");
   EXPECT_LT(largest_allocation(), std::size_t{1} << 20);
-  expect_line_error("huger.off", "OFF\n2147483648 1 0\n0 0 0\n", 2, "exceeds what a mesh can index");
+  expect_line_error("huger.off", "OFF\n2147483648 1 0\n0 0 0\n", 2,
+                    "exceeds what a mesh can index");
 }
 
 // ---- PLY --------------------------------------------------------------------------------------
@@ -493,20 +499,25 @@ TEST_F(MeshReader, PlyHeaderAndAsciiErrorsNameTheLine) {
   const std::string faces = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
   expect_line_error("a.ply", "plx\n", 1, "not a PLY file");
   expect_line_error("b.ply", header + "property flot x\n", 4, "unknown property type 'flot'");
-  expect_line_error("c.ply", "ply\nformat ascii 1.0\nproperty float x\n", 3, "property before any element");
+  expect_line_error("c.ply", "ply\nformat ascii 1.0\nproperty float x\n", 3,
+                    "property before any element");
   expect_line_error("d.ply", header + "property float x\nproperty float y\n" + faces, 3,
                     "vertex element has no property 'z'");
   expect_line_error("e.ply", header + xyz, 6, "no end_header");
   expect_line_error("f.ply", "ply\nformat binary_middle_endian 1.0\n", 2, "unknown PLY format");
-  expect_line_error("g.ply", header + xyz + "element face 1\nproperty list uchar float vertex_indices\nend_header\n",
-                    8, "integer type");
+  expect_line_error(
+      "g.ply",
+      header + xyz + "element face 1\nproperty list uchar float vertex_indices\nend_header\n", 8,
+      "integer type");
   const std::string good = header + xyz + faces;
   expect_line_error("h.ply", good + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", 13,
                     "face index 3 out of range");
   expect_line_error("i.ply", good + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", 11, "NaN or infinite");
   expect_line_error("j.ply", good + "0 0 0\n1 0\n0 1 0\n3 0 1 2\n", 11, "too few values");
-  expect_line_error("k.ply", good + "0 0 0\n1 0 0\n", 11, "file ends after 2 of 3 'vertex' records");
-  expect_line_error("l.ply", good + "0 0 0\n1 0 0\n0 1 0\n", 12, "file ends after 0 of 1 'face' records");
+  expect_line_error("k.ply", good + "0 0 0\n1 0 0\n", 11,
+                    "file ends after 2 of 3 'vertex' records");
+  expect_line_error("l.ply", good + "0 0 0\n1 0 0\n0 1 0\n", 12,
+                    "file ends after 0 of 1 'face' records");
   expect_line_error("m.ply", good + "0 0 0\n1 0 0 0\n0 1 0\n3 0 1 2\n", 11, "too many values");
   expect_line_error("n.ply", good + "0 0 0\n1 0 0\n0 1 0\n2 0 1\n", 13, "face has 2 corners");
 }
@@ -578,8 +589,9 @@ TEST_F(MeshReader, StlErrors) {
                                                  {1, 0, 0, 1, std::nanf(""), 0, 0, 1, 0}};
   expect_error("nan.stl", binary_stl(facets, "binary"), {"NaN or infinite", "(facet 1)"});
   const std::string whole = binary_stl(facets, "solid but binary");
-  expect_error("cut.stl", whole.substr(0, whole.size() - 7),
-               {"truncated", "promises 2 facets", "byte offset " + std::to_string(whole.size() - 7)});
+  expect_error(
+      "cut.stl", whole.substr(0, whole.size() - 7),
+      {"truncated", "promises 2 facets", "byte offset " + std::to_string(whole.size() - 7)});
   expect_error("short.stl", "abc", {"truncated"});
   const std::string facet_start = "solid s\nfacet normal 0 0 1\nouter loop\n";
   expect_line_error("a.stl", facet_start + "vertex 0 0 0\nvertex 1 0 0\nvertex 0 inf 0\n", 6,

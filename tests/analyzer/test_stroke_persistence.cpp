@@ -45,7 +45,9 @@ FlowLine crest(double y, double x0 = 5, double x1 = 35) {
   return line;
 }
 
-double widest(const FlowLine& line) { return *std::max_element(line.taper.begin(), line.taper.end()); }
+double widest(const FlowLine& line) {
+  return *std::max_element(line.taper.begin(), line.taper.end());
+}
 
 double mean_y(const FlowLine& line) {
   double sum = 0;
@@ -63,7 +65,8 @@ TEST(StrokePersistence, ACrestTracedAnEdgeAwayByNoiseIsHeldWhereItWasDrawn) {
     ASSERT_EQ(drawn.size(), 1u) << "frame " << frame;
     const double y = mean_y(drawn[0]);
     if (frame >= 4) {
-      EXPECT_LT(std::abs(y - before), 0.4) << "frame " << frame << ": the stroke jumps with the noise";
+      EXPECT_LT(std::abs(y - before), 0.4)
+          << "frame " << frame << ": the stroke jumps with the noise";
     }
     before = y;
   }
@@ -79,10 +82,12 @@ TEST(StrokePersistence, ATravellingCrestIsFollowedAsOneStroke) {
           persistence.update(w.mesh, w.flow, {crest(traced)}, kTaper);
       ASSERT_EQ(drawn.size(), 1u) << "speed " << speed << ", frame " << frame
                                   << ": the stroke breaks or leaves a trail";
-      EXPECT_LE(traced - mean_y(drawn[0]), 1.0) << "lags an edge behind: speed " << speed << ", frame " << frame;
+      EXPECT_LE(traced - mean_y(drawn[0]), 1.0)
+          << "lags an edge behind: speed " << speed << ", frame " << frame;
       EXPECT_GE(traced - mean_y(drawn[0]), -1e-12);
       if (speed > StrokePersistenceOptions{}.noise_distance) {
-        EXPECT_NEAR(mean_y(drawn[0]), traced, 1e-12) << "a move beyond the noise is taken as traced";
+        EXPECT_NEAR(mean_y(drawn[0]), traced, 1e-12)
+            << "a move beyond the noise is taken as traced";
       }
     }
   }
@@ -125,7 +130,8 @@ TEST(StrokePersistence, ThePartOfAStrokeItsSuccessorNoLongerCoversFadesOnItsOwn)
 TEST(StrokePersistence, AStrokeWhoseWaterHasGoneIsNotKept) {
   StrokePersistence persistence;
   const Water here = flat_water(), elsewhere = flat_water(100.0);
-  for (int frame = 0; frame < 3; ++frame) persistence.update(here.mesh, here.flow, {crest(10)}, kTaper);
+  for (int frame = 0; frame < 3; ++frame)
+    persistence.update(here.mesh, here.flow, {crest(10)}, kTaper);
   EXPECT_TRUE(persistence.update(elsewhere.mesh, elsewhere.flow, {}, kTaper).empty());
 }
 

@@ -19,7 +19,8 @@ namespace {
 TriangleMesh joined(TriangleMesh a, const TriangleMesh& b, const Vec3& offset) {
   const auto base = static_cast<std::int32_t>(a.positions.size());
   for (const Vec3& p : b.positions) a.positions.push_back(p + offset);
-  for (const Triangle& t : b.triangles) a.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  for (const Triangle& t : b.triangles)
+    a.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
   return a;
 }
 
@@ -44,8 +45,8 @@ bool consistently_oriented(const TriangleMesh& mesh) {
 
 TEST(Topology, ClosedSurfacesAreAllInteriorWithTheirEulerCharacteristic) {
   // V − E + F = 2 for the sphere, 0 for the torus, with E = 3F/2 on a closed triangle mesh.
-  for (const auto& [mesh, euler] : {std::pair{make_icosphere(3).mesh, 2},
-                                    std::pair{make_torus(24, 12).mesh, 0}}) {
+  for (const auto& [mesh, euler] :
+       {std::pair{make_icosphere(3).mesh, 2}, std::pair{make_torus(24, 12).mesh, 0}}) {
     const MeshTopology topo = analyze_topology(mesh);
     EXPECT_EQ(count_components(mesh, topo), 1u);
     EXPECT_EQ(count_kind(topo, VertexKind::interior), mesh.positions.size());
@@ -60,14 +61,15 @@ TEST(Topology, ClosedSurfacesAreAllInteriorWithTheirEulerCharacteristic) {
 
 // The rows are built on every core; they must be what one pass in face order gives.
 TEST(Topology, VertexFacesOfALargeMeshListEachVertexsFacesInOrder) {
-  TriangleMesh mesh = make_wave_field(300, 0.1, 6.0, 1.0).mesh;  // 178k faces: several chunks
-  mesh.triangles[1000] = {5, 5, 6};                                // ignored: a repeated corner
+  TriangleMesh mesh = make_wave_field(300, 0.1, 6.0, 1.0).mesh;        // 178k faces: several chunks
+  mesh.triangles[1000] = {5, 5, 6};                                    // ignored: a repeated corner
   std::reverse(mesh.triangles.begin() + 50000, mesh.triangles.end());  // rows across chunks
   const VertexFaces vf = build_vertex_faces(mesh.positions.size(), mesh.triangles);
   std::vector<std::vector<std::int32_t>> expected(mesh.positions.size());
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
     if (!has_repeated_corner(mesh.triangles[f]))
-      for (const std::int32_t v : mesh.triangles[f]) expected[v].push_back(static_cast<std::int32_t>(f));
+      for (const std::int32_t v : mesh.triangles[f])
+        expected[v].push_back(static_cast<std::int32_t>(f));
   ASSERT_EQ(vf.offsets.size(), mesh.positions.size() + 1);
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
     const auto row = vf.of(static_cast<std::int32_t>(v));

@@ -52,8 +52,9 @@ TEST(VdbMantaflow, TheLiquidLevelSetLiesOnMantaflowsMeshWithTheMeshCachesMapping
     TriangleMesh phi = read_mesh(bake / data).mesh;
     apply_transform(to_world, phi, bake / data);
     const TriangleMesh mantaflow = read_mesh(bake / water).mesh;
-    for (const auto& [name, d] : {std::pair{"phi to Mantaflow's mesh", distances(phi, mantaflow)},
-                                  std::pair{"Mantaflow's mesh to phi", distances(mantaflow, phi)}}) {
+    for (const auto& [name, d] :
+         {std::pair{"phi to Mantaflow's mesh", distances(phi, mantaflow)},
+          std::pair{"Mantaflow's mesh to phi", distances(mantaflow, phi)}}) {
       SCOPED_TRACE(std::string(name) + ", frame " + std::to_string(frame));
       ASSERT_GT(d.size(), 1000u);
       EXPECT_LE(quantile(d, 0.5), 1.0);

@@ -67,8 +67,8 @@ TEST(VdbReader, TheGridIsSurfaceThenPhiThenTheOnlyLevelSet) {
   write_vdb(dir / "data.vdb", {fog("density"), sphere("phi", 1.0, {0, 0, 0}, 0.1),
                                sphere("other", 0.5, {0, 0, 0}, 0.1)});
   EXPECT_NEAR(read_mesh(dir / "data.vdb").mesh.positions.front().norm(), 1.0, 0.02);
-  write_vdb(dir / "both.vdb", {sphere("phi", 0.5, {0, 0, 0}, 0.05),
-                               sphere("surface", 1.0, {0, 0, 0}, 0.05)});
+  write_vdb(dir / "both.vdb",
+            {sphere("phi", 0.5, {0, 0, 0}, 0.05), sphere("surface", 1.0, {0, 0, 0}, 0.05)});
   EXPECT_NEAR(read_mesh(dir / "both.vdb").mesh.positions.front().norm(), 1.0, 0.02);
   write_vdb(dir / "only.vdb", {fog("density"), sphere("liquid", 0.5, {0, 0, 0}, 0.05)});
   EXPECT_NEAR(read_mesh(dir / "only.vdb").mesh.positions.front().norm(), 0.5, 0.02);
@@ -76,8 +76,8 @@ TEST(VdbReader, TheGridIsSurfaceThenPhiThenTheOnlyLevelSet) {
 
 TEST(VdbReader, AGridNamedIsMeshedAndAdaptivityMergesFlatCells) {
   ScratchDir dir;
-  write_vdb(dir / "two.vdb", {sphere("a", 1.0, {0, 0, 0}, 0.05), sphere("b", 0.5, {0, 0, 0}, 0.05),
-                              fog("density")});
+  write_vdb(dir / "two.vdb",
+            {sphere("a", 1.0, {0, 0, 0}, 0.05), sphere("b", 0.5, {0, 0, 0}, 0.05), fog("density")});
   EXPECT_NEAR(read_mesh(dir / "two.vdb", {"b", 0.0}).mesh.positions.front().norm(), 0.5, 0.02);
   const InputMesh fine = read_mesh(dir / "two.vdb", {"a", 0.0});
   const InputMesh coarse = read_mesh(dir / "two.vdb", {"a", 1.0});
@@ -112,7 +112,8 @@ TEST(VdbReader, NoLevelSetOrTwoAreErrorsNamingTheGrids) {
     read_mesh(dir / "two.vdb");
     FAIL() << "one of two level sets was chosen";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("more than one level-set grid"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("more than one level-set grid"), std::string::npos)
+        << e.what();
   }
   write_text(dir / "text.vdb", "not a vdb file\n");
   EXPECT_THROW(read_mesh(dir / "text.vdb"), InputError);

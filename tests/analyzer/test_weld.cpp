@@ -63,8 +63,8 @@ TEST(Weld, IndexedMeshIsUnchanged) {
 
 TEST(Weld, SignedZerosWeldAndTinyDifferencesDoNot) {
   TriangleMesh mesh;
-  mesh.positions = {Vec3(0, 0, 0), Vec3(-0.0, 0, -0.0), Vec3(5e-324, 0, 0),
-                    Vec3(1, 2, 3), Vec3(1, 2, 3 + 4.440892098500626e-16)};
+  mesh.positions = {Vec3(0, 0, 0), Vec3(-0.0, 0, -0.0), Vec3(5e-324, 0, 0), Vec3(1, 2, 3),
+                    Vec3(1, 2, 3 + 4.440892098500626e-16)};
   mesh.triangles = {{0, 1, 2}, {2, 3, 4}};
   const WeldedMesh welded = weld_coincident_vertices(mesh);
   EXPECT_EQ(welded.input_to_mesh, std::vector<std::int32_t>({0, 0, 1, 2, 3}));

@@ -69,9 +69,9 @@ TEST(AnalysisOptions, EverySettingIsAnOptionAndAKeyWithOneRangeAndDefault) {
 
 // What analyze takes that is not a setting of the analysis: where the mesh comes from and where
 // the results go.
-const std::set<std::string> input_and_output_options{
-    "help",  "transform", "scale", "translate", "grid", "adaptivity", "csv",
-    "ply",   "maps",      "maps-size", "maps-box", "up"};
+const std::set<std::string> input_and_output_options{"help", "transform",  "scale",    "translate",
+                                                     "grid", "adaptivity", "csv",      "ply",
+                                                     "maps", "maps-size",  "maps-box", "up"};
 
 TEST(AnalysisOptions, EveryOtherAnalyzeOptionIsAboutInputOrOutput) {
   const CommandResult help = run_toonwater({"analyze", "--help"});
@@ -230,8 +230,7 @@ TEST_F(SameAnalysis, AnOptionAndItsSceneKeyGiveTheSameFlowField) {
 // `povgen --set flow.KEY=VALUE` and `analyze --OPTION VALUE`.
 CommandResult scene_with(const ScratchDir& dir, const std::string& key, const std::string& value) {
   return run_toonwater({"povgen", "--water", (dir / "w.obj").string(), "--out",
-                        (dir / "scene").string(), "--force", "--set",
-                        "flow." + key + "=" + value});
+                        (dir / "scene").string(), "--force", "--set", "flow." + key + "=" + value});
 }
 CommandResult analyze_with(const ScratchDir& dir, const std::string& option,
                            const std::string& value) {
@@ -242,7 +241,9 @@ TEST(AnalysisOptions, BothFrontEndsRefuseAValueOutOfRangeInTheSameWords) {
   ScratchDir dir;
   write_text(dir / "w.obj", water_obj());
   for (const AnalysisSetting& setting : analysis_settings()) {
-    std::vector<double> refused{setting.lo > 0 ? 0.0 : setting.lo == 0 ? -1.0 : 10 * setting.lo,
+    std::vector<double> refused{setting.lo > 0    ? 0.0
+                                : setting.lo == 0 ? -1.0
+                                                  : 10 * setting.lo,
                                 setting.hi == 1000 ? 1001 : 10 * setting.hi};
     if (setting.is_whole_number()) refused.push_back(2.5);
     if (setting.is_word()) refused.clear();

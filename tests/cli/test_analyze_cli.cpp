@@ -96,7 +96,8 @@ TEST_F(AnalyzeCli, UnwritableOutputFailsNamingItAndLeavesNothing) {
   const fs::path mesh = dir_ / "mesh.obj";
   write_text(mesh, triangle + "f 1 2 3\n");
   const fs::path csv = dir_ / "no-such-dir" / "curvature.csv";
-  const test::CommandResult result = run_toonwater({"analyze", mesh.string(), "--csv", csv.string()});
+  const test::CommandResult result =
+      run_toonwater({"analyze", mesh.string(), "--csv", csv.string()});
   EXPECT_NE(result.exit_code, 0);
   EXPECT_EQ(lines_of(result.output).size(), 1u) << result.output;
   EXPECT_NE(result.output.find(csv.string() + ": "), std::string::npos) << result.output;
@@ -112,7 +113,8 @@ std::string octahedron_stl() {
   stl << "solid octahedron\n";
   for (const auto& f : faces) {
     stl << " facet normal 0 0 0\n  outer loop\n";
-    for (const int v : f) stl << "   vertex " << p[v][0] << ' ' << p[v][1] << ' ' << p[v][2] << '\n';
+    for (const int v : f)
+      stl << "   vertex " << p[v][0] << ' ' << p[v][1] << ' ' << p[v][2] << '\n';
     stl << "  endloop\n endfacet\n";
   }
   stl << "endsolid octahedron\n";
@@ -167,7 +169,8 @@ TEST_F(AnalyzeCli, ObjRowsFollowInputOrder) {
              "v 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nv 0 0 0.5\n"
              "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n");
   const fs::path csv = dir_ / "curvature.csv";
-  const test::CommandResult result = run_toonwater({"analyze", mesh.string(), "--csv", csv.string()});
+  const test::CommandResult result =
+      run_toonwater({"analyze", mesh.string(), "--csv", csv.string()});
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const std::vector<std::string> rows = lines_of(read_text(csv));
   ASSERT_EQ(rows.size(), 6u);

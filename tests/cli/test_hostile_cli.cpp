@@ -41,7 +41,7 @@ struct Outcome {
 // Runs toonwater in `dir` with `env` added to the environment, its standard output and error
 // captured apart (standard error is a file: not a terminal).
 Outcome run(const fs::path& dir, const std::vector<std::string>& args,
-        const std::map<std::string, std::string>& env = {}) {
+            const std::map<std::string, std::string>& env = {}) {
   const fs::path out = dir / ".test-stdout", err = dir / ".test-stderr";
   const pid_t pid = ::fork();
   if (pid == 0) {
@@ -139,7 +139,7 @@ class HostileCli : public ::testing::Test {
     return script.string();
   }
   Outcome toonwater(const std::vector<std::string>& args,
-                const std::map<std::string, std::string>& env = {}) {
+                    const std::map<std::string, std::string>& env = {}) {
     return run(dir_.path(), args, env);
   }
   const std::vector<std::string> small{"--set", "render.width=32", "--set", "render.height=24"};
@@ -194,8 +194,8 @@ TEST_F(HostileCli, RenderPublishesWholePngsWhateverPovrayDoesAfterAndDistrustsCu
   EXPECT_TRUE(fs::exists(at("scene/frame_0.png")) && fs::exists(at("scene/frame_1.png")));
 
   r = toonwater({"render", "scene", "--force"},
-                {{"TOONWATER_POVRAY",
-                  fake_povray(frame_of_run + "printf '" + png_start + "' > \"$o$f.png\"; exit 1")}});
+                {{"TOONWATER_POVRAY", fake_povray(frame_of_run + "printf '" + png_start +
+                                                  "' > \"$o$f.png\"; exit 1")}});
   EXPECT_EQ(r.exit_code, exit_code::povray_failed) << r.err;
   EXPECT_TRUE(has(r.err, "frame 0 failed: POV-Ray exited with status 1")) << r.err;
   EXPECT_TRUE(has(r.err, "0 frame(s) rendered, 0 skipped (already rendered), 2 failed")) << r.err;
@@ -218,18 +218,18 @@ TEST_F(HostileCli, FailedRerunLeavesTheEarlierSceneExactlyAsItWas) {
   const auto siblings = names(dir_.path());
   // The last frame is broken: the new scene fails part-way.
   write_text(at("water_0002.obj"), grid_obj() + "f 1 2 99999\n");
-  const Outcome r = toonwater({"povgen", "--water", "water_####.obj", "--out", "scene", "--set",
-                           "water.ka=0.5"});
+  const Outcome r =
+      toonwater({"povgen", "--water", "water_####.obj", "--out", "scene", "--set", "water.ka=0.5"});
   EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
   EXPECT_TRUE(contents(at("scene")) == before);
   EXPECT_EQ(names(dir_.path()), siblings) << "no temporary directory or lock left beside it";
 
   // A good re-run replaces the scene whole and keeps the file povgen did not write.
   write_text(at("water_0002.obj"), grid_obj());
-  ASSERT_EQ(toonwater({"povgen", "--water", "water_####.obj", "--out", "scene", "--set",
-                       "water.ka=0.5"})
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      toonwater({"povgen", "--water", "water_####.obj", "--out", "scene", "--set", "water.ka=0.5"})
+          .exit_code,
+      0);
   const auto after = contents(at("scene"));
   EXPECT_NE(after.at("scene.pov"), before.at("scene.pov"));
   EXPECT_EQ(after.at("frame_0.png"), "a rendered image");
@@ -244,8 +244,8 @@ TEST_F(HostileCli, SecondConcurrentPovgenIsRefused) {
   const int fd = ::open(at(".scene.lock").c_str(), O_RDWR | O_CREAT, 0644);
   ASSERT_GE(fd, 0);
   ASSERT_EQ(::flock(fd, LOCK_EX), 0);
-  const Outcome r = toonwater({"povgen", "--water", "water_####.obj", "--out", "scene", "--set",
-                           "water.ka=0.5"});
+  const Outcome r =
+      toonwater({"povgen", "--water", "water_####.obj", "--out", "scene", "--set", "water.ka=0.5"});
   ::close(fd);
   EXPECT_EQ(r.exit_code, exit_code::output_failed) << r.err;
   EXPECT_TRUE(has(r.err, "another toonwater povgen is writing this scene directory")) << r.err;
@@ -261,15 +261,17 @@ TEST_F(HostileCli, ConcurrentPovgenRunsNeverMix) {
       // Each run in its own working directory (run() keeps its output files there).
       const fs::path cwd = at("run" + std::to_string(i));
       fs::create_directory(cwd);
-      results[i] = run(cwd, {"povgen", "--water", (dir_.path() / "water_####.obj").string(),
-                             "--out", at("scene").string(), "--set",
-                             "water.ka=0." + std::to_string(i + 2)});
+      results[i] =
+          run(cwd, {"povgen", "--water", (dir_.path() / "water_####.obj").string(), "--out",
+                    at("scene").string(), "--set", "water.ka=0." + std::to_string(i + 2)});
     });
   for (auto& t : runs) t.join();
   int succeeded = 0;
   for (const Outcome& r : results) {
-    if (r.exit_code == 0) ++succeeded;
-    else EXPECT_TRUE(has(r.err, "another toonwater povgen")) << r.err;
+    if (r.exit_code == 0)
+      ++succeeded;
+    else
+      EXPECT_TRUE(has(r.err, "another toonwater povgen")) << r.err;
   }
   EXPECT_GE(succeeded, 1);
   // The scene is one run's: scene.pov and every include from the same configuration.
@@ -334,7 +336,8 @@ TEST_F(HostileCli, ANewSceneFileNamedLikeAUsersFileIsAnErrorNotAReplacement) {
   ASSERT_EQ(toonwater({"povgen", "--water", "w.obj", "--out", "scene"}).exit_code, 0);
   write_text(at("scene/obj_mine.inc"), "my object");
   const std::string scene_before = read_text(at("scene/scene.pov"));
-  const Outcome r = toonwater({"povgen", "--water", "w.obj", "--object", "mine.obj", "--out", "scene"});
+  const Outcome r =
+      toonwater({"povgen", "--water", "w.obj", "--object", "mine.obj", "--out", "scene"});
   EXPECT_EQ(r.exit_code, exit_code::output_failed) << r.err;
   EXPECT_TRUE(has(r.err, "scene/obj_mine.inc: is not a file toonwater povgen wrote")) << r.err;
   EXPECT_TRUE(has(r.err, "nothing was replaced")) << r.err;
@@ -353,7 +356,8 @@ TEST_F(HostileCli, ARunKilledAfterTheSwapLosesNoneOfTheUsersFiles) {
   write_text(stranded / ".toonwater-scene",
              "toonwater povgen scene directory\n.toonwater-scene\nscene.pov\nwater.inc\n");
   write_text(stranded / "scene.pov", "the earlier scene");
-  for (int i = 0; i < 200; ++i) write_text(stranded / ("frame_" + std::to_string(i) + ".png"), "png");
+  for (int i = 0; i < 200; ++i)
+    write_text(stranded / ("frame_" + std::to_string(i) + ".png"), "png");
   write_text(stranded / "notes.txt", "notes");
   // And one whose user's file cannot go back: the new scene has a file of its name.
   const fs::path clashing = at(temporary_name_of_a_gone_process("scene"));
@@ -364,7 +368,8 @@ TEST_F(HostileCli, ARunKilledAfterTheSwapLosesNoneOfTheUsersFiles) {
   const Outcome r = toonwater({"povgen", "--water", "w.obj", "--out", "scene"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(read_text(at("scene/notes.txt")), "notes");
-  for (int i = 0; i < 200; ++i) EXPECT_TRUE(fs::exists(at("scene/frame_" + std::to_string(i) + ".png"))) << i;
+  for (int i = 0; i < 200; ++i)
+    EXPECT_TRUE(fs::exists(at("scene/frame_" + std::to_string(i) + ".png"))) << i;
   EXPECT_NE(read_text(at("scene/scene.pov")), "the earlier scene");
   EXPECT_FALSE(fs::exists(stranded)) << "recovered, then removed";
   EXPECT_EQ(read_text(clashing / "scene.ini"), "the user's, listed as no file of povgen's")
@@ -408,7 +413,8 @@ TEST_F(HostileCli, OutputsFollowLinksStreamToFifosAndStandardOutput) {
   Outcome r = toonwater({"analyze", "w.obj", "--csv", "link.csv"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::is_symlink(at("link.csv")));
-  EXPECT_TRUE(read_text(at("target.csv")).starts_with("x,y,z,gaussian")) << read_text(at("target.csv"));
+  EXPECT_TRUE(read_text(at("target.csv")).starts_with("x,y,z,gaussian"))
+      << read_text(at("target.csv"));
   const std::string csv = read_text(at("target.csv"));
 
   fs::create_symlink("absent.csv", at("dangling.csv"));
@@ -438,7 +444,8 @@ TEST_F(HostileCli, OutputsFollowLinksStreamToFifosAndStandardOutput) {
 
 TEST_F(HostileCli, AnOutputThatIsTheInputIsRefusedBeforeWriting) {
   write_text(at("w.obj"), grid_obj());
-  for (const std::string& csv : std::vector<std::string>{"w.obj", "./w.obj", at("w.obj").string()}) {
+  for (const std::string& csv :
+       std::vector<std::string>{"w.obj", "./w.obj", at("w.obj").string()}) {
     const Outcome r = toonwater({"analyze", "w.obj", "--csv", csv});
     EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
     EXPECT_TRUE(has(r.err, "names the input mesh")) << r.err;
@@ -512,9 +519,13 @@ TEST_F(HostileCli, FileNamesWithHashesWork) {
 // ---- 7. help, versions and unknown words ----
 
 TEST_F(HostileCli, HelpIsPrintableAndUnknownWordsAreNamed) {
-  for (const std::vector<std::string>& args :
-       {std::vector<std::string>{"--help"}, {"help"}, {"analyze", "--help"}, {"povgen", "--help"},
-        {"help", "render"}, {"simulate", "--help"}, {"report", "--help"}}) {
+  for (const std::vector<std::string>& args : {std::vector<std::string>{"--help"},
+                                               {"help"},
+                                               {"analyze", "--help"},
+                                               {"povgen", "--help"},
+                                               {"help", "render"},
+                                               {"simulate", "--help"},
+                                               {"report", "--help"}}) {
     const Outcome r = toonwater(args);
     EXPECT_EQ(r.exit_code, 0) << args[0];
     EXPECT_TRUE(printable_lines(r.out)) << r.out;
@@ -548,8 +559,8 @@ TEST_F(HostileCli, StaticObjectNamedLikeASequenceFrameKeepsItsOwnInclude) {
   write_text(at("scene.toml"),
              "[[object]]\nname = \"box\"\nmesh = \"box_####.obj\"\n"
              "[[object]]\nname = \"box_0001\"\nmesh = \"static.obj\"\n");
-  std::vector<std::string> args{"povgen", "--water", "water_####.obj", "--config", "scene.toml",
-                                "--out", "scene"};
+  std::vector<std::string> args{"povgen",     "--water", "water_####.obj", "--config",
+                                "scene.toml", "--out",   "scene"};
   args.insert(args.end(), small.begin(), small.end());
   const Outcome r = toonwater(args);
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -573,7 +584,8 @@ TEST_F(HostileCli, FrameOfDegenerateFacesIsAnEmptyFrame) {
   args.insert(args.end(), small.begin(), small.end());
   const Outcome r = toonwater(args);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_TRUE(has(r.err, "water_0001.obj: all 2 faces are degenerate (zero area); that frame shows no water"))
+  EXPECT_TRUE(has(
+      r.err, "water_0001.obj: all 2 faces are degenerate (zero area); that frame shows no water"))
       << r.err;
   EXPECT_TRUE(has(read_text(at("scene/water_0001.inc")), "#declare Water_mesh = union {}"));
   const Outcome rendered = toonwater({"render", "scene"});
@@ -590,11 +602,15 @@ TEST_F(HostileCli, FrameOfDegenerateFacesIsAnEmptyFrame) {
 
 TEST_F(HostileCli, NonFiniteAndFractionalNumbersAreRefused) {
   write_text(at("w.obj"), grid_obj());
-  for (const std::vector<std::string>& option :
-       {std::vector<std::string>{"--k-threshold", "nan"}, {"--rest-height", "nan"},
-        {"--k-threshold-relative", "inf"}, {"--roi-tolerance", "NaN"}, {"--roi-margin", "1e999"},
-        {"--scale", "nan"}, {"--translate", "0,nan,0"}, {"--maps-box", "0,0,nan,1"},
-        {"--k-threshold", "-1e308"}}) {
+  for (const std::vector<std::string>& option : {std::vector<std::string>{"--k-threshold", "nan"},
+                                                 {"--rest-height", "nan"},
+                                                 {"--k-threshold-relative", "inf"},
+                                                 {"--roi-tolerance", "NaN"},
+                                                 {"--roi-margin", "1e999"},
+                                                 {"--scale", "nan"},
+                                                 {"--translate", "0,nan,0"},
+                                                 {"--maps-box", "0,0,nan,1"},
+                                                 {"--k-threshold", "-1e308"}}) {
     std::vector<std::string> args{"analyze", "w.obj"};
     args.insert(args.end(), option.begin(), option.end());
     const Outcome r = toonwater(args);
@@ -602,19 +618,20 @@ TEST_F(HostileCli, NonFiniteAndFractionalNumbersAreRefused) {
     EXPECT_TRUE(has(r.err, option[0])) << r.err;
     EXPECT_LT(r.err.size(), 200u) << "no 309-digit numbers: " << r.err;
   }
-  for (const std::string set : {"render.width=640.7", "flow.smoothing=2.5", "render.height=nan",
-                                 "flow.k_threshold=nan"}) {
+  for (const std::string set :
+       {"render.width=640.7", "flow.smoothing=2.5", "render.height=nan", "flow.k_threshold=nan"}) {
     const Outcome r = toonwater({"povgen", "--water", "w.obj", "--out", "scene", "--set", set});
     EXPECT_EQ(r.exit_code, exit_code::bad_input) << set << ": " << r.err;
     EXPECT_TRUE(has(r.err, set.substr(0, set.find('=')))) << r.err;
   }
-  EXPECT_TRUE(has(toonwater({"povgen", "--water", "w.obj", "--out", "scene", "--set",
-                             "render.width=640.7"})
-                      .err,
-                  "must be a whole number"));
-  EXPECT_EQ(toonwater({"povgen", "--water", "w.obj", "--out", "scene", "--set", "render.width=64.0"})
-                .exit_code,
-            0);
+  EXPECT_TRUE(
+      has(toonwater({"povgen", "--water", "w.obj", "--out", "scene", "--set", "render.width=640.7"})
+              .err,
+          "must be a whole number"));
+  EXPECT_EQ(
+      toonwater({"povgen", "--water", "w.obj", "--out", "scene", "--set", "render.width=64.0"})
+          .exit_code,
+      0);
   const Outcome r = toonwater({"render", "scene", "--frames-per-task", "0"});
   EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
   EXPECT_TRUE(has(r.err, "--frames-per-task")) << r.err;
@@ -623,8 +640,8 @@ TEST_F(HostileCli, NonFiniteAndFractionalNumbersAreRefused) {
 
 TEST_F(HostileCli, FrameRangesOutsideTheSequenceAreRefused) {
   write_sequence(3);
-  const Outcome r = toonwater({"povgen", "--water", "water_####.obj", "--out", "scene", "--set",
-                           "render.frames=\"1-5\""});
+  const Outcome r = toonwater(
+      {"povgen", "--water", "water_####.obj", "--out", "scene", "--set", "render.frames=\"1-5\""});
   EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
   EXPECT_TRUE(has(r.err, "render.frames 1-5 is outside the sequence's frames 0-2")) << r.err;
   EXPECT_FALSE(fs::exists(at("scene")));
@@ -637,8 +654,8 @@ TEST_F(HostileCli, FrameRangesOutsideTheSequenceAreRefused) {
   EXPECT_TRUE(has(render.err, "outside the scene's 1-2")) << render.err;
   // A single file has no frames to pick: the range is refused, not ignored.
   write_text(at("w.obj"), grid_obj());
-  const Outcome single = toonwater({"povgen", "--water", "w.obj", "--out", "single", "--set",
-                                    "render.frames=\"7\""});
+  const Outcome single =
+      toonwater({"povgen", "--water", "w.obj", "--out", "single", "--set", "render.frames=\"7\""});
   EXPECT_EQ(single.exit_code, exit_code::bad_input) << single.err;
   EXPECT_TRUE(has(single.err, "w.obj: render.frames 7-7 picks frames of a sequence")) << single.err;
   EXPECT_FALSE(fs::exists(at("single")));
@@ -752,17 +769,18 @@ TEST_F(HostileCli, FileNamesInErrorsCannotBreakTheLineOrReachTheTerminal) {
   write_text(at("w.obj"), grid_obj());
   const std::string newline_name = "a\nb.obj", escape_name = "\033[31mred\r.obj";
   write_text(at(newline_name), "v 0 0 0\nv 1 0 0\nf 1 2 3\n");  // two corners: an input error
-  for (const auto& args : std::vector<std::vector<std::string>>{
-           {"analyze", newline_name},
-           {"analyze", escape_name},
-           {"analyze", "w.obj", "--csv", "x\ny/z.csv"}}) {
+  for (const auto& args :
+       std::vector<std::vector<std::string>>{{"analyze", newline_name},
+                                             {"analyze", escape_name},
+                                             {"analyze", "w.obj", "--csv", "x\ny/z.csv"}}) {
     const Outcome r = toonwater(args);
     EXPECT_NE(r.exit_code, 0) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_TRUE(printable_lines(r.err)) << r.err;
     EXPECT_TRUE(r.err.starts_with("toonwater: error: ")) << r.err;
   }
-  EXPECT_TRUE(has(toonwater({"analyze", newline_name}).err, "a?b.obj")) << "the name, made printable";
+  EXPECT_TRUE(has(toonwater({"analyze", newline_name}).err, "a?b.obj"))
+      << "the name, made printable";
 }
 
 TEST_F(HostileCli, RenderIntoASceneDirectoryItCannotWriteIsAnOutputFailure) {
@@ -809,9 +827,7 @@ TEST_F(HostileCli, FifosHugeFilesFarCamerasAndWaterlessSequencesAreBadInputNamed
     EXPECT_TRUE(has(r.err, "is not a regular file")) << r.err;
   }
   // A sparse file larger than the machine's memory: refused by its size, not a crash (exit 1).
-  {
-    std::ofstream big(at("big.obj"));
-  }
+  { std::ofstream big(at("big.obj")); }
   fs::resize_file(at("big.obj"), std::uintmax_t{1} << 43);  // 8 TiB, sparse
   Outcome r = toonwater({"analyze", "big.obj"});
   EXPECT_EQ(r.exit_code, exit_code::bad_input) << r.err;
@@ -876,7 +892,8 @@ TEST_F(HostileCli, RenderRefusesAnOutputFileNameOutsideTheSceneDirectory) {
     write_text(at("scene/scene.ini"), edited);
     const Outcome r = toonwater({"render", "scene"}, {{"TOONWATER_POVRAY", fake_povray("exit 0")}});
     EXPECT_EQ(r.exit_code, exit_code::bad_input) << name << ": " << r.err;
-    EXPECT_TRUE(has(r.err, "scene.ini: Output_File_Name must be a file name in the scene directory"))
+    EXPECT_TRUE(
+        has(r.err, "scene.ini: Output_File_Name must be a file name in the scene directory"))
         << r.err;
   }
   EXPECT_EQ(read_text(at("frame_1.png")), "mine, beside the scene");
@@ -894,12 +911,15 @@ TEST_F(HostileCli, SuccessMessagesShowPathsPrintableAndTheRenderHintQuoted) {
 }
 
 TEST_F(HostileCli, SimulateReplacesItsFramesAllAtOnce) {
-  ASSERT_EQ(toonwater({"simulate", "drop", "--frames", "3", "--resolution", "8", "--out", "sim"}).exit_code, 0);
+  ASSERT_EQ(toonwater({"simulate", "drop", "--frames", "3", "--resolution", "8", "--out", "sim"})
+                .exit_code,
+            0);
   const std::string first = read_text(at("sim/water_0001.obj"));
   // The third frame's name taken by a directory: the run fails and no frame is replaced.
   fs::remove(at("sim/water_0003.obj"));
   fs::create_directory(at("sim/water_0003.obj"));
-  const Outcome r = toonwater({"simulate", "drop", "--frames", "3", "--resolution", "16", "--out", "sim"});
+  const Outcome r =
+      toonwater({"simulate", "drop", "--frames", "3", "--resolution", "16", "--out", "sim"});
   EXPECT_EQ(r.exit_code, exit_code::output_failed) << r.err;
   EXPECT_EQ(read_text(at("sim/water_0001.obj")), first) << "a frame of the failed run is in place";
   for (const std::string& name : names(at("sim"))) EXPECT_FALSE(has(name, ".tmp-")) << name;

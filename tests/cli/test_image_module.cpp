@@ -37,15 +37,14 @@ TEST(ImageModule, WithoutItOnlyTheCommandsThatWriteImagesFail) {
   fs::copy_file(TOONWATER_EXECUTABLE, dir / "toonwater");
   write_square(dir / "water.obj");
 
-  CommandResult r = run_program(dir / "toonwater",
-                                {"analyze", (dir / "water.obj").string(), "--csv",
-                                 (dir / "water.csv").string()});
+  CommandResult r = run_program(dir / "toonwater", {"analyze", (dir / "water.obj").string(),
+                                                    "--csv", (dir / "water.csv").string()});
   EXPECT_EQ(r.exit_code, cli::exit_code::success) << r.output;
   EXPECT_TRUE(fs::exists(dir / "water.csv"));
 
-  r = run_program(dir / "toonwater", {"analyze", (dir / "water.obj").string(), "--csv",
-                                      (dir / "both.csv").string(), "--maps",
-                                      (dir / "maps").string()});
+  r = run_program(dir / "toonwater",
+                  {"analyze", (dir / "water.obj").string(), "--csv", (dir / "both.csv").string(),
+                   "--maps", (dir / "maps").string()});
   EXPECT_EQ(r.exit_code, cli::exit_code::incomplete_install) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_EQ(r.output.rfind("toonwater: error: ", 0), 0u) << r.output;
@@ -53,16 +52,16 @@ TEST(ImageModule, WithoutItOnlyTheCommandsThatWriteImagesFail) {
   EXPECT_FALSE(fs::exists(dir / "both.csv"));
   EXPECT_FALSE(fs::exists(dir / "maps"));
 
-  r = run_program(dir / "toonwater", {"povgen", "--water", (dir / "water.obj").string(),
-                                      "--out", (dir / "scene").string(), "--maps",
-                                      (dir / "scene_maps").string()});
+  r = run_program(dir / "toonwater",
+                  {"povgen", "--water", (dir / "water.obj").string(), "--out",
+                   (dir / "scene").string(), "--maps", (dir / "scene_maps").string()});
   EXPECT_EQ(r.exit_code, cli::exit_code::incomplete_install) << r.output;
   EXPECT_FALSE(fs::exists(dir / "scene"));
 
   // With the module beside it, the same copy writes the maps.
   fs::copy_file(fs::path(TOONWATER_EXECUTABLE).parent_path() / module_name, dir / module_name);
-  r = run_program(dir / "toonwater", {"analyze", (dir / "water.obj").string(), "--maps",
-                                      (dir / "maps").string()});
+  r = run_program(dir / "toonwater",
+                  {"analyze", (dir / "water.obj").string(), "--maps", (dir / "maps").string()});
   EXPECT_EQ(r.exit_code, cli::exit_code::success) << r.output;
   EXPECT_TRUE(fs::exists(dir / "maps" / "water_K.png"));
 }

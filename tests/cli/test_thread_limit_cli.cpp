@@ -24,12 +24,15 @@ using test::ScratchDir;
 // TOONWATER_THREADS set for the programs this test runs, unset again when it ends.
 class ThreadsVariable {
  public:
-  explicit ThreadsVariable(const std::string& value) { ::setenv("TOONWATER_THREADS", value.c_str(), 1); }
+  explicit ThreadsVariable(const std::string& value) {
+    ::setenv("TOONWATER_THREADS", value.c_str(), 1);
+  }
   ~ThreadsVariable() { ::unsetenv("TOONWATER_THREADS"); }
 };
 
 // The CSV `analyze` writes for `mesh` with TOONWATER_THREADS=threads.
-std::string csv_with_threads(const fs::path& mesh, const std::string& threads, const fs::path& csv) {
+std::string csv_with_threads(const fs::path& mesh, const std::string& threads,
+                             const fs::path& csv) {
   ThreadsVariable variable(threads);
   const test::CommandResult result =
       run_toonwater({"analyze", mesh.string(), "--up", "z", "--csv", csv.string()});

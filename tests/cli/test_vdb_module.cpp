@@ -54,26 +54,33 @@ TEST(VdbModule, WithoutItOnlyVdbFilesFailAndWithItTheyBecomeScenes) {
   fs::copy_file(fs::path(TOONWATER_EXECUTABLE).parent_path() / module_name, dir / module_name);
   r = run_program(dir / "toonwater", {"analyze", (dir / "ball_0001.vdb").string()});
   EXPECT_EQ(r.exit_code, cli::exit_code::success) << r.output;
-  EXPECT_NE(r.output.find("boundary 0, non-manifold 0"), std::string::npos) << "a closed surface: " << r.output;
-  r = run_program(dir / "toonwater", {"povgen", "--water", (dir / "ball_####.vdb").string(), "--out",
-                                      (dir / "scene").string()});
+  EXPECT_NE(r.output.find("boundary 0, non-manifold 0"), std::string::npos)
+      << "a closed surface: " << r.output;
+  r = run_program(dir / "toonwater", {"povgen", "--water", (dir / "ball_####.vdb").string(),
+                                      "--out", (dir / "scene").string()});
   ASSERT_EQ(r.exit_code, cli::exit_code::success) << r.output;
   EXPECT_TRUE(fs::exists(dir / "scene" / "water_0001.inc"));
   EXPECT_TRUE(fs::exists(dir / "scene" / "water_0002.inc"));
 
   // --grid and --adaptivity: for a level set only, the grid named, in range.
-  r = run_program(dir / "toonwater", {"analyze", (dir / "ball_0001.vdb").string(), "--grid", "nope"});
+  r = run_program(dir / "toonwater",
+                  {"analyze", (dir / "ball_0001.vdb").string(), "--grid", "nope"});
   EXPECT_EQ(r.exit_code, cli::exit_code::bad_input) << r.output;
   EXPECT_NE(r.output.find("no grid named 'nope'; its grids: 'surface' (float, level set)"),
-            std::string::npos) << r.output;
-  r = run_program(dir / "toonwater", {"analyze", (dir / "water.obj").string(), "--grid", "surface"});
+            std::string::npos)
+      << r.output;
+  r = run_program(dir / "toonwater",
+                  {"analyze", (dir / "water.obj").string(), "--grid", "surface"});
   EXPECT_EQ(r.exit_code, cli::exit_code::bad_input) << r.output;
-  EXPECT_NE(r.output.find("--grid and --adaptivity are for .vdb level sets"), std::string::npos) << r.output;
-  r = run_program(dir / "toonwater", {"povgen", "--water", (dir / "ball_####.vdb").string(), "--out",
-                                      (dir / "coarse").string(), "--grid", "surface", "--adaptivity", "2"});
+  EXPECT_NE(r.output.find("--grid and --adaptivity are for .vdb level sets"), std::string::npos)
+      << r.output;
+  r = run_program(dir / "toonwater",
+                  {"povgen", "--water", (dir / "ball_####.vdb").string(), "--out",
+                   (dir / "coarse").string(), "--grid", "surface", "--adaptivity", "2"});
   EXPECT_EQ(r.exit_code, cli::exit_code::bad_input) << r.output;
-  r = run_program(dir / "toonwater", {"povgen", "--water", (dir / "ball_####.vdb").string(), "--out",
-                                      (dir / "coarse").string(), "--grid", "surface", "--adaptivity", "0.5"});
+  r = run_program(dir / "toonwater",
+                  {"povgen", "--water", (dir / "ball_####.vdb").string(), "--out",
+                   (dir / "coarse").string(), "--grid", "surface", "--adaptivity", "0.5"});
   EXPECT_EQ(r.exit_code, cli::exit_code::success) << r.output;
 }
 

@@ -25,7 +25,8 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> names_in(const fs::path& dir) {
   std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+  for (const auto& entry : fs::directory_iterator(dir))
+    names.push_back(entry.path().filename().string());
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -91,7 +92,8 @@ TEST_P(AtomicFileSignals, ASignalDuringABatchsRenamesWaitsForTheLast) {
   ASSERT_TRUE(WIFSIGNALED(status));
   EXPECT_EQ(WTERMSIG(status), GetParam());
   int replaced = 0;
-  for (int i = 0; i < files; ++i) replaced += read_text(dir / ("out" + std::to_string(i))) == new_text;
+  for (int i = 0; i < files; ++i)
+    replaced += read_text(dir / ("out" + std::to_string(i))) == new_text;
   EXPECT_EQ(replaced, files) << "the first target was replaced, so every one must be";
   EXPECT_EQ(names_in(dir.path()).size(), static_cast<std::size_t>(files)) << "no temporary left";
 }

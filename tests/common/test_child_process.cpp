@@ -21,7 +21,8 @@ namespace fs = std::filesystem;
 
 int wait_exit_status(pid_t pid) {
   int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
   return exit_status(status);
 }
 
@@ -47,16 +48,14 @@ class ChildProcess : public ::testing::Test {
 
 TEST_F(ChildProcess, OutputAndErrorGoIntoTheFileInTheWorkingDirectoryAndInputIsEmpty) {
   const fs::path log = dir_ / "log.txt";
-  {
-    std::ofstream(log) << "an earlier run's text, longer than the new one\n";
-  }
+  { std::ofstream(log) << "an earlier run's text, longer than the new one\n"; }
   fs::create_directories(dir_ / "work");
   ChildSetup setup;
   setup.working_directory = (dir_ / "work").string();
   setup.output_file = log.string();
   // pwd names the working directory; cat shows standard input is empty (not the terminal's).
-  const pid_t pid = start_child_process(
-      {"sh", "-c", "pwd; echo to-error >&2; cat; echo end; exit 3"}, setup);
+  const pid_t pid =
+      start_child_process({"sh", "-c", "pwd; echo to-error >&2; cat; echo end; exit 3"}, setup);
   ASSERT_GT(pid, 0);
   EXPECT_EQ(wait_exit_status(pid), 3);
   EXPECT_EQ(read_text(log), fs::canonical(dir_ / "work").string() + "\nto-error\nend\n");

@@ -38,7 +38,9 @@ TEST(DeterministicSum, SameBitsWithOneTwoThreeAndFourThreads) {
                         deterministic_sum_block + 1, 40 * deterministic_sum_block + 7}) {
     const std::vector<double> values = spread_values(n, n + 3);
     const double one = sum_with_threads(values, 1);
-    for (int threads : {2, 3, 4}) EXPECT_EQ(sum_with_threads(values, threads), one) << n << " values, " << threads << " threads";
+    for (int threads : {2, 3, 4})
+      EXPECT_EQ(sum_with_threads(values, threads), one)
+          << n << " values, " << threads << " threads";
   }
 }
 

@@ -36,7 +36,8 @@ TEST(ParallelChunks, VisitsEveryIndexOnceForAnyChunkAndThreadCount) {
           for (std::size_t i = begin; i < end; ++i) visits[i].fetch_add(1);
         });
         for (std::size_t i = 0; i < n; ++i)
-          ASSERT_EQ(visits[i].load(), 1) << threads << " threads, " << chunks << " chunks, n = " << n;
+          ASSERT_EQ(visits[i].load(), 1)
+              << threads << " threads, " << chunks << " chunks, n = " << n;
       }
 }
 
@@ -86,9 +87,10 @@ TEST(ParallelChunks, ExceptionOfAnyChunkComesOutOnceTheStartedChunksEnded) {
 
 TEST(ParallelChunks, OneOfSeveralExceptionsComesOut) {
   ThreadCount count(4);
-  EXPECT_THROW(parallel_chunks(100, 4, [](std::size_t, std::size_t, std::size_t) {
-                 throw std::out_of_range("every chunk");
-               }),
+  EXPECT_THROW(parallel_chunks(100, 4,
+                               [](std::size_t, std::size_t, std::size_t) {
+                                 throw std::out_of_range("every chunk");
+                               }),
                std::out_of_range);
 }
 

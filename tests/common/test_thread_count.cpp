@@ -27,7 +27,8 @@ using test::ScratchDir;
 // A tank whose top is a wavy, irregularly jittered height field: 2 × 300² vertices.
 TriangleMesh wavy_tank(double phase) {
   TriangleMesh mesh = test::tank(300, [phase](double x, double y) {
-    return 0.1 * std::sin(6 * x + phase) * std::cos(6 * y) + 0.02 * std::sin(17 * x + 5 * y - phase);
+    return 0.1 * std::sin(6 * x + phase) * std::cos(6 * y) +
+           0.02 * std::sin(17 * x + 5 * y - phase);
   });
   std::uint64_t state = 12345;
   for (Vec3& p : mesh.positions) {

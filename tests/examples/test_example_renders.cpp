@@ -51,7 +51,9 @@ const PixelTest magenta = [](const std::uint8_t* c) {
 struct Mask {
   int width = 0, height = 0;
   std::vector<bool> on;
-  std::size_t count() const { return static_cast<std::size_t>(std::count(on.begin(), on.end(), true)); }
+  std::size_t count() const {
+    return static_cast<std::size_t>(std::count(on.begin(), on.end(), true));
+  }
   double mean_x() const {
     double sum = 0;
     for (std::size_t i = 0; i < on.size(); ++i)
@@ -63,7 +65,8 @@ struct Mask {
 Mask select(const Picture& p, const PixelTest& test) {
   Mask m{p.width, p.height, std::vector<bool>(static_cast<std::size_t>(p.width) * p.height)};
   for (int y = 0; y < p.height; ++y)
-    for (int x = 0; x < p.width; ++x) m.on[static_cast<std::size_t>(y) * p.width + x] = test(p.at(x, y));
+    for (int x = 0; x < p.width; ++x)
+      m.on[static_cast<std::size_t>(y) * p.width + x] = test(p.at(x, y));
   return m;
 }
 
@@ -90,11 +93,16 @@ class Example {
   std::vector<fs::path> render(const std::string& name, std::vector<std::string> sets,
                                bool objects = true, int first = 1, int last = 2) {
     std::string config = read_text(fs::path(TOONWATER_EXAMPLES_DIR) / example_ / "scene.toml");
-    if (!objects) config.erase(config.find("[[object]]"), config.find("[render]") - config.find("[[object]]"));
+    if (!objects)
+      config.erase(config.find("[[object]]"), config.find("[render]") - config.find("[[object]]"));
     const fs::path config_path = dir_ / (name + ".toml");
     write_text(config_path, config);
-    std::vector<std::string> args{"povgen", "--config", config_path.string(), "--water",
-                                  (dir_ / "sim" / "water_####.obj").string(), "--out",
+    std::vector<std::string> args{"povgen",
+                                  "--config",
+                                  config_path.string(),
+                                  "--water",
+                                  (dir_ / "sim" / "water_####.obj").string(),
+                                  "--out",
                                   (dir_ / name).string()};
     sets.insert(sets.end(), {"render.width=96", "render.height=54", "render.antialias=false"});
     for (const auto& s : sets) args.insert(args.end(), {"--set", s});
@@ -142,7 +150,9 @@ TEST(ExampleRenders, DropSendsOutRings) {
   std::size_t mirrored = 0;
   for (int y = 0; y < rings.height; ++y)
     for (int x = 0; x < rings.width; ++x) {
-      const auto at = [&](int u) { return rings.on[static_cast<std::size_t>(y) * rings.width + u]; };
+      const auto at = [&](int u) {
+        return rings.on[static_cast<std::size_t>(y) * rings.width + u];
+      };
       if (at(x) && (at(rings.width - 1 - x) || (x > 0 && at(rings.width - x)) ||
                     (x + 2 < rings.width && at(rings.width - 2 - x))))
         ++mirrored;
@@ -179,10 +189,12 @@ TEST(ExampleRenders, RefractionShowsAndBendsTheBones) {
 TEST(ExampleRenders, ConcreteAndAbstractReflectionsDiffer) {
   Example pool("reflection", "reflection", 48);
   const Picture both = load(pool.render("scene", {}, true, 1, 1)[0]);
-  const Picture none = load(pool.render("none", {"object.0.reflection=none",
-                                                 "object.1.reflection=none"}, true, 1, 1)[0]);
+  const Picture none = load(
+      pool.render("none", {"object.0.reflection=none", "object.1.reflection=none"}, true, 1, 1)[0]);
   const Mask reflected = differing(both, none);
-  const auto on = [&](int x, int y) { return reflected.on[static_cast<std::size_t>(y) * both.width + x]; };
+  const auto on = [&](int x, int y) {
+    return reflected.on[static_cast<std::size_t>(y) * both.width + x];
+  };
   std::size_t left = 0, right = 0, pairs = 0;
   double warmer = 0;  // concrete minus abstract, red minus blue, summed over mirrored pairs
   std::set<std::array<int, 3>> right_colours;
@@ -216,13 +228,30 @@ TEST(ExampleRenders, RealSimulationShowsSphereAndBowWave) {
   if (shared_dir().empty() || !fs::exists(data / "water_0020.obj"))
     GTEST_SKIP() << "../shared/data/mantaflow-wake is absent";
   ScratchDir dir;
-  auto r = run_toonwater({"povgen", "--up", "z", "--config",
-                          (fs::path(TOONWATER_EXAMPLES_DIR) / "real-simulation" / "scene.toml").string(),
-                          "--water", (data / "water_####.obj").string(), "--object",
-                          (data / "sphere_####.obj").string(), "--set", "object.0.color=[0.92,0.45,0.18]",
-                          "--set", "flow.ridge_color=[1,0,1]", "--set", "render.frames=\"20-21\"",
-                          "--set", "render.width=96", "--set", "render.height=54", "--set",
-                          "render.antialias=false", "--out", (dir / "scene").string()});
+  auto r =
+      run_toonwater({"povgen",
+                     "--up",
+                     "z",
+                     "--config",
+                     (fs::path(TOONWATER_EXAMPLES_DIR) / "real-simulation" / "scene.toml").string(),
+                     "--water",
+                     (data / "water_####.obj").string(),
+                     "--object",
+                     (data / "sphere_####.obj").string(),
+                     "--set",
+                     "object.0.color=[0.92,0.45,0.18]",
+                     "--set",
+                     "flow.ridge_color=[1,0,1]",
+                     "--set",
+                     "render.frames=\"20-21\"",
+                     "--set",
+                     "render.width=96",
+                     "--set",
+                     "render.height=54",
+                     "--set",
+                     "render.antialias=false",
+                     "--out",
+                     (dir / "scene").string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   r = run_toonwater({"render", (dir / "scene").string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;

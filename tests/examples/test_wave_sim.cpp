@@ -120,7 +120,7 @@ TEST(SphereDisplacement, IsTheSubmergedThicknessAndItsVolume) {
   const double sphere = 4.0 / 3.0 * std::numbers::pi * r * r * r;
   EXPECT_NEAR(volume(Vec3(0, 0, 0)), 0.5 * sphere, 0.01 * sphere);  // half submerged
   EXPECT_NEAR(volume(Vec3(0, -1, 0)), sphere, 0.01 * sphere);       // fully under
-  EXPECT_EQ(volume(Vec3(0, 0.31, 0)), 0.0);                          // above the water
+  EXPECT_EQ(volume(Vec3(0, 0.31, 0)), 0.0);                         // above the water
   // Over the centre of a half-submerged sphere the thickness is the radius.
   EXPECT_NEAR(sphere_displacement(f, Vec3(0, 0, 0), r)[f.index(100, 100)], r, 1e-12);
 }
@@ -134,7 +134,10 @@ TEST(WakeScenario, BowWaveAtTheFrontTroughBehindCalmAhead) {
   Vec3 centre;
   WaveScene s;
   s.field = make_height_field(-2.0, 2.0, -1.0, 1.0, 128);
-  s.waves = {.wave_speed = 1.0, .damping = 0.3, .sponge_width = 0.4, .sponge_damping = 8.0,
+  s.waves = {.wave_speed = 1.0,
+             .damping = 0.3,
+             .sponge_width = 0.4,
+             .sponge_damping = 8.0,
              .viscosity = 0.006};
   s.sphere = MovingSphere{[](double t) { return Vec3(-2.0 + 1.5 * t, 0.0, 0.0); }, 0.22, 0.7};
   s.record_start = 1.6;
@@ -145,7 +148,7 @@ TEST(WakeScenario, BowWaveAtTheFrontTroughBehindCalmAhead) {
   });
   const double r = 0.22;
   EXPECT_GT(height_at(last, centre.x() + 0.5 * r, 0.0), 0.3 * r);   // bow wave
-  EXPECT_GT(height_at(last, centre.x(), 1.4 * r), 0.3 * r);          // beside, outside the hull
+  EXPECT_GT(height_at(last, centre.x(), 1.4 * r), 0.3 * r);         // beside, outside the hull
   EXPECT_LT(height_at(last, centre.x() - 1.1 * r, 0.0), -0.3 * r);  // trough behind
   for (double x = centre.x() + 1.5 * r; x < 1.5; x += 0.05)
     EXPECT_LT(std::abs(height_at(last, x, 0.0)), 1e-3) << "x = " << x;
@@ -164,9 +167,12 @@ TEST(WakeScenario, BowWaveAtTheFrontTroughBehindCalmAhead) {
 // The drop example: the ripples are circles around the drop, on a grid that is not round.
 TEST(DropScenario, RipplesAreCircular) {
   std::map<int, TriangleMesh> water;
-  simulate({"drop", 3, 128}, [&](const std::string& name, const TriangleMesh& m) {
-    if (name.starts_with("water_")) water[std::stoi(name.substr(6, 4))] = m;
-  }, [](int, int) {});
+  simulate(
+      {"drop", 3, 128},
+      [&](const std::string& name, const TriangleMesh& m) {
+        if (name.starts_with("water_")) water[std::stoi(name.substr(6, 4))] = m;
+      },
+      [](int, int) {});
   ASSERT_EQ(water.size(), 3u);
   // Frame 2 (t = 0.9 s): rings of radius below 0.9, inside the pool's walls (1.0 away).
   // The mesh's vertices are the grid's nodes, in order.
@@ -224,7 +230,8 @@ TEST(MeshBuilders, HeightFieldSheetFacesUp) {
   EXPECT_EQ(m.positions.size(), static_cast<std::size_t>(17 * 9));
   EXPECT_EQ(m.triangles.size(), static_cast<std::size_t>(2 * 16 * 8));
   for (const Triangle& t : m.triangles) {
-    const Vec3 n = (m.positions[t[1]] - m.positions[t[0]]).cross(m.positions[t[2]] - m.positions[t[0]]);
+    const Vec3 n =
+        (m.positions[t[1]] - m.positions[t[0]]).cross(m.positions[t[2]] - m.positions[t[0]]);
     ASSERT_GT(n.y(), 0);
   }
 }
@@ -240,7 +247,8 @@ TEST(WaterFigure, BonesStayInsideTheBody) {
       // Inside a closed mesh: a ray along +y crosses it an odd number of times.
       int crossings = 0;
       for (const Triangle& tri : body.triangles) {
-        const Vec3 &a = body.positions[tri[0]], &b = body.positions[tri[1]], &c = body.positions[tri[2]];
+        const Vec3 &a = body.positions[tri[0]], &b = body.positions[tri[1]],
+                   &c = body.positions[tri[2]];
         auto side = [&](const Vec3& u, const Vec3& v) {
           return (u.x() - p.x()) * (v.z() - p.z()) - (u.z() - p.z()) * (v.x() - p.x());
         };
@@ -258,8 +266,8 @@ TEST(WaterFigure, BonesStayInsideTheBody) {
 // The simulate command: names and counts of the files, meshes that read back as written.
 TEST(SimulateCommand, WritesNumberedFramesAndStaticObjects) {
   ScratchDir dir;
-  auto r = test::run_toonwater({"simulate", "wake", "--frames", "3", "--resolution", "32",
-                                "--out", (dir / "sim").string()});
+  auto r = test::run_toonwater(
+      {"simulate", "wake", "--frames", "3", "--resolution", "32", "--out", (dir / "sim").string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (int k = 1; k <= 3; ++k) {
     const InputMesh water = read_mesh(dir / "sim" / frame_file_name("water", k));
@@ -268,8 +276,8 @@ TEST(SimulateCommand, WritesNumberedFramesAndStaticObjects) {
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "sim" / "water_0004.obj"));
 
-  r = test::run_toonwater({"simulate", "reflection", "--frames", "2", "--resolution", "32",
-                           "--out", (dir / "refl").string()});
+  r = test::run_toonwater({"simulate", "reflection", "--frames", "2", "--resolution", "32", "--out",
+                           (dir / "refl").string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(read_mesh(dir / "refl" / "left_ball.obj").mesh.positions.size(),
             read_mesh(dir / "refl" / "right_ball.obj").mesh.positions.size());
@@ -279,8 +287,10 @@ TEST(SimulateCommand, WritesNumberedFramesAndStaticObjects) {
 
   // Deterministic: the same request writes the same bytes.
   ScratchDir again;
-  ASSERT_EQ(test::run_toonwater({"simulate", "wake", "--frames", "3", "--resolution", "32",
-                                 "--out", (again / "sim").string()}).exit_code, 0);
+  ASSERT_EQ(test::run_toonwater({"simulate", "wake", "--frames", "3", "--resolution", "32", "--out",
+                                 (again / "sim").string()})
+                .exit_code,
+            0);
   EXPECT_EQ(test::read_text(dir / "sim" / "water_0003.obj"),
             test::read_text(again / "sim" / "water_0003.obj"));
 }

@@ -36,13 +36,13 @@ void check(const SceneConfig& c) {
   require_finite(c.camera.look_at);
   require_finite(c.light.direction);
   require_finite(c.light.position);
-  for (const Color* color : {&c.light.color, &c.water.bright, &c.water.medium, &c.water.dark,
-                             &c.water.specular_color, &c.outline.color, &c.flow.ridge_color,
-                             &c.flow.valley_color, &c.render.background})
+  for (const Color* color :
+       {&c.light.color, &c.water.bright, &c.water.medium, &c.water.dark, &c.water.specular_color,
+        &c.outline.color, &c.flow.ridge_color, &c.flow.valley_color, &c.render.background})
     require_color(*color);
-  for (const double v : {c.camera.angle, c.water.t_bright, c.water.t_medium, c.water.ka,
-                         c.water.kd, c.water.ks, c.water.phong_size, c.water.reflection,
-                         c.water.transmit, c.water.ior, c.outline.width.value_or(1.0)})
+  for (const double v : {c.camera.angle, c.water.t_bright, c.water.t_medium, c.water.ka, c.water.kd,
+                         c.water.ks, c.water.phong_size, c.water.reflection, c.water.transmit,
+                         c.water.ior, c.outline.width.value_or(1.0)})
     if (!std::isfinite(v)) std::abort();
   if (c.render.width < 1 || c.render.height < 1) std::abort();
   for (const ObjectConfig& o : c.objects) {
@@ -59,7 +59,8 @@ fs::path write_config_file(std::string_view text) {
   static const int fd = ::memfd_create("scene.toml", MFD_CLOEXEC);
   if (fd < 0 || ::ftruncate(fd, 0) != 0) std::abort();
   for (std::size_t done = 0; done < text.size();) {
-    const ssize_t n = ::pwrite(fd, text.data() + done, text.size() - done, static_cast<off_t>(done));
+    const ssize_t n =
+        ::pwrite(fd, text.data() + done, text.size() - done, static_cast<off_t>(done));
     if (n <= 0) std::abort();
     done += static_cast<std::size_t>(n);
   }

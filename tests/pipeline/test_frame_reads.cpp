@@ -36,8 +36,8 @@ std::string image_content(const fs::path& path) {
   in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
   std::string content = std::to_string(spec.width) + "x" + std::to_string(spec.height);
   for (const std::string& name : spec.channelnames) content += " " + name;
-  for (const char* key : {"toonwater:K_range", "toonwater:H_range", "toonwater:box_uv",
-                          "toonwater:pixel_size"})
+  for (const char* key :
+       {"toonwater:K_range", "toonwater:H_range", "toonwater:box_uv", "toonwater:pixel_size"})
     content += std::string(" ") + key + "=" + std::string(spec.get_string_attribute(key));
   content.append(reinterpret_cast<const char*>(pixels.data()), pixels.size() * sizeof(float));
   return content;
@@ -88,8 +88,8 @@ TEST(PovgenFrameReads, MapsAndACurvatureViewReadEachFrameOnce) {
 TEST(PovgenFrameReads, AToonSceneThatSharesNothingReadsEachFrameOnce) {
   ScratchDir dir;
   write_frames(dir.path());
-  const povgen::PovgenReport r =
-      generate(dir.path(), "toon", {"camera.location=[0, 3, -3]", "camera.look_at=[0, 0, 0]"}, false);
+  const povgen::PovgenReport r = generate(
+      dir.path(), "toon", {"camera.location=[0, 3, -3]", "camera.look_at=[0, 0, 0]"}, false);
   EXPECT_EQ(r.frames, frame_count);
   EXPECT_EQ(r.water_reads, frame_count);
   EXPECT_EQ(r.cached_frames, 0u);
@@ -169,8 +169,9 @@ TEST(PovgenFrameReads, TheDefaultCameraReadsEachObjectFileOnce) {
       << memory_scene.size() << " files";
   EXPECT_NE(memory_scene.at("obj_buoy.0001.inc"), memory_scene.at("obj_buoy.0002.inc"));
   // A fixed camera needs no survey: the frame loop reads each file, once too.
-  EXPECT_EQ(scene("fixed", 0, {"camera.location=[0, 3, -3]", "camera.look_at=[0, 0, 0]"}).object_reads,
-            1 + frame_count);
+  EXPECT_EQ(
+      scene("fixed", 0, {"camera.location=[0, 3, -3]", "camera.look_at=[0, 0, 0]"}).object_reads,
+      1 + frame_count);
 }
 
 // Frames spilled to the cache's file give the same scene and maps as frames kept in memory,

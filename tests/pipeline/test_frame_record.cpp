@@ -87,7 +87,8 @@ TEST(FrameRecord, FieldListsNameEveryFieldTheTestCompares) {
 }
 
 TEST(FrameRecord, APreparedSurfaceComesBackWithEveryFieldFromMemoryAndFromTheSpillFile) {
-  const fs::path dir = fs::temp_directory_path() / ("toonwater_frame_record_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("toonwater_frame_record_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const PreparedSurface original = distinct_surface();
   RecordWriter writer;

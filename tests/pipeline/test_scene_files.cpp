@@ -70,8 +70,9 @@ TEST(PovgenConfig, ErrorsNameTheKey) {
   EXPECT_NE(config_error("[outline]\ncolor = [0, 0]\n").find("'outline.color'"), std::string::npos);
   EXPECT_NE(config_error("[flow]\nridge_color = [2, 0, 0]\n").find("'flow.ridge_color'"),
             std::string::npos);
-  EXPECT_NE(config_error("[outline]\nenabled = 1\n").find("'outline.enabled' must be true or false"),
-            std::string::npos);
+  EXPECT_NE(
+      config_error("[outline]\nenabled = 1\n").find("'outline.enabled' must be true or false"),
+      std::string::npos);
   EXPECT_NE(config_error("[[object]]\nmesh = \"a.obj\"\nreflection = \"mirror\"\n")
                 .find("'object.0.reflection' must be one of"),
             std::string::npos);
@@ -100,7 +101,8 @@ TEST(PovgenConfig, IdentifiersAreSanitisedAndUnique) {
 TEST(PovgenMesh2, LeavesOutDegenerateFacesReplacesZeroNormalsNeverWritesNan) {
   TriangleMesh m;
   m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {2, 0, 0}, {5, 5, 5}, {1.23456789, 0, 0}};
-  m.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 1, 2}};  // a good face, a collinear one, a repeated corner
+  m.triangles = {
+      {0, 2, 1}, {0, 1, 3}, {1, 1, 2}};  // a good face, a collinear one, a repeated corner
   std::vector<Vec3> normals(m.positions.size(), Vec3::Zero());  // all undefined
   const povgen::SceneMesh sm = povgen::make_scene_mesh(m, normals, false, Axis::y);
   EXPECT_EQ(sm.triangles.size(), 1u);
@@ -178,17 +180,17 @@ Generated generate(const ScratchDir& dir, std::vector<std::string> args) {
 TEST(PovgenScene, MinimalSceneContainsOnlyWhatItNeeds) {
   ScratchDir dir;
   write_obj(dir / "water.obj", make_height_grid(9, 1.0, [](double, double) { return 0.0; }));
-  const Generated g = generate(dir, {"--water", (dir / "water.obj").string(), "--set",
-                                     "flow.enabled=false", "--set", "outline.enabled=false",
-                                     "--set", "water.ks=0", "--set", "water.reflection=0",
-                                     "--set", "water.transmit=0"});
+  const Generated g =
+      generate(dir, {"--water", (dir / "water.obj").string(), "--set", "flow.enabled=false",
+                     "--set", "outline.enabled=false", "--set", "water.ks=0", "--set",
+                     "water.reflection=0", "--set", "water.transmit=0"});
   ASSERT_EQ(g.result.exit_code, 0) << g.result.output;
-  for (const char* absent : {"light_source", "reflection", "interior", "Toon_outline_shell",
-                             "Toon_bands_with_flow", "Obj_", "no_reflection", "phong",
-                             "Toon_silhouette", "#include \"obj_", "max_trace_level"})
+  for (const char* absent :
+       {"light_source", "reflection", "interior", "Toon_outline_shell", "Toon_bands_with_flow",
+        "Obj_", "no_reflection", "phong", "Toon_silhouette", "#include \"obj_", "max_trace_level"})
     EXPECT_EQ(g.pov.find(absent), std::string::npos) << absent;
-  for (const char* present : {"#include \"toon.inc\"", "Toon_bands(", "Water_mesh", "camera",
-                              "background"})
+  for (const char* present :
+       {"#include \"toon.inc\"", "Toon_bands(", "Water_mesh", "camera", "background"})
     EXPECT_NE(g.pov.find(present), std::string::npos) << present;
   EXPECT_EQ(g.water_inc.find("Water_shell"), std::string::npos);
   EXPECT_EQ(g.water_inc.find("inside_vector"), std::string::npos);
@@ -199,9 +201,9 @@ TEST(PovgenScene, MinimalSceneContainsOnlyWhatItNeeds) {
   std::string everything = g.pov + toon;
   std::transform(everything.begin(), everything.end(), everything.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  for (const char* absent : {"interior_texture", "no_image", "no_reflection", "ior",
-                             "reflection", "toon_outline_shell", "toon_bands_with_flow",
-                             "toon_object_bands", "toon_silhouette", "clipped_by", "sky"})
+  for (const char* absent :
+       {"interior_texture", "no_image", "no_reflection", "ior", "reflection", "toon_outline_shell",
+        "toon_bands_with_flow", "toon_object_bands", "toon_silhouette", "clipped_by", "sky"})
     EXPECT_EQ(everything.find(absent), std::string::npos) << absent;
   EXPECT_FALSE(std::filesystem::exists(dir / "scene" / "obj_water.inc"));
 }
@@ -214,8 +216,8 @@ TEST(PovgenScene, FullSceneHasEveryFeature) {
   write_text(dir / "scene.toml",
              "[[object]]\nmesh = \"ball.obj\"\nreflection = \"none\"\n"
              "[[object]]\nmesh = \"kite.obj\"\nreflection = \"abstract\"\noutline = false\n");
-  const Generated g = generate(dir, {"--water", (dir / "water.obj").string(), "--config",
-                                     (dir / "scene.toml").string()});
+  const Generated g = generate(
+      dir, {"--water", (dir / "water.obj").string(), "--config", (dir / "scene.toml").string()});
   ASSERT_EQ(g.result.exit_code, 0) << g.result.output;
   for (const char* present :
        {"light_source", "parallel", "reflection { 0.2 }", "interior { ior 1.33 }",
@@ -236,8 +238,9 @@ TEST(PovgenScene, FullSceneHasEveryFeature) {
   EXPECT_NE(g.pov.find("Toon_in_water(Obj_ball_water, Obj_ball_contact,"), std::string::npos);
   EXPECT_EQ(g.pov.find("Toon_in_water(Obj_kite"), std::string::npos);
   EXPECT_NE(g.water_inc.find("#declare Obj_ball_water_line = "), std::string::npos);
-  EXPECT_NE(g.water_inc.find("#declare Obj_ball_water = intersection { object { Water_mesh } box {"),
-            std::string::npos);
+  EXPECT_NE(
+      g.water_inc.find("#declare Obj_ball_water = intersection { object { Water_mesh } box {"),
+      std::string::npos);
   EXPECT_NE(g.water_inc.find("#declare Obj_ball_contact = "), std::string::npos);
   // A see-through closed volume: free surface and body have their own textures.
   EXPECT_NE(g.pov.find("#declare Water_surface_texture"), std::string::npos);
@@ -265,15 +268,15 @@ TEST(PovgenScene, HostileNamesAndValuesNeverReachTheSceneRaw) {
   write_text(dir / "scene.toml",
              "[[object]]\nmesh = \"a.obj\"\nname = \"x\\\"}\\n#fopen F \\\"/etc/passwd\\\" "
              "read\"\n");
-  const Generated g = generate(dir, {"--water", (dir / "water.obj").string(), "--config",
-                                     (dir / "scene.toml").string()});
+  const Generated g = generate(
+      dir, {"--water", (dir / "water.obj").string(), "--config", (dir / "scene.toml").string()});
   ASSERT_EQ(g.result.exit_code, 0) << g.result.output;
   EXPECT_EQ(g.pov.find("#fopen"), std::string::npos);
   EXPECT_EQ(g.pov.find("passwd\""), std::string::npos);
   EXPECT_NE(g.pov.find("Obj_x____fopen_F"), std::string::npos) << g.pov;
   // A value that is not a number never gets in either.
-  const Generated bad = generate(dir, {"--water", (dir / "water.obj").string(), "--set",
-                                       "water.ior=1.33 } #declare X = 1"});
+  const Generated bad = generate(
+      dir, {"--water", (dir / "water.obj").string(), "--set", "water.ior=1.33 } #declare X = 1"});
   EXPECT_NE(bad.result.exit_code, 0);
   EXPECT_NE(bad.result.output.find("'water.ior' must be a number"), std::string::npos)
       << bad.result.output;
@@ -288,14 +291,14 @@ TEST(PovgenScene, GlobSequencesStaticAndAnimatedObjectsMatchedByFrame) {
   }
   write_text(dir / "rock.obj", tri);
   const std::filesystem::path out = dir / "scene";
-  CommandResult r = run_toonwater({"povgen", "--water", (dir / "wave*.obj").string(), "--object",
-                                   (dir / "boat_*.obj").string(), "--object",
-                                   (dir / "rock.obj").string(), "--set", "render.frames=8-9",
-                                   "--out", out.string()});
+  CommandResult r =
+      run_toonwater({"povgen", "--water", (dir / "wave*.obj").string(), "--object",
+                     (dir / "boat_*.obj").string(), "--object", (dir / "rock.obj").string(),
+                     "--set", "render.frames=8-9", "--out", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_FALSE(std::filesystem::exists(out / "water_0007.inc"));
-  for (const char* f : {"water_0008.inc", "water_0009.inc", "obj_boat.0008.inc", "obj_boat.0009.inc",
-                        "obj_rock.inc"})
+  for (const char* f : {"water_0008.inc", "water_0009.inc", "obj_boat.0008.inc",
+                        "obj_boat.0009.inc", "obj_rock.inc"})
     EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
   const std::string ini = read_text(out / "scene.ini");
   EXPECT_NE(ini.find("Initial_Frame=8\nFinal_Frame=9"), std::string::npos) << ini;
@@ -320,8 +323,8 @@ TEST(PovgenScene, BadInputGetsAClearErrorAndNoScene) {
   EXPECT_NE(r.output.find("missing_####.obj"), std::string::npos) << r.output;
   write_text(dir / "water_0001.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n");
   write_text(dir / "water_0003.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n");
-  r = run_toonwater({"povgen", "--water", (dir / "water_####.obj").string(), "--out",
-                     (dir / "scene").string()});
+  r = run_toonwater(
+      {"povgen", "--water", (dir / "water_####.obj").string(), "--out", (dir / "scene").string()});
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("frame 2 is missing"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "scene" / "scene.pov"));
@@ -332,16 +335,16 @@ TEST(PovgenScene, BadInputGetsAClearErrorAndNoScene) {
 TEST(PovgenScene, WaterTransformMapsFileToWorldCoordinates) {
   ScratchDir dir;
   write_text(dir / "w.obj", "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 2 3 4\n");
-  const CommandResult r = run_toonwater({"povgen", "--water", (dir / "w.obj").string(), "--scale",
-                                         "2", "--translate", "10,0,0", "--set",
-                                         "flow.enabled=false", "--out", (dir / "s").string()});
+  const CommandResult r =
+      run_toonwater({"povgen", "--water", (dir / "w.obj").string(), "--scale", "2", "--translate",
+                     "10,0,0", "--set", "flow.enabled=false", "--out", (dir / "s").string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // y up: (x, y, z) -> POV-Ray (x, y, -z).
-  EXPECT_NE(read_text(dir / "s" / "water_0000.inc").find("<10,0,0>, <12,0,0>, <12,0,-2>, <10,0,-2>"),
-            std::string::npos);
-  const CommandResult singular =
-      run_toonwater({"povgen", "--water", (dir / "w.obj").string(), "--scale", "0", "--out",
-                     (dir / "bad").string()});
+  EXPECT_NE(
+      read_text(dir / "s" / "water_0000.inc").find("<10,0,0>, <12,0,0>, <12,0,-2>, <10,0,-2>"),
+      std::string::npos);
+  const CommandResult singular = run_toonwater({"povgen", "--water", (dir / "w.obj").string(),
+                                                "--scale", "0", "--out", (dir / "bad").string()});
   EXPECT_NE(singular.exit_code, 0);
   EXPECT_NE(singular.output.find("singular"), std::string::npos) << singular.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "bad"));
@@ -353,8 +356,9 @@ TEST(PovgenScene, RenderQualityPresetsReachSceneIni) {
   ScratchDir dir;
   write_obj(dir / "water.obj", make_height_grid(5, 1.0, [](double, double) { return 0.0; }));
   auto ini = [&](const std::string& name, std::vector<std::string> sets) {
-    std::vector<std::string> args{"--water", (dir / "water.obj").string(), "--set",
-                                  "render.width=300", "--set", "render.height=200"};
+    std::vector<std::string> args{"--water", (dir / "water.obj").string(),
+                                  "--set",   "render.width=300",
+                                  "--set",   "render.height=200"};
     for (const auto& s : sets) args.insert(args.end(), {"--set", s});
     const CommandResult r = run_toonwater([&] {
       std::vector<std::string> full{"povgen"};
@@ -371,13 +375,14 @@ TEST(PovgenScene, RenderQualityPresetsReachSceneIni) {
   EXPECT_NE(preview.find("Width=300\nHeight=200\nAntialias=Off\n"), std::string::npos) << preview;
   const std::string final_ini = ini("final", {});  // the default
   EXPECT_NE(final_ini.find("Antialias=On\nAntialias_Threshold=0.05\nAntialias_Depth=3\n"),
-            std::string::npos) << final_ini;
+            std::string::npos)
+      << final_ini;
   const std::string forced_off = ini("off", {"render.quality=final", "render.antialias=false"});
   EXPECT_NE(forced_off.find("Antialias=Off"), std::string::npos) << forced_off;
 
-  const CommandResult bad = run_toonwater({"povgen", "--water", (dir / "water.obj").string(),
-                                           "--set", "render.quality=ultra", "--out",
-                                           (dir / "bad").string()});
+  const CommandResult bad =
+      run_toonwater({"povgen", "--water", (dir / "water.obj").string(), "--set",
+                     "render.quality=ultra", "--out", (dir / "bad").string()});
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.output.find("render.quality"), std::string::npos) << bad.output;
 }
@@ -395,7 +400,8 @@ TEST(PovgenScene, EmptyFrameIsReportedAndTheSequenceGoesOn) {
                                          "--out", out.string(), "--maps", maps.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("water_0002.obj: contains no faces; that frame shows no water"),
-            std::string::npos) << r.output;
+            std::string::npos)
+      << r.output;
   EXPECT_NE(read_text(out / "water_0002.inc").find("#declare Water_mesh = union {}"),
             std::string::npos);
   const Povray p = run_povray(out);

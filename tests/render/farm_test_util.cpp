@@ -9,8 +9,9 @@ namespace toonwater::test {
 namespace fs = std::filesystem;
 
 fs::path make_wake_scene(const ScratchDir& dir) {
-  const CommandResult sim = run_toonwater(
-      {"simulate", "wake", "--frames", std::to_string(kFarmFrames), "--out", (dir / "sim").string()});
+  const CommandResult sim =
+      run_toonwater({"simulate", "wake", "--frames", std::to_string(kFarmFrames), "--out",
+                     (dir / "sim").string()});
   EXPECT_EQ(sim.exit_code, 0) << sim.output;
   // The config's mesh paths are relative to it: beside sim/, as scripts/demo.sh puts it.
   fs::copy_file(fs::path(TOONWATER_SOURCE_DIR) / "examples/wake/scene.toml", dir / "scene.toml");
@@ -51,13 +52,18 @@ void write_killing_povray(const fs::path& bin, const fs::path& marker) {
   const std::string real = "/usr/bin/povray";
   write_text(bin / "povray",
              "#!/bin/sh\n"
-             "if mkdir '" + marker.string() + "' 2>/dev/null; then\n"
-             "  " + real + " \"$@\" &\n"
-             "  sleep 0.5\n"
-             "  kill -KILL $PPID $!\n"
-             "  exit 137\n"
-             "fi\n"
-             "exec " + real + " \"$@\"\n");
+             "if mkdir '" +
+                 marker.string() +
+                 "' 2>/dev/null; then\n"
+                 "  " +
+                 real +
+                 " \"$@\" &\n"
+                 "  sleep 0.5\n"
+                 "  kill -KILL $PPID $!\n"
+                 "  exit 137\n"
+                 "fi\n"
+                 "exec " +
+                 real + " \"$@\"\n");
   fs::permissions(bin / "povray", fs::perms::owner_all | fs::perms::group_read |
                                       fs::perms::group_exec | fs::perms::others_read |
                                       fs::perms::others_exec);

@@ -58,7 +58,8 @@ TEST_F(FarmScene, RenderTaskRendersItsRangeInOneProcessLikeTheLocalRender) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (int f : {1, 5, 6}) EXPECT_FALSE(fs::exists(scene / frame_name(f))) << f;
   for (int f = 2; f <= 4; ++f)
-    EXPECT_EQ(read_image(scene / frame_name(f)).pixels, read_image(reference() / frame_name(f)).pixels)
+    EXPECT_EQ(read_image(scene / frame_name(f)).pixels,
+              read_image(reference() / frame_name(f)).pixels)
         << f;
 }
 
@@ -72,15 +73,16 @@ TEST_F(FarmScene, RenderTaskReportsAFailedFrameAndRendersTheOthers) {
   EXPECT_FALSE(fs::exists(scene / frame_name(3)));
   EXPECT_TRUE(fs::exists(scene / "render_3.log"));
   for (int f : {1, 2, 4, 5, 6})
-    EXPECT_EQ(read_image(scene / frame_name(f)).pixels, read_image(reference() / frame_name(f)).pixels)
+    EXPECT_EQ(read_image(scene / frame_name(f)).pixels,
+              read_image(reference() / frame_name(f)).pixels)
         << f;
 }
 
 // Writes `bin`/povray, which appends its arguments to `log` and runs POV-Ray.
 void write_logging_povray(const fs::path& bin, const fs::path& log) {
   fs::create_directories(bin);
-  write_text(bin / "povray", "#!/bin/sh\necho \"$@\" >> '" + log.string() +
-                                 "'\nexec /usr/bin/povray \"$@\"\n");
+  write_text(bin / "povray",
+             "#!/bin/sh\necho \"$@\" >> '" + log.string() + "'\nexec /usr/bin/povray \"$@\"\n");
   fs::permissions(bin / "povray", fs::perms::owner_all);
 }
 
@@ -95,7 +97,9 @@ TEST_F(FarmScene, LocalRenderRunsOneProcessPerRangeWithPovraysOwnImages) {
   const fs::path scene = copy_scene("ranges");
   CommandResult r = run_toonwater({"render", scene.string(), "--jobs", "3"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("6 frame(s) rendered, 0 skipped (already rendered), 0 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("6 frame(s) rendered, 0 skipped (already rendered), 0 failed"),
+            std::string::npos)
+      << r.output;
   std::string runs = read_text(work_ / "runs.log");
   EXPECT_EQ(std::count(runs.begin(), runs.end(), '\n'), 3) << runs;
   for (const char* range : {"+SF1 +EF2", "+SF3 +EF4", "+SF5 +EF6"})
@@ -109,7 +113,9 @@ TEST_F(FarmScene, LocalRenderRunsOneProcessPerRangeWithPovraysOwnImages) {
   EXPECT_EQ(r.exit_code, 5) << r.output;
   EXPECT_NE(r.output.find("frame 2 failed"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("water_0002.inc"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("5 frame(s) rendered, 0 skipped (already rendered), 1 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("5 frame(s) rendered, 0 skipped (already rendered), 1 failed"),
+            std::string::npos)
+      << r.output;
   runs = read_text(work_ / "runs.log");
   EXPECT_NE(runs.find("+SF3 +EF3"), std::string::npos) << "a new process for frame 3: " << runs;
   EXPECT_FALSE(fs::exists(broken / frame_name(2)));
@@ -153,7 +159,8 @@ TEST_F(FarmScene, AHostGnuParallelCannotReachIsAnOutputFailureNamingIt) {
   const CommandResult r = run_toonwater({"render", scene.string(), "--on", "parallel", "--hosts",
                                          (work_ / "hosts").string(), "--frames-per-task", "3"});
   EXPECT_EQ(r.exit_code, 3) << r.output;
-  EXPECT_NE(r.output.find("could not run tasks on nosuchhost.invalid"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("could not run tasks on nosuchhost.invalid"), std::string::npos)
+      << r.output;
 }
 
 TEST_F(FarmScene, FramesWithAnImageAreSkippedUnlessForced) {
@@ -170,7 +177,8 @@ TEST_F(FarmScene, FramesWithAnImageAreSkippedUnlessForced) {
   const CommandResult forced = run_toonwater({"render", scene.string(), "--on", "parallel",
                                               "--hosts", (work_ / "hosts").string(), "--force"});
   ASSERT_EQ(forced.exit_code, 0) << forced.output;
-  EXPECT_NE(forced.output.find("6 frame(s) rendered, 0 skipped"), std::string::npos) << forced.output;
+  EXPECT_NE(forced.output.find("6 frame(s) rendered, 0 skipped"), std::string::npos)
+      << forced.output;
   EXPECT_NE(fs::last_write_time(scene / frame_name(1)), before);
 }
 
@@ -186,7 +194,8 @@ TEST_F(FarmScene, LocalRenderSkipsFramesWithAnImageUnlessForced) {
   const CommandResult r = run_toonwater({"render", scene.string(), "--jobs", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("2 frame(s) rendered, 4 skipped (already rendered), 0 failed"),
-            std::string::npos) << r.output;
+            std::string::npos)
+      << r.output;
   const std::string runs = read_text(work_ / "runs.log");
   EXPECT_EQ(std::count(runs.begin(), runs.end(), '\n'), 2) << runs;
   for (const char* range : {"+SF4 +EF4", "+SF6 +EF6"})
@@ -196,7 +205,8 @@ TEST_F(FarmScene, LocalRenderSkipsFramesWithAnImageUnlessForced) {
 
   const CommandResult forced = run_toonwater({"render", scene.string(), "--jobs", "2", "--force"});
   ASSERT_EQ(forced.exit_code, 0) << forced.output;
-  EXPECT_NE(forced.output.find("6 frame(s) rendered, 0 skipped"), std::string::npos) << forced.output;
+  EXPECT_NE(forced.output.find("6 frame(s) rendered, 0 skipped"), std::string::npos)
+      << forced.output;
   EXPECT_NE(fs::last_write_time(scene / frame_name(1)), before);
   expect_frames_like(scene, reference());
 }
@@ -207,24 +217,28 @@ TEST_F(FarmScene, ImagesOfAnEarlierSceneAreRenderedAgain) {
   const fs::path scene = work_ / "rewritten";
   fs::copy(reference(), scene, fs::copy_options::recursive);
   const int wider = kFarmWidth + 16;
-  const CommandResult pov = run_toonwater(
-      {"povgen", "--config", (dir_->path() / "scene.toml").string(), "--water",
-       (dir_->path() / "sim/water_####.obj").string(), "--set", "render.width=" + std::to_string(wider),
-       "--set", "render.height=" + std::to_string(kFarmHeight), "--out", scene.string()});
+  const CommandResult pov =
+      run_toonwater({"povgen", "--config", (dir_->path() / "scene.toml").string(), "--water",
+                     (dir_->path() / "sim/water_####.obj").string(), "--set",
+                     "render.width=" + std::to_string(wider), "--set",
+                     "render.height=" + std::to_string(kFarmHeight), "--out", scene.string()});
   ASSERT_EQ(pov.exit_code, 0) << pov.output;
   ASSERT_TRUE(fs::exists(scene / frame_name(1)));  // carried over from the earlier scene
 
   const CommandResult r = run_toonwater({"render", scene.string(), "--jobs", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find(std::to_string(kFarmFrames) + " frame(s) rendered, 0 skipped"),
-            std::string::npos) << r.output;
-  for (int f = 1; f <= kFarmFrames; ++f) EXPECT_EQ(read_image(scene / frame_name(f)).width, wider) << f;
+            std::string::npos)
+      << r.output;
+  for (int f = 1; f <= kFarmFrames; ++f)
+    EXPECT_EQ(read_image(scene / frame_name(f)).width, wider) << f;
 
   // Rendered now, the images are the scene's: a second render skips them all.
   const CommandResult again = run_toonwater({"render", scene.string(), "--jobs", "2"});
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_NE(again.output.find("0 frame(s) rendered, " + std::to_string(kFarmFrames) + " skipped"),
-            std::string::npos) << again.output;
+            std::string::npos)
+      << again.output;
 }
 
 TEST_F(FarmScene, MissingOrFailingSbatchIsAClearErrorWithTheCommand) {
@@ -235,7 +249,8 @@ TEST_F(FarmScene, MissingOrFailingSbatchIsAClearErrorWithTheCommand) {
   ::setenv("PATH", (work_ / "empty").c_str(), 1);
   const CommandResult missing = run_toonwater({"render", scene.string(), "--on", "slurm"});
   EXPECT_NE(missing.exit_code, 0);
-  EXPECT_NE(missing.output.find("cannot run 'sbatch --parsable"), std::string::npos) << missing.output;
+  EXPECT_NE(missing.output.find("cannot run 'sbatch --parsable"), std::string::npos)
+      << missing.output;
   EXPECT_NE(missing.output.find("sbatch not found"), std::string::npos) << missing.output;
 
   // A Slurm whose controller is down: sbatch's own message, and the command line.
@@ -243,10 +258,12 @@ TEST_F(FarmScene, MissingOrFailingSbatchIsAClearErrorWithTheCommand) {
              "#!/bin/sh\necho 'sbatch: error: Batch job submission failed: Unable to contact slurm "
              "controller (connect failure)' >&2\nexit 1\n");
   fs::permissions(work_ / "empty/sbatch", fs::perms::owner_all);
-  const CommandResult failing = run_toonwater({"render", scene.string(), "--on", "slurm", "--partition", "gpu"});
+  const CommandResult failing =
+      run_toonwater({"render", scene.string(), "--on", "slurm", "--partition", "gpu"});
   ::setenv("PATH", saved.c_str(), 1);
   EXPECT_NE(failing.exit_code, 0);
-  EXPECT_NE(failing.output.find("Unable to contact slurm controller"), std::string::npos) << failing.output;
+  EXPECT_NE(failing.output.find("Unable to contact slurm controller"), std::string::npos)
+      << failing.output;
   EXPECT_NE(failing.output.find("'sbatch --parsable"), std::string::npos) << failing.output;
   EXPECT_NE(failing.output.find("--partition=gpu"), std::string::npos) << failing.output;
   for (int f = 1; f <= kFarmFrames; ++f) EXPECT_FALSE(fs::exists(scene / frame_name(f)));

@@ -69,11 +69,12 @@ fs::path SlurmFarm::scene_, SlurmFarm::reference_;
 
 TEST_F(SlurmFarm, JobArrayRendersEveryFrameLikeTheLocalRender) {
   const fs::path scene = copy_scene("array");
-  const CommandResult r = run_toonwater(
-      {"render", scene.string(), "--on", "slurm", "--partition", "local", "--frames-per-task", "2"});
+  const CommandResult r = run_toonwater({"render", scene.string(), "--on", "slurm", "--partition",
+                                         "local", "--frames-per-task", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("3 task(s) over 6 frame(s) submitted"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("6/6 frames, 0 task(s) running, 0 pending"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("6/6 frames, 0 task(s) running, 0 pending"), std::string::npos)
+      << r.output;
   EXPECT_NE(r.output.find("6 frame(s) rendered, 0 skipped"), std::string::npos) << r.output;
   expect_frames_like(scene, reference());
   // A log per task, written by the task on the node.
@@ -89,8 +90,8 @@ TEST_F(SlurmFarm, JobArrayRendersEveryFrameLikeTheLocalRender) {
 
 TEST_F(SlurmFarm, NoWaitPrintsTheJobIdAndStatusReportsProgressToTheEnd) {
   const fs::path scene = copy_scene("nowait");
-  const CommandResult r =
-      run_toonwater({"render", scene.string(), "--on", "slurm", "--frames-per-task", "3", "--no-wait"});
+  const CommandResult r = run_toonwater(
+      {"render", scene.string(), "--on", "slurm", "--frames-per-task", "3", "--no-wait"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string id = r.output.substr(r.output.rfind('\n', r.output.size() - 2) + 1);
   ASSERT_FALSE(id.empty());
@@ -145,7 +146,8 @@ TEST_F(SlurmFarm, SigtermCancelsTheJobAndExitsInterrupted) {
   const std::string job = output.substr(at + 10, output.find(':', at) - at - 10);
   bool gone = false;
   for (int i = 0; i < 300 && !gone; ++i) {
-    gone = povgen::run_command({"squeue", "-h", "-j", job}).out.find_first_not_of(" \n") == std::string::npos;
+    gone = povgen::run_command({"squeue", "-h", "-j", job}).out.find_first_not_of(" \n") ==
+           std::string::npos;
     if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   EXPECT_TRUE(gone) << "slurm job " << job << " still queued or running";
@@ -181,7 +183,8 @@ TEST_F(SlurmFarm, AFrameThatFailsTwiceIsReportedWithPovRaysMessage) {
       << r.output;
   EXPECT_FALSE(fs::exists(scene / frame_name(5)));
   for (int f : {1, 2, 3, 4, 6})
-    EXPECT_EQ(read_image(scene / frame_name(f)).pixels, read_image(reference() / frame_name(f)).pixels)
+    EXPECT_EQ(read_image(scene / frame_name(f)).pixels,
+              read_image(reference() / frame_name(f)).pixels)
         << f;
 }
 

@@ -29,13 +29,21 @@ void expect_exact_cover(const std::vector<long>& frames, const std::vector<Frame
 }
 
 const std::vector<std::vector<long>> kFrameSets{
-    {}, {7}, {1, 2, 3, 4, 5, 6, 7}, {4, 6}, {1, 2, 3, 4, 7, 8}, {1, 2, 5}, {1, 2, 3, 4, 5, 7, 8, 10},
+    {},
+    {7},
+    {1, 2, 3, 4, 5, 6, 7},
+    {4, 6},
+    {1, 2, 3, 4, 7, 8},
+    {1, 2, 5},
+    {1, 2, 3, 4, 5, 7, 8, 10},
     {-3, -2, -1, 0, 1, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 40}};
 
 TEST(FrameRanges, EveryFrameInExactlyOneRangeInOrder) {
   for (const auto& frames : kFrameSets) {
-    for (const int processes : {1, 2, 3, 8, 100}) expect_exact_cover(frames, ranges_for_processes(frames, processes));
-    for (const long per_task : {1L, 2L, 3L, 10L}) expect_exact_cover(frames, ranges_of_at_most(frames, per_task));
+    for (const int processes : {1, 2, 3, 8, 100})
+      expect_exact_cover(frames, ranges_for_processes(frames, processes));
+    for (const long per_task : {1L, 2L, 3L, 10L})
+      expect_exact_cover(frames, ranges_of_at_most(frames, per_task));
   }
 }
 

@@ -1,8 +1,8 @@
-// Nothing lost: `toonwater povgen` and `toonwater render` interrupted by SIGINT, SIGTERM or SIGHUP in the
-// middle of a sequence stop with the "interrupted" exit code and leave no temporary or partial
-// file and no povray process behind. povgen leaves the scene directory exactly as it was (none
-// in a fresh place, the earlier complete scene otherwise); render keeps the images it finished.
-// Running the command again completes the sequence.
+// Nothing lost: `toonwater povgen` and `toonwater render` interrupted by SIGINT, SIGTERM or SIGHUP
+// in the middle of a sequence stop with the "interrupted" exit code and leave no temporary or
+// partial file and no povray process behind. povgen leaves the scene directory exactly as it was
+// (none in a fresh place, the earlier complete scene otherwise); render keeps the images it
+// finished. Running the command again completes the sequence.
 //
 // No timing is asserted: the signal is sent once the progress display shows a few frames done, and
 // the sequences are long enough that the run is still going then. Waits are generous.
@@ -200,9 +200,9 @@ TEST_P(Interrupt, RenderStopsPovrayAndLeavesOnlyWholeImages) {
   ScratchDir dir;
   const fs::path pattern = make_sequence(dir.path(), 12);
   const fs::path out = dir / "scene";
-  const CommandResult made = run_toonwater({"povgen", "--water", pattern.string(), "--out",
-                                            out.string(), "--set", "render.width=48", "--set",
-                                            "render.height=36"});
+  const CommandResult made =
+      run_toonwater({"povgen", "--water", pattern.string(), "--out", out.string(), "--set",
+                     "render.width=48", "--set", "render.height=36"});
   ASSERT_EQ(made.exit_code, 0) << made.output;
   const std::vector<std::string> args{"render", out.string(), "--jobs", "2"};
   const auto images = [&] {
@@ -264,9 +264,9 @@ INSTANTIATE_TEST_SUITE_P(Signals, Interrupt, ::testing::Values(SIGINT, SIGTERM, 
 fs::path small_scene(const fs::path& dir) {
   const fs::path pattern = make_sequence(dir, 12);
   const fs::path out = dir / "scene";
-  const CommandResult made = run_toonwater({"povgen", "--water", pattern.string(), "--out",
-                                            out.string(), "--set", "render.width=48", "--set",
-                                            "render.height=36"});
+  const CommandResult made =
+      run_toonwater({"povgen", "--water", pattern.string(), "--out", out.string(), "--set",
+                     "render.width=48", "--set", "render.height=36"});
   EXPECT_EQ(made.exit_code, 0) << made.output;
   return out;
 }
@@ -316,7 +316,8 @@ TEST(InterruptOutright, ARenderKilledBySigkillLeavesNoPovrayRunningAndTheNextRun
 }
 
 TEST(InterruptOutright, ARenderOnGnuParallelStopsItsTasksOnSigterm) {
-  if (::system("parallel --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "GNU parallel is not installed";
+  if (::system("parallel --version > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "GNU parallel is not installed";
   ScratchDir dir;
   const fs::path out = small_scene(dir.path());
   // POV-Ray on PATH that runs for a minute, each telling its process id.

@@ -69,11 +69,13 @@ FlowMask mask_of(int width, int height, const std::function<std::int8_t(int, int
 TEST(FlowStudy, MaskMetricsTellSmoothFromStaircaseAndCountSpecks) {
   // A disc of radius 40 px: smooth. The same disc cut into 8-pixel steps along a diagonal
   // staircase of its boundary, as per-vertex labels on an 8 px grid would draw it.
-  const auto disc = mask_of(200, 200, [](int x, int y) { return std::hypot(x - 100, y - 100) < 40 ? 1 : 0; });
+  const auto disc =
+      mask_of(200, 200, [](int x, int y) { return std::hypot(x - 100, y - 100) < 40 ? 1 : 0; });
   const auto steps = mask_of(200, 200, [](int x, int y) {
     return std::hypot(8 * (x / 8) + 4 - 100, 8 * (y / 8) + 4 - 100) < 40 ? 1 : 0;
   });
-  const FlowPictureMetrics smooth = measure_flow_mask(disc, 8.0), jagged = measure_flow_mask(steps, 8.0);
+  const FlowPictureMetrics smooth = measure_flow_mask(disc, 8.0),
+                           jagged = measure_flow_mask(steps, 8.0);
   std::printf("disc %.3f, staircase %.3f\n", smooth.boundary_ratio, jagged.boundary_ratio);
   EXPECT_LT(smooth.boundary_ratio, 1.05);
   EXPECT_GT(jagged.boundary_ratio, 1.1);
@@ -111,12 +113,13 @@ TEST(FlowStudy, MantaflowWakeFromAbove) {
   const std::filesystem::path shared = test::shared_dir();
   if (shared.empty()) GTEST_SKIP() << "../shared/data is absent: real-data test skipped";
   test::ScratchDir dir;
-  const std::vector<SequenceFlowStudy> studies = run_sequence_flow_study(
-      (shared / "data/mantaflow-wake/water_####.obj").string(), Axis::z, dir.path(),
-      dir / "pictures", 8.0, {FlowCriterion::mean});
+  const std::vector<SequenceFlowStudy> studies =
+      run_sequence_flow_study((shared / "data/mantaflow-wake/water_####.obj").string(), Axis::z,
+                              dir.path(), dir / "pictures", 8.0, {FlowCriterion::mean});
   const SequenceFlowStudy& mean = studies.at(0);
-  std::printf("mantaflow-wake from above: %zu/%zu frames with regions, specks %.4f, boundary %.3f\n",
-              mean.frames_with_regions, mean.frames, mean.speck_share, mean.boundary_ratio);
+  std::printf(
+      "mantaflow-wake from above: %zu/%zu frames with regions, specks %.4f, boundary %.3f\n",
+      mean.frames_with_regions, mean.frames, mean.speck_share, mean.boundary_ratio);
   ASSERT_EQ(mean.frames, 30u);
   for (const auto& [frame, pixels] : mean.flow_pixels_by_frame) {
     if (frame > 1) {
@@ -150,10 +153,11 @@ TEST(FlowStudy, MantaflowDambreakFromAbove) {
   std::size_t flow = 0, wall_flow = 0;
   std::vector<std::size_t> pieces, specks;
   for (const OverheadFrame& f : frames) {
-    std::printf("frame %2ld: flow %.4f, walls %zu/%zu, changed %.3f, pieces %zu, specks %zu, "
-                "bright+dark %.3f\n",
-                f.frame, f.flow_share(), f.wall_flow_pixels, f.flow_pixels, f.changed_share,
-                f.flow_pieces, f.band_specks, f.contrast_share);
+    std::printf(
+        "frame %2ld: flow %.4f, walls %zu/%zu, changed %.3f, pieces %zu, specks %zu, "
+        "bright+dark %.3f\n",
+        f.frame, f.flow_share(), f.wall_flow_pixels, f.flow_pixels, f.changed_share, f.flow_pieces,
+        f.band_specks, f.contrast_share);
     flow += f.flow_pixels;
     wall_flow += f.wall_flow_pixels;
     pieces.push_back(f.flow_pieces);

@@ -103,10 +103,10 @@ TEST(Report, QuickRunHasFiniteNumbersAndErrorsFallingOnRegularMeshes) {
     for (std::size_t c = 1; c < 6; ++c) EXPECT_TRUE(std::isfinite(number(quality[i][c]))) << i << c;
     EXPECT_GE(number(quality[i][1]), 80.0) << i;  // width: half of 160 at the least
     EXPECT_GE(number(quality[i][2]), 60.0) << i;
-    EXPECT_GT(number(quality[i][3]), 0.0) << i;   // seconds
-    EXPECT_GE(number(quality[i][4]), 0.0) << i;   // RMSE of RGB in [0, 1]
+    EXPECT_GT(number(quality[i][3]), 0.0) << i;  // seconds
+    EXPECT_GE(number(quality[i][4]), 0.0) << i;  // RMSE of RGB in [0, 1]
     EXPECT_LE(number(quality[i][4]), 1.0) << i;
-    EXPECT_GE(number(quality[i][5]), 0.0) << i;   // a share of the pixels
+    EXPECT_GE(number(quality[i][5]), 0.0) << i;  // a share of the pixels
     EXPECT_LE(number(quality[i][5]), 1.0) << i;
   }
   EXPECT_EQ(number(quality[1][1]) * 2, number(quality[3][1]));
@@ -124,7 +124,8 @@ TEST(Report, QuickRunHasFiniteNumbersAndErrorsFallingOnRegularMeshes) {
   ASSERT_EQ(ripples.size(), 1u + 2 * 2 * 2);  // criteria × meshes × resolutions
   for (std::size_t i = 1; i < ripples.size(); ++i) {
     const double crest = number(ripples[i][3]);
-    EXPECT_TRUE(ripples[i][0] == "mean" ? crest >= 0.8 : crest < 0.5) << ripples[i][0] << " " << crest;
+    EXPECT_TRUE(ripples[i][0] == "mean" ? crest >= 0.8 : crest < 0.5)
+        << ripples[i][0] << " " << crest;
   }
   if (!shared_dir().empty()) {
     EXPECT_TRUE(std::filesystem::is_regular_file(dir / "out" / "flow_mean.png"));

@@ -1,8 +1,8 @@
 // Huge and hostile scene configurations: deep nesting, enormous files and overrides, stray
 // non-ASCII bytes get a clear ConfigError (or are read correctly), never a crash. Two are
-// regression tests for what fuzzing found in toml++ 3.3 (scene/toml_guard.hpp: check_before_parsing):
-// a stack overflow on deep dotted keys, and undefined behaviour (__builtin_unreachable) on
-// non-ASCII characters outside strings.
+// regression tests for what fuzzing found in toml++ 3.3 (scene/toml_guard.hpp:
+// check_before_parsing): a stack overflow on deep dotted keys, and undefined behaviour
+// (__builtin_unreachable) on non-ASCII characters outside strings.
 #include "scene/config.hpp"
 #include "tests/support/scene_config.hpp"
 #include "tests/support/test_support.hpp"
@@ -38,8 +38,10 @@ TEST(HostileConfig, DeepDottedKeysAreRejectedBeforeParsing) {
 
 TEST(HostileConfig, DotsInStringsCommentsAndNumbersAreNotNesting) {
   const std::string dots = repeat(".x", 40);
-  EXPECT_EQ(config_error("[water] # " + dots + "\nior = 1.25\nbright = [0.5, 0.25, 0.125]\n"
-                    "[[object]]\nmesh = \"a" + dots + ".obj\"\nname = '''b" + dots + "'''\n"),
+  EXPECT_EQ(config_error("[water] # " + dots +
+                         "\nior = 1.25\nbright = [0.5, 0.25, 0.125]\n"
+                         "[[object]]\nmesh = \"a" +
+                         dots + ".obj\"\nname = '''b" + dots + "'''\n"),
             "accepted");
 }
 
@@ -51,7 +53,8 @@ TEST(HostileConfig, DeepOverridesAreRejected) {
   for (const std::string& value :
        {"{" + repeat("a.", deep) + "a = 1}", repeat("[", deep) + repeat("]", deep)}) {
     error = config_error("", {"water.ior=" + value});
-    EXPECT_NE(error.find("'water.ior' must be a number"), std::string::npos) << error.substr(0, 200);
+    EXPECT_NE(error.find("'water.ior' must be a number"), std::string::npos)
+        << error.substr(0, 200);
   }
 }
 
@@ -67,7 +70,8 @@ TEST(HostileConfig, DeeplyNestedValuesGetAParseErrorWithTheLine) {
 TEST(HostileConfig, EnormousFilesAreReadOrRejectedNamingTheKey) {
   // 100k unknown keys: the first one is named.
   std::string toml = "[water]\nior = 1.2\n";
-  for (int i = 0; i < 100000; ++i) toml += "k" + std::to_string(i) + " = " + std::to_string(i) + "\n";
+  for (int i = 0; i < 100000; ++i)
+    toml += "k" + std::to_string(i) + " = " + std::to_string(i) + "\n";
   std::string error = config_error(toml);
   EXPECT_NE(error.find("'water.k0' is not a known key"), std::string::npos) << error;
 

@@ -51,12 +51,23 @@ std::string toml_string(const std::string& text) {
   std::string out = "\"";
   for (const char c : text) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default: out += c;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        out += c;
     }
   }
   return out + "\"";
@@ -69,7 +80,8 @@ struct RunResult {
 
 // Runs `argv` in `dir` without a shell (the directory's name may hold anything).
 RunResult run_in(const fs::path& dir, const std::vector<std::string>& argv) {
-  const fs::path log = fs::temp_directory_path() / ("toonwater-injection-" + std::to_string(::getpid()) + ".log");
+  const fs::path log =
+      fs::temp_directory_path() / ("toonwater-injection-" + std::to_string(::getpid()) + ".log");
   const pid_t pid = ::fork();
   if (pid == 0) {
     const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -127,7 +139,8 @@ bool wraps_identifier(std::string_view text, std::string_view prefix, std::strin
 bool known_pov_directive(std::string_view line) {
   return line == "#version 3.7;" || line == "#include \"toon.inc\"" ||
          line == "#include concat(\"water_\", str(frame_number, -4, 0), \".inc\")" ||
-         wraps_identifier(line, "#include concat(\"obj_", "_\", str(frame_number, -4, 0), \".inc\")") ||
+         wraps_identifier(line, "#include concat(\"obj_",
+                          "_\", str(frame_number, -4, 0), \".inc\")") ||
          wraps_identifier(line, "#include \"obj_", ".inc\"");
 }
 
@@ -157,7 +170,8 @@ void expect_only_generated_code(const fs::path& scene) {
     const std::string name = entry.path().filename().string();
     const std::string text = read_text(entry.path());
     for (const char c : text)
-      EXPECT_TRUE(c == '\n' || static_cast<unsigned char>(c) >= 0x20) << name << " has a control character";
+      EXPECT_TRUE(c == '\n' || static_cast<unsigned char>(c) >= 0x20)
+          << name << " has a control character";
     if (name == "toon.inc" || entry.path().extension() == ".png") continue;  // the fixed template
     for (const std::string& line : lines_of(text)) {
       const std::size_t hash = line.find('#');
@@ -191,13 +205,15 @@ void expect_only_generated_code(const fs::path& scene) {
           // An object's water (object_water_declaration): numbers and fixed words only.
           static const std::string number = R"(-?[0-9.]+(e[-+]?[0-9]+)?)";
           static const std::string vector = "<" + number + ", " + number + ", " + number + ">";
-          static const std::regex water_line("#declare [A-Za-z0-9_]+_(water_line|contact) = " + number + ";");
+          static const std::regex water_line(
+              "#declare [A-Za-z0-9_]+_(water_line|contact) = " + number + ";");
           static const std::regex water("#declare [A-Za-z0-9_]+_water = (plane \\{ y, " + number +
                                         " \\}|intersection \\{ object \\{ Water_mesh \\} box \\{ " +
                                         vector + ", " + vector + " \\} \\})");
-          EXPECT_TRUE(hash == 0 && (wraps_identifier(line, "#declare ", "_mesh = mesh2 {") ||
-                                    wraps_identifier(line, "#declare ", "_shell = mesh2 {") ||
-                                    std::regex_match(line, water_line) || std::regex_match(line, water)))
+          EXPECT_TRUE(hash == 0 &&
+                      (wraps_identifier(line, "#declare ", "_mesh = mesh2 {") ||
+                       wraps_identifier(line, "#declare ", "_shell = mesh2 {") ||
+                       std::regex_match(line, water_line) || std::regex_match(line, water)))
               << name << ": " << line;
         }
         EXPECT_EQ(line.find('"'), std::string::npos) << name << ": " << line;
@@ -234,8 +250,8 @@ class Injection : public ::testing::Test {
 TEST_F(Injection, ObjectNamesFromTheConfigBecomeIdentifiers) {
   for (std::size_t i = 0; i < payloads.size(); ++i) {
     SCOPED_TRACE("payload " + std::to_string(i));
-    write_text(dir / "scene.toml", "[[object]]\nmesh = \"ball.obj\"\nname = " +
-                                       toml_string(payloads[i]) + "\n");
+    write_text(dir / "scene.toml",
+               "[[object]]\nmesh = \"ball.obj\"\nname = " + toml_string(payloads[i]) + "\n");
     const fs::path out = dir / ("config_" + std::to_string(i));
     const CommandResult r = povgen({"--config", (dir / "scene.toml").string()}, out);
     ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -250,9 +266,8 @@ TEST_F(Injection, ObjectNamesFromSetBecomeIdentifiers) {
     const fs::path out = dir / ("set_" + std::to_string(i));
     // Given raw (a bare word is taken as a string) and as a TOML string.
     for (const std::string& value : {payloads[i], toml_string(payloads[i])}) {
-      const CommandResult r = povgen({"--object", (dir / "ball.obj").string(), "--set",
-                                      "object.0.name=" + value},
-                                     out);
+      const CommandResult r =
+          povgen({"--object", (dir / "ball.obj").string(), "--set", "object.0.name=" + value}, out);
       ASSERT_EQ(r.exit_code, 0) << r.output;
       expect_only_generated_code(out);
     }
@@ -326,13 +341,14 @@ TEST_F(Injection, HostileFileAndDirectoryNamesStayOutOfTheScene) {
 
 TEST_F(Injection, MeshFileContentOtherThanNumbersNeverReachesTheScene) {
   // OBJ statements the reader skips (names, groups, materials) carry the payload.
-  std::string obj = "o x\"}#fopen F \"pwned.txt\" write\ng #fopen F \"pwned.txt\" write\n"
-                    "mtllib \"x\".mtl\nusemtl }#declare\n";
+  std::string obj =
+      "o x\"}#fopen F \"pwned.txt\" write\ng #fopen F \"pwned.txt\" write\n"
+      "mtllib \"x\".mtl\nusemtl }#declare\n";
   obj += "v 0 0 0\nv 1 0 0\nv 0 0 1\nv 1 0.1 1\nf 1 3 2\nf 2 3 4\n";
   write_text(dir / "named.obj", obj);
   const fs::path out = dir / "named";
-  const CommandResult r = run_toonwater(
-      {"povgen", "--water", (dir / "named.obj").string(), "--out", out.string()});
+  const CommandResult r =
+      run_toonwater({"povgen", "--water", (dir / "named.obj").string(), "--out", out.string()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   expect_only_generated_code(out);
   expect_renders_cleanly(out);

@@ -28,7 +28,8 @@ TriangleMesh make_tank(int n, double half, double depth,
                        const std::function<double(double, double)>& height) {
   TriangleMesh m = make_height_grid(n, half, height);
   const int top = n * n;
-  for (int v = 0; v < top; ++v) m.positions.emplace_back(m.positions[v].x(), -depth, m.positions[v].z());
+  for (int v = 0; v < top; ++v)
+    m.positions.emplace_back(m.positions[v].x(), -depth, m.positions[v].z());
   const std::size_t top_faces = m.triangles.size();
   for (std::size_t f = 0; f < top_faces; ++f) {
     const Triangle t = m.triangles[f];
@@ -46,10 +47,10 @@ TriangleMesh make_tank(int n, double half, double depth,
     }
   };
   for (int i = 0; i + 1 < n; ++i) {
-    wall(i, i + 1);                                  // z = −half
-    wall((n - 1) * n + i, (n - 1) * n + i + 1);      // z = +half
-    wall(i * n, (i + 1) * n);                        // x = −half
-    wall(i * n + n - 1, (i + 1) * n + n - 1);        // x = +half
+    wall(i, i + 1);                              // z = −half
+    wall((n - 1) * n + i, (n - 1) * n + i + 1);  // z = +half
+    wall(i * n, (i + 1) * n);                    // x = −half
+    wall(i * n + n - 1, (i + 1) * n + n - 1);    // x = +half
   }
   return m;
 }
@@ -57,11 +58,23 @@ TriangleMesh make_tank(int n, double half, double depth,
 // The scene written by povgen with the default look (antialiasing off, so that pixels compare
 // one to one) and rendered; its frame read back.
 Image render(const fs::path& out, std::vector<std::string> args) {
-  std::vector<std::string> full{"povgen", "--out", out.string(), "--set", "render.antialias=false",
-                                "--set", "render.width=" + std::to_string(kWidth), "--set",
-                                "render.height=" + std::to_string(kHeight), "--set",
-                                "camera.location=[0, 2.2, 3.2]", "--set", "camera.look_at=[0, -0.3, 0]",
-                                "--set", "camera.angle=40", "--set", "flow.enabled=false"};
+  std::vector<std::string> full{"povgen",
+                                "--out",
+                                out.string(),
+                                "--set",
+                                "render.antialias=false",
+                                "--set",
+                                "render.width=" + std::to_string(kWidth),
+                                "--set",
+                                "render.height=" + std::to_string(kHeight),
+                                "--set",
+                                "camera.location=[0, 2.2, 3.2]",
+                                "--set",
+                                "camera.look_at=[0, -0.3, 0]",
+                                "--set",
+                                "camera.angle=40",
+                                "--set",
+                                "flow.enabled=false"};
   full.insert(full.end(), args.begin(), args.end());
   const CommandResult r = run_toonwater(full);
   EXPECT_EQ(r.exit_code, 0) << r.output;
@@ -148,9 +161,8 @@ TEST(ObjectsInWater, ASubmergedBallKeepsALegibleLineInATintOfItsOwnColour) {
   for (int k = 0; k < 3; ++k) {
     const double a = amplitudes[k];
     const fs::path tank = dir / ("tank" + std::to_string(k) + ".obj");
-    write_obj(tank, make_tank(41, 1.5, 1.0, [a](double x, double z) {
-                return a * std::sin(6 * x + 2 * z);
-              }));
+    write_obj(tank, make_tank(41, 1.5, 1.0,
+                              [a](double x, double z) { return a * std::sin(6 * x + 2 * z); }));
     const std::vector<std::string> water{"--water", tank.string()};
     const std::vector<std::string> ball{"--object", (dir / "ball.obj").string(), "--set",
                                         "object.0.color=[0.92, 0.45, 0.18]"};
@@ -164,11 +176,11 @@ TEST(ObjectsInWater, ASubmergedBallKeepsALegibleLineInATintOfItsOwnColour) {
                                       render(dir / ("empty" + tag), water));
     ASSERT_GT(o.outline_pixels, 60) << "amplitude " << a;
     ASSERT_GT(o.inside, 300) << "amplitude " << a;
-    EXPECT_GE(o.lined, 0.7 * o.outline_pixels)
-        << "amplitude " << a << ": " << o.lined << " of " << o.outline_pixels << " outline pixels lined";
+    EXPECT_GE(o.lined, 0.7 * o.outline_pixels) << "amplitude " << a << ": " << o.lined << " of "
+                                               << o.outline_pixels << " outline pixels lined";
     const double h = hue(o.r, o.g, o.b);
-    EXPECT_LT(hue_distance(h, kObjectHue), 20.0)
-        << "amplitude " << a << ": mean colour " << o.r << "," << o.g << "," << o.b << ", hue " << h;
+    EXPECT_LT(hue_distance(h, kObjectHue), 20.0) << "amplitude " << a << ": mean colour " << o.r
+                                                 << "," << o.g << "," << o.b << ", hue " << h;
   }
 }
 
@@ -188,7 +200,8 @@ std::vector<bool> largest_part(const std::vector<bool>& mask, int width, int hei
       stack.pop_back();
       ++size;
       const int x = static_cast<int>(i % width), y = static_cast<int>(i / width);
-      for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+      for (const auto& [dx, dy] :
+           {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
         const int u = x + dx, v = y + dy;
         if (u < 0 || v < 0 || u >= width || v >= height) continue;
         const std::size_t j = static_cast<std::size_t>(v) * width + u;
@@ -212,7 +225,8 @@ std::vector<bool> grown_within(std::vector<bool> seeds, const std::vector<bool>&
     const std::size_t i = stack.back();
     stack.pop_back();
     const int x = static_cast<int>(i % width), y = static_cast<int>(i / width);
-    for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+    for (const auto& [dx, dy] :
+         {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
       const int u = x + dx, v = y + dy;
       if (u < 0 || v < 0 || u >= width || v >= height) continue;
       const std::size_t j = static_cast<std::size_t>(v) * width + u;
@@ -234,17 +248,19 @@ TEST(ObjectsInWater, TheSphereUnderARealDamBreakKeepsItsLine) {
   if (shared.empty()) GTEST_SKIP() << "../shared/data is absent: real-data test skipped";
   const fs::path data = shared / "data" / "mantaflow-dambreak";
   ScratchDir dir;
-  const std::vector<std::string> common{
-      "--up", "z", "--water", (data / "water_####.obj").string(), "--set", "render.frames=\"12-36\"",
-      "--set", "camera.location=[0, -1.878263, 1.356397]", "--set",
-      "camera.look_at=[0, -0.009583369, 0.2775146]", "--set", "flow.enabled=false"};
+  const std::vector<std::string> common{"--up",    "z",
+                                        "--water", (data / "water_####.obj").string(),
+                                        "--set",   "render.frames=\"12-36\"",
+                                        "--set",   "camera.location=[0, -1.878263, 1.356397]",
+                                        "--set",   "camera.look_at=[0, -0.009583369, 0.2775146]",
+                                        "--set",   "flow.enabled=false"};
   const std::vector<std::string> sphere{"--object", (data / "sphere_####.obj").string()};
   auto scene = [&](const std::string& name, std::vector<std::string> extra) {
     std::vector<std::string> args = common;
     args.insert(args.end(), extra.begin(), extra.end());
-    args.insert(args.begin(), {"povgen", "--out", (dir / name).string(), "--set",
-                               "render.antialias=false", "--set", "render.width=320", "--set",
-                               "render.height=180"});
+    args.insert(args.begin(),
+                {"povgen", "--out", (dir / name).string(), "--set", "render.antialias=false",
+                 "--set", "render.width=320", "--set", "render.height=180"});
     const CommandResult r = run_toonwater(args);
     EXPECT_EQ(r.exit_code, 0) << r.output;
   };
@@ -333,9 +349,9 @@ TEST(ObjectsInWater, ABallAcrossTheSurfaceHasAContactLine) {
   const double radius = 0.35;
   write_obj(dir / "ball.obj", make_sphere(Vec3(0.0, 0.0, 0.2), radius, 32, 64));
   write_obj(dir / "tank.obj", make_tank(21, 1.5, 1.0, [](double, double) { return 0.0; }));
-  const std::vector<std::string> scene{"--water", (dir / "tank.obj").string(), "--object",
-                                       (dir / "ball.obj").string(), "--set",
-                                       "object.0.color=[0.92, 0.45, 0.18]"};
+  const std::vector<std::string> scene{"--water",  (dir / "tank.obj").string(),
+                                       "--object", (dir / "ball.obj").string(),
+                                       "--set",    "object.0.color=[0.92, 0.45, 0.18]"};
   std::vector<std::string> unlined = scene;
   unlined.insert(unlined.end(), {"--set", "object.0.outline=false"});
   const Image with = render(dir / "lined", scene), without = render(dir / "unlined", unlined);
@@ -351,7 +367,8 @@ TEST(ObjectsInWater, ABallAcrossTheSurfaceHasAContactLine) {
     bool darker = false;
     for (int dy = -2; dy <= 2 && !darker; ++dy)
       for (int dx = -2; dx <= 2 && !darker; ++dx) {
-        const int u = static_cast<int>(std::floor(x)) + dx, v = static_cast<int>(std::floor(y)) + dy;
+        const int u = static_cast<int>(std::floor(x)) + dx,
+                  v = static_cast<int>(std::floor(y)) + dy;
         if (u < 0 || v < 0 || u >= kWidth || v >= kHeight) continue;
         if (std::hypot(u + 0.5 - x, v + 0.5 - y) > 1.5) continue;
         darker = luminance(with.at(u, v)) <= 0.75 * luminance(without.at(u, v));
@@ -386,7 +403,8 @@ TEST(WaterSilhouettes, ACrownInFrontOfTheWaterIsInkedAlongItsCrest) {
     bool darker = false;
     for (int dy = -3; dy <= 3 && !darker; ++dy)
       for (int dx = -3; dx <= 3 && !darker; ++dx) {
-        const int u = static_cast<int>(std::floor(x)) + dx, v = static_cast<int>(std::floor(y)) + dy;
+        const int u = static_cast<int>(std::floor(x)) + dx,
+                  v = static_cast<int>(std::floor(y)) + dy;
         if (u < 0 || v < 0 || u >= kWidth || v >= kHeight) continue;
         if (std::hypot(u + 0.5 - x, v + 0.5 - y) > 2.5) continue;
         darker = luminance(with.at(u, v)) <= 0.75 * luminance(without.at(u, v));
@@ -394,7 +412,8 @@ TEST(WaterSilhouettes, ACrownInFrontOfTheWaterIsInkedAlongItsCrest) {
     lined += darker;
   }
   ASSERT_GT(samples, 80);
-  EXPECT_GE(lined, 0.8 * samples) << lined << " of " << samples << " points of the crown's front crest";
+  EXPECT_GE(lined, 0.8 * samples) << lined << " of " << samples
+                                  << " points of the crown's front crest";
 }
 
 }  // namespace

@@ -33,14 +33,15 @@ std::vector<std::string> operator+(std::vector<std::string> a, const std::vector
 }
 
 std::vector<std::string> small_picture() {
-  return {"--set", "render.width=" + std::to_string(kWidth), "--set",
-          "render.height=" + std::to_string(kHeight), "--set", "render.antialias=false"};
+  return {"--set", "render.width=" + std::to_string(kWidth),
+          "--set", "render.height=" + std::to_string(kHeight),
+          "--set", "render.antialias=false"};
 }
 
 void povgen(const fs::path& out, const std::string& water, const std::string& object,
             std::vector<std::string> extra) {
-  std::vector<std::string> args{"povgen", "--up", "z", "--water", water, "--object", object,
-                                "--out", out.string()};
+  std::vector<std::string> args{"povgen",   "--up", "z",     "--water",   water,
+                                "--object", object, "--out", out.string()};
   args.insert(args.end(), extra.begin(), extra.end());
   const CommandResult r = run_toonwater(args);
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -109,7 +110,8 @@ Look measure(const Image& img) {
   for (const auto& [c, n] : counts) by_count.push_back({n, c});
   std::sort(by_count.rbegin(), by_count.rend());
   int top = 0;
-  for (std::size_t i = 0; i < std::min<std::size_t>(12, by_count.size()); ++i) top += by_count[i].first;
+  for (std::size_t i = 0; i < std::min<std::size_t>(12, by_count.size()); ++i)
+    top += by_count[i].first;
   look.top12 = scene ? double(top) / scene : 0;
   look.main_delta_e = by_count.empty() ? 0 : delta_e(by_count[0].second, bg);
   return look;
@@ -143,9 +145,10 @@ TEST(WakeDefaults, CartoonLookWithNothingConfigured) {
   // The water stands out against the background and is made of flat colours.
   for (const auto& [frame, img] : frames) {
     const Look look = measure(img);
-    std::printf("frame %d: main colour dE %.1f from the background, %.1f %% of the scene in "
-                "12 colours\n",
-                frame, look.main_delta_e, 100 * look.top12);
+    std::printf(
+        "frame %d: main colour dE %.1f from the background, %.1f %% of the scene in "
+        "12 colours\n",
+        frame, look.main_delta_e, 100 * look.top12);
     EXPECT_GE(look.main_delta_e, 25.0) << "frame " << frame;
     EXPECT_GE(look.top12, 0.85) << "frame " << frame;
   }
@@ -157,10 +160,14 @@ TEST(WakeDefaults, CartoonLookWithNothingConfigured) {
   const std::string location = camera_setting(dir / "defaults", "location");
   const std::string look_at = camera_setting(dir / "defaults", "look_at");
   ASSERT_FALSE(location.empty() || look_at.empty());
-  const std::vector<std::string> plain = small_picture() + std::vector<std::string>{
-      "--set", location, "--set", look_at, "--set", "outline.enabled=false", "--set",
-      "water.transmit=0", "--set", "water.reflection=0", "--set", "object.0.color=[1, 0, 1]",
-      "--set", "render.frames=\"9\""};
+  const std::vector<std::string> plain =
+      small_picture() + std::vector<std::string>{"--set", location,
+                                                 "--set", look_at,
+                                                 "--set", "outline.enabled=false",
+                                                 "--set", "water.transmit=0",
+                                                 "--set", "water.reflection=0",
+                                                 "--set", "object.0.color=[1, 0, 1]",
+                                                 "--set", "render.frames=\"9\""};
   {
     std::ofstream low(dir / "low.obj");
     low << "v -9 -9 -5\nv 9 -9 -5\nv 0 9 -5\nf 1 2 3\n";

@@ -19,8 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // Writes a scene with toonwater povgen and renders it; returns the frame's image.
-Image render_scene(const ScratchDir& dir, const std::string& name,
-                   std::vector<std::string> args) {
+Image render_scene(const ScratchDir& dir, const std::string& name, std::vector<std::string> args) {
   const fs::path out = dir / name;
   std::vector<std::string> full{"povgen", "--out", out.string()};
   full.insert(full.end(), args.begin(), args.end());
@@ -41,8 +40,11 @@ const std::array<double, 3> kBright{0.9, 0.9, 0.2}, kMedium{0.2, 0.6, 0.9}, kDar
     kBackground{1, 1, 1}, kObject{0.9, 0.5, 0.1};
 
 std::vector<std::string> opaque_flat_water() {
-  return {"--set", "water.ks=0", "--set", "water.reflection=0", "--set", "water.transmit=0",
-          "--set", "render.antialias=false", "--set", "render.background=" + color(kBackground),
+  return {"--set", "water.ks=0",
+          "--set", "water.reflection=0",
+          "--set", "water.transmit=0",
+          "--set", "render.antialias=false",
+          "--set", "render.background=" + color(kBackground),
           "--set", "flow.enabled=false"};
 }
 
@@ -61,16 +63,22 @@ void expect_three_crisp_bands(const std::string& light,
   write_obj(dir / "water.obj", make_sphere(Vec3::Zero(), 1.0, 48, 96));
   const int W = 64, H = 48;
   const double angle = 40, t_bright = 0.6, t_medium = 0.0;
-  const Image img = render_scene(
-      dir, "bands",
-      std::vector<std::string>{"--water", (dir / "water.obj").string(), "--set", "outline.enabled=false",
-                               "--set", "water.bright=" + color(kBright), "--set",
-                               "water.medium=" + color(kMedium), "--set", "water.dark=" + color(kDark),
-                               "--set", "water.t_bright=0.6", "--set", "water.t_medium=0.0", "--set",
-                               light, "--set", "camera.location=[0, 0, 5]",
-                               "--set", "camera.look_at=[0, 0, 0]", "--set", "camera.angle=40",
-                               "--set", "render.width=64", "--set", "render.height=48"} +
-          opaque_flat_water());
+  const Image img =
+      render_scene(dir, "bands",
+                   std::vector<std::string>{"--water", (dir / "water.obj").string(),
+                                            "--set",   "outline.enabled=false",
+                                            "--set",   "water.bright=" + color(kBright),
+                                            "--set",   "water.medium=" + color(kMedium),
+                                            "--set",   "water.dark=" + color(kDark),
+                                            "--set",   "water.t_bright=0.6",
+                                            "--set",   "water.t_medium=0.0",
+                                            "--set",   light,
+                                            "--set",   "camera.location=[0, 0, 5]",
+                                            "--set",   "camera.look_at=[0, 0, 0]",
+                                            "--set",   "camera.angle=40",
+                                            "--set",   "render.width=64",
+                                            "--set",   "render.height=48"} +
+                       opaque_flat_water());
   ASSERT_EQ(img.width, W);
   const Rgb8 bright = to_rgb8(kBright[0], kBright[1], kBright[2]);
   const Rgb8 medium = to_rgb8(kMedium[0], kMedium[1], kMedium[2]);
@@ -89,7 +97,8 @@ void expect_three_crisp_bands(const std::string& light,
       ASSERT_TRUE(known) << "pixel " << x << "," << y << " has a colour outside the bands";
       counts[0] += near(c, bright), counts[1] += near(c, medium), counts[2] += near(c, dark);
       counts[3] += near(c, background);
-      const Vec3 ray = Vec3(aspect * ((x + 0.5) / W - 0.5), 0.5 - (y + 0.5) / H, focal).normalized();
+      const Vec3 ray =
+          Vec3(aspect * ((x + 0.5) / W - 0.5), 0.5 - (y + 0.5) / H, focal).normalized();
       const double b = eye.dot(ray), miss = b * b - eye.squaredNorm();  // |eye + t ray| = r
       const double closest = std::sqrt(std::max(0.0, eye.squaredNorm() - b * b));
       if (std::abs(closest - 1.0) < 0.04) continue;  // the silhouette: the mesh is polygonal
@@ -116,9 +125,8 @@ TEST(PovgenRender, ThreeCrispBandsWhereTheThresholdsPutThemForAParallelLight) {
 
 TEST(PovgenRender, ThreeCrispBandsWhereTheThresholdsPutThemForAPointLight) {
   // At (1.5, 1.5, 1.5) in y-up input axes: (1.5, 1.5, -1.5) in POV-Ray's.
-  expect_three_crisp_bands("light.position=[1.5, 1.5, 1.5]", [](const Vec3& p) {
-    return (Vec3(1.5, 1.5, -1.5) - p).normalized();
-  });
+  expect_three_crisp_bands("light.position=[1.5, 1.5, 1.5]",
+                           [](const Vec3& p) { return (Vec3(1.5, 1.5, -1.5) - p).normalized(); });
 }
 
 // By default the band thresholds sit around the calm water's L·n: flat water is the medium
@@ -131,12 +139,15 @@ TEST(PovgenRender, RelativeBandsPutCalmWaterInTheMiddleBand) {
               return 0.05 * std::exp(-(x * x + z * z) / 0.03);
             }));
   const std::vector<std::string> args =
-      std::vector<std::string>{"--water", (dir / "bump.obj").string(), "--set", "outline.enabled=false",
-                               "--set", "water.bright=" + color(kBright), "--set",
-                               "water.medium=" + color(kMedium), "--set", "water.dark=" + color(kDark),
-                               "--set", "camera.location=[0, 2.5, 2.5]", "--set",
-                               "camera.look_at=[0, 0, 0]", "--set", "render.width=64", "--set",
-                               "render.height=48"} +
+      std::vector<std::string>{"--water", (dir / "bump.obj").string(),
+                               "--set",   "outline.enabled=false",
+                               "--set",   "water.bright=" + color(kBright),
+                               "--set",   "water.medium=" + color(kMedium),
+                               "--set",   "water.dark=" + color(kDark),
+                               "--set",   "camera.location=[0, 2.5, 2.5]",
+                               "--set",   "camera.look_at=[0, 0, 0]",
+                               "--set",   "render.width=64",
+                               "--set",   "render.height=48"} +
       opaque_flat_water();
   const Rgb8 bright = to_rgb8(kBright[0], kBright[1], kBright[2]);
   const Rgb8 medium = to_rgb8(kMedium[0], kMedium[1], kMedium[2]);
@@ -177,14 +188,18 @@ TEST(PovgenRender, CalmNoisyWaterIsOneBandWithoutFlow) {
             }));
   const std::array<double, 3> ridge{1, 0, 0}, valley{0, 1, 0};
   auto args = [&](const std::string& mesh) {
-    return std::vector<std::string>{"--water", (dir / mesh).string(), "--set", "outline.enabled=false",
-                                    "--set", "water.bright=" + color(kBright), "--set",
-                                    "water.medium=" + color(kMedium), "--set", "water.dark=" + color(kDark),
-                                    "--set", "camera.location=[0, 2.5, 2.5]", "--set",
-                                    "camera.look_at=[0, 0, 0]", "--set", "render.width=96", "--set",
-                                    "render.height=72"} +
+    return std::vector<std::string>{"--water", (dir / mesh).string(),
+                                    "--set",   "outline.enabled=false",
+                                    "--set",   "water.bright=" + color(kBright),
+                                    "--set",   "water.medium=" + color(kMedium),
+                                    "--set",   "water.dark=" + color(kDark),
+                                    "--set",   "camera.location=[0, 2.5, 2.5]",
+                                    "--set",   "camera.look_at=[0, 0, 0]",
+                                    "--set",   "render.width=96",
+                                    "--set",   "render.height=72"} +
            opaque_flat_water() +
-           std::vector<std::string>{"--set", "flow.enabled=true", "--set", "flow.ridge_color=" + color(ridge),
+           std::vector<std::string>{"--set", "flow.enabled=true",
+                                    "--set", "flow.ridge_color=" + color(ridge),
                                     "--set", "flow.valley_color=" + color(valley)};
   };
   auto count = [](const Image& img, const std::array<double, 3>& c) {
@@ -206,27 +221,33 @@ TEST(PovgenRender, CalmNoisyWaterIsOneBandWithoutFlow) {
 }
 
 // Band limits inside the noise (explicit, so not raised above it) on raw normals (no flow stage)
-// of a surface jittered by up to a cell: the noise paints specks of every band over calm water. Patches smaller than the shading's
-// scale or 2 px on screen take the colour around them (water.min_patch, scene/toon_islands.hpp):
-// the specks go, while a wave's slopes, larger than both, keep their bands.
+// of a surface jittered by up to a cell: the noise paints specks of every band over calm water.
+// Patches smaller than the shading's scale or 2 px on screen take the colour around them
+// (water.min_patch, scene/toon_islands.hpp): the specks go, while a wave's slopes, larger than
+// both, keep their bands.
 TEST(PovgenRender, SpecksOfTheBandsTakeTheColourAroundThem) {
   ScratchDir dir;
   constexpr int n = 81;
   constexpr double cell = 2.0 / (n - 1);
   write_obj(dir / "noisy.obj", make_height_grid(n, 1.0, [&](double x, double z) {
-              const double noise = cell *
-                                   std::sin(12.9898 * std::round(x / cell) + 78.233 * std::round(z / cell)) *
-                                   std::cos(43758.5453 * std::round(x / cell) - 9.1 * std::round(z / cell));
+              const double noise =
+                  cell * std::sin(12.9898 * std::round(x / cell) + 78.233 * std::round(z / cell)) *
+                  std::cos(43758.5453 * std::round(x / cell) - 9.1 * std::round(z / cell));
               return noise + 0.2 * std::exp(-(x * x + z * z) / 0.04);
             }));
   auto args = [&](const std::string& min_patch) {
-    return std::vector<std::string>{"--water", (dir / "noisy.obj").string(), "--set", "outline.enabled=false",
-                                    "--set", "water.bright=" + color(kBright), "--set",
-                                    "water.medium=" + color(kMedium), "--set", "water.dark=" + color(kDark),
-                                    "--set", "water.dt_bright=0.1", "--set", "water.dt_medium=-0.1",
-                                    "--set", "camera.location=[0, 2.5, 2.5]", "--set",
-                                    "camera.look_at=[0, 0, 0]", "--set", "render.width=160", "--set",
-                                    "render.height=120", "--set", "water.min_patch=" + min_patch} +
+    return std::vector<std::string>{"--water", (dir / "noisy.obj").string(),
+                                    "--set",   "outline.enabled=false",
+                                    "--set",   "water.bright=" + color(kBright),
+                                    "--set",   "water.medium=" + color(kMedium),
+                                    "--set",   "water.dark=" + color(kDark),
+                                    "--set",   "water.dt_bright=0.1",
+                                    "--set",   "water.dt_medium=-0.1",
+                                    "--set",   "camera.location=[0, 2.5, 2.5]",
+                                    "--set",   "camera.look_at=[0, 0, 0]",
+                                    "--set",   "render.width=160",
+                                    "--set",   "render.height=120",
+                                    "--set",   "water.min_patch=" + min_patch} +
            opaque_flat_water();
   };
   // The 4-connected patches of each band colour smaller than a disc of 2 px, and the pixels of
@@ -284,31 +305,51 @@ TEST(PovgenRender, SettlingWaterChangesBandOnlyWhereItMoves) {
   constexpr int n = 81, frames = 6;
   constexpr double cell = 2.0 / (n - 1);
   for (int f = 1; f <= frames; ++f)
-    write_obj(dir / ("water_" + std::to_string(f) + ".obj"), make_height_grid(n, 1.0, [&](double x, double z) {
+    write_obj(dir / ("water_" + std::to_string(f) + ".obj"),
+              make_height_grid(n, 1.0, [&](double x, double z) {
                 // White noise: splitmix64's finaliser of the grid point and the frame.
-                std::uint64_t h = static_cast<std::uint64_t>(std::lround(x / cell) + 1000) * 1000003u +
-                                  static_cast<std::uint64_t>(std::lround(z / cell) + 1000) * 7919u +
-                                  static_cast<std::uint64_t>(f) * 0x9e3779b97f4a7c15ULL;
+                std::uint64_t h =
+                    static_cast<std::uint64_t>(std::lround(x / cell) + 1000) * 1000003u +
+                    static_cast<std::uint64_t>(std::lround(z / cell) + 1000) * 7919u +
+                    static_cast<std::uint64_t>(f) * 0x9e3779b97f4a7c15ULL;
                 h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
                 h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
                 h ^= h >> 31;
                 const double jitter = 0.1 * cell * (static_cast<double>(h >> 11) * 0x1p-52 - 1.0);
-                const double swell = 2.5 * cell * std::sin(2 * std::numbers::pi * (x - 0.03 * cell * f) / 0.5) *
+                const double swell = 2.5 * cell *
+                                     std::sin(2 * std::numbers::pi * (x - 0.03 * cell * f) / 0.5) *
                                      std::cos(2 * std::numbers::pi * z / 0.7);
                 return swell + jitter;
               }));
   auto changes = [&](const std::string& name, bool coherence) {
     const fs::path out = dir / name;
-    std::vector<std::string> args{"povgen", "--out", out.string(), "--water",
-                                  (dir / "water_#.obj").string(), "--set", "outline.enabled=false",
-                                  "--set", "water.bright=" + color(kBright), "--set",
-                                  "water.medium=" + color(kMedium), "--set", "water.dark=" + color(kDark),
-                                  "--set", "camera.location=[0, 10, 0.0001]", "--set",
-                                  "camera.look_at=[0, 0, 0]", "--set", "camera.angle=11", "--set",
-                                  "render.width=320", "--set", "render.height=320"};
-    args = args + opaque_flat_water() +
-           std::vector<std::string>{"--set", "flow.enabled=true", "--set",
-                                    std::string("flow.coherence=") + (coherence ? "true" : "false")};
+    std::vector<std::string> args{"povgen",
+                                  "--out",
+                                  out.string(),
+                                  "--water",
+                                  (dir / "water_#.obj").string(),
+                                  "--set",
+                                  "outline.enabled=false",
+                                  "--set",
+                                  "water.bright=" + color(kBright),
+                                  "--set",
+                                  "water.medium=" + color(kMedium),
+                                  "--set",
+                                  "water.dark=" + color(kDark),
+                                  "--set",
+                                  "camera.location=[0, 10, 0.0001]",
+                                  "--set",
+                                  "camera.look_at=[0, 0, 0]",
+                                  "--set",
+                                  "camera.angle=11",
+                                  "--set",
+                                  "render.width=320",
+                                  "--set",
+                                  "render.height=320"};
+    args =
+        args + opaque_flat_water() +
+        std::vector<std::string>{"--set", "flow.enabled=true", "--set",
+                                 std::string("flow.coherence=") + (coherence ? "true" : "false")};
     const CommandResult r = run_toonwater(args);
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_EQ(run_povray(out).exit_code, 0);
@@ -327,7 +368,8 @@ TEST(PovgenRender, SettlingWaterChangesBandOnlyWhereItMoves) {
       int differ = 0, both = 0;
       for (std::size_t i = 0; i < band.size() && !before.empty(); ++i)
         if (band[i] >= 0 && before[i] >= 0) ++both, differ += band[i] != before[i];
-      if (!before.empty()) changed += static_cast<double>(differ) / std::max(1, both) / (frames - 1);
+      if (!before.empty())
+        changed += static_cast<double>(differ) / std::max(1, both) / (frames - 1);
       for (int b : band) water += b >= 0, bright_and_dark += b == 0 || b == 2;
       before = std::move(band);
     }
@@ -350,13 +392,17 @@ TEST(PovgenRender, ReflectedRaysThatMissEverythingSeeTheSky) {
   write_obj(dir / "ball.obj", make_sphere(Vec3(0, 0.9, 0), 0.5, 16, 32));
   const Image img = render_scene(
       dir, "sky",
-      std::vector<std::string>{"--water", (dir / "water.obj").string(), "--object",
-                               (dir / "ball.obj").string(), "--set", "object.0.color=" + color(kObject),
-                               "--set", "water.bright=[0, 0, 0]", "--set", "water.medium=[0, 0, 0]",
-                               "--set", "water.dark=[0, 0, 0]", "--set", "water.sky=[0, 0.5, 0]",
-                               "--set", "camera.location=[0, 1.0, 6]", "--set",
-                               "camera.look_at=[0, 0.2, 0]", "--set", "render.width=64", "--set",
-                               "render.height=48"} +
+      std::vector<std::string>{"--water",  (dir / "water.obj").string(),
+                               "--object", (dir / "ball.obj").string(),
+                               "--set",    "object.0.color=" + color(kObject),
+                               "--set",    "water.bright=[0, 0, 0]",
+                               "--set",    "water.medium=[0, 0, 0]",
+                               "--set",    "water.dark=[0, 0, 0]",
+                               "--set",    "water.sky=[0, 0.5, 0]",
+                               "--set",    "camera.location=[0, 1.0, 6]",
+                               "--set",    "camera.look_at=[0, 0.2, 0]",
+                               "--set",    "render.width=64",
+                               "--set",    "render.height=48"} +
           opaque_flat_water() + std::vector<std::string>{"--set", "water.reflection=1"});
   const Rgb8 sky = to_rgb8(0, 0.5, 0);
   int sky_pixels = 0, background = 0, reflected_ball = 0;
@@ -381,16 +427,20 @@ TEST(PovgenRender, OutlineWidthInPixelsIsEvenAcrossDepth) {
   write_obj(dir / "near.obj", make_sphere(Vec3(-1.0, 0, 0), 0.5, 32, 64));
   write_obj(dir / "far.obj", make_sphere(Vec3(2.5, 0, -8), 0.5, 32, 64));
   const int W = 200, H = 100;
-  const Image img = render_scene(
-      dir, "widths",
-      std::vector<std::string>{"--water", (dir / "water.obj").string(), "--object",
-                               (dir / "near.obj").string(), "--object", (dir / "far.obj").string(),
-                               "--set", "outline.width=3", "--set", "object.0.color=" + color(kObject),
-                               "--set", "object.1.color=" + color(kObject), "--set",
-                               "camera.location=[0, 0, 6]", "--set", "camera.look_at=[0, 0, 0]",
-                               "--set", "camera.angle=30", "--set", "render.width=" + std::to_string(W),
-                               "--set", "render.height=" + std::to_string(H)} +
-          opaque_flat_water());
+  const Image img =
+      render_scene(dir, "widths",
+                   std::vector<std::string>{"--water",  (dir / "water.obj").string(),
+                                            "--object", (dir / "near.obj").string(),
+                                            "--object", (dir / "far.obj").string(),
+                                            "--set",    "outline.width=3",
+                                            "--set",    "object.0.color=" + color(kObject),
+                                            "--set",    "object.1.color=" + color(kObject),
+                                            "--set",    "camera.location=[0, 0, 6]",
+                                            "--set",    "camera.look_at=[0, 0, 0]",
+                                            "--set",    "camera.angle=30",
+                                            "--set",    "render.width=" + std::to_string(W),
+                                            "--set",    "render.height=" + std::to_string(H)} +
+                       opaque_flat_water());
   // Pixel column of a point (input axes, camera on +z looking at the origin).
   const double f = (W / 2.0) / std::tan(15 * std::numbers::pi / 180);
   auto column = [&](double x, double depth) { return W / 2.0 + f * x / depth; };
@@ -399,8 +449,10 @@ TEST(PovgenRender, OutlineWidthInPixelsIsEvenAcrossDepth) {
     int width = 0;
     for (int u = centre; u >= 0; --u) {
       const bool black = near(img.at(u, y), {0, 0, 0}, 8);
-      if (black) ++width;
-      else if (width > 0) break;
+      if (black)
+        ++width;
+      else if (width > 0)
+        break;
     }
     return width;
   };
@@ -416,17 +468,22 @@ TEST(PovgenRender, OutlineAroundASphereIsARingOfTheExpectedWidth) {
   write_obj(dir / "ball.obj", make_sphere(Vec3::Zero(), 1.0, 48, 96));
   const int W = 96;
   const double angle = 30, D = 6, R = 1, w = 0.1;
-  const Image img = render_scene(
-      dir, "ring",
-      std::vector<std::string>{"--water", (dir / "water.obj").string(), "--object",
-                               (dir / "ball.obj").string(), "--set", "outline.units=world", "--set",
-                               "outline.width=0.1", "--set", "object.0.color=" + color(kObject),
-                               "--set", "camera.location=[0, 0, 6]", "--set", "camera.look_at=[0, 0, 0]",
-                               "--set", "camera.angle=30", "--set", "render.width=96", "--set",
-                               "render.height=96"} +
-          opaque_flat_water());
+  const Image img =
+      render_scene(dir, "ring",
+                   std::vector<std::string>{"--water",  (dir / "water.obj").string(),
+                                            "--object", (dir / "ball.obj").string(),
+                                            "--set",    "outline.units=world",
+                                            "--set",    "outline.width=0.1",
+                                            "--set",    "object.0.color=" + color(kObject),
+                                            "--set",    "camera.location=[0, 0, 6]",
+                                            "--set",    "camera.look_at=[0, 0, 0]",
+                                            "--set",    "camera.angle=30",
+                                            "--set",    "render.width=96",
+                                            "--set",    "render.height=96"} +
+                       opaque_flat_water());
   const double f = (W / 2.0) / std::tan(angle / 2 * std::numbers::pi / 180);
-  const double r_inner = f * std::tan(std::asin(R / D)), r_outer = f * std::tan(std::asin((R + w) / D));
+  const double r_inner = f * std::tan(std::asin(R / D)),
+               r_outer = f * std::tan(std::asin((R + w) / D));
   int black = 0;
   for (int y = 0; y < W; ++y)
     for (int x = 0; x < W; ++x) {
@@ -459,15 +516,20 @@ TEST(PovgenRender, AbstractReflectionShowsOnlyTheFlatSilhouette) {
   write_obj(dir / "water.obj", make_height_grid(5, 4.0, [](double, double) { return 0.0; }));
   write_obj(dir / "ball.obj", make_sphere(Vec3(0, 0.9, 0), 0.5, 16, 32));
   auto args = [&](const char* target) {
-    return std::vector<std::string>{
-               "--water", (dir / "water.obj").string(), "--object", (dir / "ball.obj").string(),
-               "--set", "object.0.reflection=" + std::string(target), "--set",
-               "object.0.color=" + color(kObject), "--set", "outline.color=[0, 1, 0]", "--set",
-               "outline.units=world", "--set", "outline.width=0.05", "--set",
-               "water.bright=[0, 0, 0]", "--set", "water.medium=[0, 0, 0]", "--set",
-               "water.dark=[0, 0, 0]", "--set", "camera.location=[0, 1.0, 6]", "--set",
-               "camera.look_at=[0, 0.2, 0]", "--set", "render.width=64", "--set",
-               "render.height=48"} +
+    return std::vector<std::string>{"--water",  (dir / "water.obj").string(),
+                                    "--object", (dir / "ball.obj").string(),
+                                    "--set",    "object.0.reflection=" + std::string(target),
+                                    "--set",    "object.0.color=" + color(kObject),
+                                    "--set",    "outline.color=[0, 1, 0]",
+                                    "--set",    "outline.units=world",
+                                    "--set",    "outline.width=0.05",
+                                    "--set",    "water.bright=[0, 0, 0]",
+                                    "--set",    "water.medium=[0, 0, 0]",
+                                    "--set",    "water.dark=[0, 0, 0]",
+                                    "--set",    "camera.location=[0, 1.0, 6]",
+                                    "--set",    "camera.look_at=[0, 0.2, 0]",
+                                    "--set",    "render.width=64",
+                                    "--set",    "render.height=48"} +
            opaque_flat_water() + std::vector<std::string>{"--set", "water.reflection=1"};
   };
   const Image concrete = render_scene(dir, "concrete", args("concrete"));
@@ -493,16 +555,18 @@ TEST(PovgenRender, SubmergedObjectMovesWhenTheIorChangesAndKeepsItsOutline) {
   ScratchDir dir;
   write_obj(dir / "water.obj", make_height_grid(5, 3.0, [](double, double) { return 0.0; }));
   write_obj(dir / "stone.obj", make_sphere(Vec3(0.6, -0.7, 0), 0.35, 16, 32));
-  struct Seen { double x = 0, y = 0; int count = 0, black = 0; };
+  struct Seen {
+    double x = 0, y = 0;
+    int count = 0, black = 0;
+  };
   auto render = [&](const char* ior) {
     const Image img = render_scene(
         dir, std::string("ior") + ior,
-        std::vector<std::string>{"--water", (dir / "water.obj").string(), "--object",
-                                 (dir / "stone.obj").string(), "--set", "object.0.color=" + color(kObject),
-                                 "--set", "camera.location=[0, 2.5, 4]", "--set",
-                                 "camera.look_at=[0, -0.5, 0]", "--set", "render.width=64", "--set",
-                                 "render.height=48", "--set", "outline.units=world", "--set",
-                                 "outline.width=0.04"} +
+        std::vector<std::string>{
+            "--water", (dir / "water.obj").string(), "--object", (dir / "stone.obj").string(),
+            "--set", "object.0.color=" + color(kObject), "--set", "camera.location=[0, 2.5, 4]",
+            "--set", "camera.look_at=[0, -0.5, 0]", "--set", "render.width=64", "--set",
+            "render.height=48", "--set", "outline.units=world", "--set", "outline.width=0.04"} +
             opaque_flat_water() +
             std::vector<std::string>{"--set", "water.transmit=0.8", "--set",
                                      std::string("water.ior=") + ior});
@@ -536,7 +600,8 @@ TEST(PovgenRender, TransparentClosedWaterHasAnOpaqueBodyAndIsNotDarkenedByItsShe
   for (int i = 0; i < 8; ++i)
     box.positions.emplace_back(i & 1 ? 1.0 : -1.0, i & 2 ? 0.0 : -0.4, i & 4 ? 1.0 : -1.0);
   // Outward-wound quads as two triangles each: -x, +x, -y, +y, -z, +z.
-  const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
   for (const auto& q : quads) {
     box.triangles.push_back({q[0], q[1], q[2]});
     box.triangles.push_back({q[0], q[2], q[3]});
@@ -544,12 +609,12 @@ TEST(PovgenRender, TransparentClosedWaterHasAnOpaqueBodyAndIsNotDarkenedByItsShe
   write_obj(dir / "tank.obj", box);
   const Image img = render_scene(
       dir, "tank",
-      std::vector<std::string>{"--water", (dir / "tank.obj").string(), "--set",
-                               "camera.location=[0, 2, 3.5]",
-                               "--set", "camera.look_at=[0, -0.2, 0]", "--set", "render.width=64",
-                               "--set", "render.height=48"} +
+      std::vector<std::string>{
+          "--water", (dir / "tank.obj").string(), "--set", "camera.location=[0, 2, 3.5]", "--set",
+          "camera.look_at=[0, -0.2, 0]", "--set", "render.width=64", "--set", "render.height=48"} +
           opaque_flat_water() +
-          std::vector<std::string>{"--set", "water.transmit=0.9", "--set", "render.background=[1, 0, 0]"});
+          std::vector<std::string>{"--set", "water.transmit=0.9", "--set",
+                                   "render.background=[1, 0, 0]"});
   int water = 0, dark = 0, see_through = 0;
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
@@ -572,12 +637,16 @@ TEST(PovgenRender, RidgeColourOnABumpAndNotOnFlatWater) {
             }));
   write_obj(dir / "flat.obj", make_height_grid(61, 1.0, [](double, double) { return 0.0; }));
   auto args = [&](const char* mesh) {
-    return std::vector<std::string>{
-               "--water", (dir / mesh).string(), "--set", "flow.ridge_color=[1, 0, 0]", "--set",
-               "flow.valley_color=[0, 0, 1]", "--set", "water.bright=[0.6, 0.9, 0.6]", "--set",
-               "water.medium=[0.3, 0.7, 0.3]", "--set", "water.dark=[0.1, 0.4, 0.1]", "--set",
-               "camera.location=[0, 2.5, 2.5]", "--set", "camera.look_at=[0, 0, 0]", "--set",
-               "render.width=64", "--set", "render.height=48"} +
+    return std::vector<std::string>{"--water", (dir / mesh).string(),
+                                    "--set",   "flow.ridge_color=[1, 0, 0]",
+                                    "--set",   "flow.valley_color=[0, 0, 1]",
+                                    "--set",   "water.bright=[0.6, 0.9, 0.6]",
+                                    "--set",   "water.medium=[0.3, 0.7, 0.3]",
+                                    "--set",   "water.dark=[0.1, 0.4, 0.1]",
+                                    "--set",   "camera.location=[0, 2.5, 2.5]",
+                                    "--set",   "camera.look_at=[0, 0, 0]",
+                                    "--set",   "render.width=64",
+                                    "--set",   "render.height=48"} +
            opaque_flat_water() + std::vector<std::string>{"--set", "flow.enabled=true"};
   };
   auto count_ridge = [](const Image& img) {
@@ -592,7 +661,11 @@ TEST(PovgenRender, RidgeColourOnABumpAndNotOnFlatWater) {
 
 // Input axes map to POV-Ray without mirroring: a marker on the viewer's right stays there.
 TEST(PovgenRender, AxesAreMappedWithoutMirroring) {
-  struct Case { const char* up; Vec3 marker; const char* camera; };
+  struct Case {
+    const char* up;
+    Vec3 marker;
+    const char* camera;
+  };
   const Case cases[] = {{"y", {0.8, 0.3, 0}, "[0, 2, 5]"},
                         {"z", {0.8, 0, 0.3}, "[0, -5, 2]"},
                         {"x", {0.3, 0.8, 0}, "[2, 0, -5]"}};
@@ -602,7 +675,9 @@ TEST(PovgenRender, AxesAreMappedWithoutMirroring) {
     Vec3 up = Vec3::Zero();
     up[c.up[0] - 'x'] = 1;
     for (Vec3& p : water.positions)  // the y-up grid turned so that its normal is `up`
-      p = c.up[0] == 'y' ? p : c.up[0] == 'z' ? Vec3(p.x(), -p.z(), p.y()) : Vec3(p.y(), p.z(), p.x());
+      p = c.up[0] == 'y'   ? p
+          : c.up[0] == 'z' ? Vec3(p.x(), -p.z(), p.y())
+                           : Vec3(p.y(), p.z(), p.x());
     write_obj(dir / "water.obj", water);
     write_obj(dir / "marker.obj", make_sphere(c.marker, 0.25, 8, 16));
     const Image img = render_scene(
@@ -646,7 +721,9 @@ TEST(PovgenRender, TwoFrameSequenceRendersWithOnePovrayCommandAndWithRender) {
   fs::remove(out / "frame_2.png");
   r = run_toonwater({"render", out.string(), "--jobs", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("2 frame(s) rendered, 0 skipped (already rendered), 0 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("2 frame(s) rendered, 0 skipped (already rendered), 0 failed"),
+            std::string::npos)
+      << r.output;
   EXPECT_TRUE(fs::exists(out / "frame_1.png") && fs::exists(out / "frame_2.png"));
 
   // A broken frame is reported with POV-Ray's own message; the other frame still renders
@@ -656,7 +733,9 @@ TEST(PovgenRender, TwoFrameSequenceRendersWithOnePovrayCommandAndWithRender) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("frame 2 failed"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("rror"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("1 frame(s) rendered, 0 skipped (already rendered), 1 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 frame(s) rendered, 0 skipped (already rendered), 1 failed"),
+            std::string::npos)
+      << r.output;
 }
 
 TEST(PovgenRender, MantaflowWakeSequence) {
@@ -665,11 +744,11 @@ TEST(PovgenRender, MantaflowWakeSequence) {
   const fs::path data = shared / "data" / "mantaflow-wake";
   ScratchDir dir;
   const fs::path out = dir / "wake";
-  const CommandResult r = run_toonwater(
-      {"povgen", "--water", (data / "water_####.obj").string(), "--object",
-       (data / "sphere_####.obj").string(), "--up", "z", "--out", out.string(), "--set",
-       "render.frames=14-15", "--set", "render.width=64", "--set", "render.height=48", "--set",
-       "render.antialias=false"});
+  const CommandResult r =
+      run_toonwater({"povgen", "--water", (data / "water_####.obj").string(), "--object",
+                     (data / "sphere_####.obj").string(), "--up", "z", "--out", out.string(),
+                     "--set", "render.frames=14-15", "--set", "render.width=64", "--set",
+                     "render.height=48", "--set", "render.antialias=false"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const Povray p = run_povray(out);
   ASSERT_EQ(p.exit_code, 0) << p.output;
@@ -697,13 +776,14 @@ TEST(PovgenRender, MantaflowWakeSequence) {
 TEST(PovgenRender, CurvatureViewUsesTheMapsColours) {
   ScratchDir dir;
   write_obj(dir / "ball.obj", make_sphere(Vec3::Zero(), 1.0, 24, 48));
-  const std::vector<std::string> plain{"--set", "render.width=48", "--set", "render.height=36",
-                                       "--set", "render.antialias=false", "--set",
-                                       "render.background=[1,1,1]", "--set",
-                                       "outline.enabled=false"};
-  const Image mean = render_scene(
-      dir, "mean", std::vector<std::string>{"--water", (dir / "ball.obj").string(), "--set",
-                                            "water.shading=mean"} + plain);
+  const std::vector<std::string> plain{
+      "--set", "render.width=48",        "--set", "render.height=36",
+      "--set", "render.antialias=false", "--set", "render.background=[1,1,1]",
+      "--set", "outline.enabled=false"};
+  const Image mean = render_scene(dir, "mean",
+                                  std::vector<std::string>{"--water", (dir / "ball.obj").string(),
+                                                           "--set", "water.shading=mean"} +
+                                      plain);
   const toonwater::Rgb8 end = diverging_colour(1.0);
   const Rgb8 positive_end{end[0], end[1], end[2]};
   int ball = 0, at_end = 0;
@@ -726,7 +806,8 @@ TEST(PovgenRender, CurvatureViewUsesTheMapsColours) {
       dir, "gaussian",
       std::vector<std::string>{"--water", (dir / "saddle.obj").string(), "--set",
                                "water.shading=gaussian", "--set", "camera.location=[0, 3, 0.01]",
-                               "--set", "camera.look_at=[0, 0, 0]"} + plain);
+                               "--set", "camera.look_at=[0, 0, 0]"} +
+          plain);
   const Rgb8 centre = gaussian.at(gaussian.width / 2, gaussian.height / 2);
   EXPECT_GT(centre[2], centre[0] + 40) << "K < 0 is blue";
 }

@@ -16,7 +16,8 @@ Color composed(const Color& pigment, const Color& gain, const Color& water,
                const povgen::WaterSurfaceLook& look) {
   Color out{};
   for (int c = 0; c < 3; ++c)
-    out[c] = (1 - look.transmit) * water[c] + look.reflected[c] + look.transmit * gain[c] * pigment[c];
+    out[c] =
+        (1 - look.transmit) * water[c] + look.reflected[c] + look.transmit * gain[c] * pigment[c];
   return out;
 }
 
@@ -28,10 +29,12 @@ TEST(SeenThroughWater, TheComposedPixelIsTheColourWanted) {
     const povgen::WaterSurfaceLook look = povgen::water_surface_look(config);
     const Color gain{0.2 + 0.8 * 1.0, 0.2 + 0.8 * 0.9, 0.2 + 0.8 * 0.8};
     for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(look.gain[c], gain[c]);
-    const Color wanted = povgen::linear_from_srgb(povgen::submerged_tint({0.92, 0.45, 0.18}, config.water.medium));
+    const Color wanted =
+        povgen::linear_from_srgb(povgen::submerged_tint({0.92, 0.45, 0.18}, config.water.medium));
     const Color x = povgen::seen_through_water(wanted, gain, look.calm, look);
     const Color pixel = composed(x, gain, look.calm, look);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(pixel[c], wanted[c], 1e-12) << transmit << " channel " << c;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(pixel[c], wanted[c], 1e-12) << transmit << " channel " << c;
     EXPECT_LT(x[2], 0.0) << "the water's blue is taken away from an orange object";
   }
 }

@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 using namespace toonwater::povgen;
 
 struct ExampleCase {
-  std::string example;  // examples/NAME
+  std::string example;   // examples/NAME
   std::string scenario;  // toonwater simulate SCENARIO; empty: ../shared/data/mantaflow-wake
   std::string set;       // an extra --set
 };
@@ -121,21 +121,22 @@ TEST_P(ShellCulling, LeavesEveryPixelAsItWas) {
   EXPECT_EQ(frames, 2u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Examples, ShellCulling,
-                         ::testing::Values(ExampleCase{"wake", "wake", ""}, ExampleCase{"drop", "drop", ""},
-                                           ExampleCase{"reflection", "reflection", ""},
-                                           ExampleCase{"refraction", "refraction", ""},
-                                           ExampleCase{"real-simulation", "", ""},
-                                           // Culled closed volumes, with an object inside and
-                                           // one crossing the surface:
-                                           ExampleCase{"refraction", "refraction", "water.transmit=0"},
-                                           ExampleCase{"real-simulation", "", "water.transmit=0"}),
-                         [](const ::testing::TestParamInfo<ExampleCase>& test) {
-                           std::string name = test.param.example + (test.param.set.empty() ? "" : "_opaque");
-                           for (char& ch : name)
-                             if (ch == '-') ch = '_';
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Examples, ShellCulling,
+    ::testing::Values(ExampleCase{"wake", "wake", ""}, ExampleCase{"drop", "drop", ""},
+                      ExampleCase{"reflection", "reflection", ""},
+                      ExampleCase{"refraction", "refraction", ""},
+                      ExampleCase{"real-simulation", "", ""},
+                      // Culled closed volumes, with an object inside and
+                      // one crossing the surface:
+                      ExampleCase{"refraction", "refraction", "water.transmit=0"},
+                      ExampleCase{"real-simulation", "", "water.transmit=0"}),
+    [](const ::testing::TestParamInfo<ExampleCase>& test) {
+      std::string name = test.param.example + (test.param.set.empty() ? "" : "_opaque");
+      for (char& ch : name)
+        if (ch == '-') ch = '_';
+      return name;
+    });
 
 // On a closed sphere seen from outside, the faces kept are those facing away from the eye (and
 // their neighbours); all are kept when the shell lies too close to the sphere or an object's box
@@ -181,7 +182,8 @@ TEST(ShellCullingGeometry, KeepsTheFacesTheEyeSeesFromBehind) {
       EXPECT_TRUE(beside[f]) << "the face under the object's box is kept";
     }
   }
-  EXPECT_GT(std::count(beside.begin(), beside.end(), true), std::count(kept.begin(), kept.end(), true));
+  EXPECT_GT(std::count(beside.begin(), beside.end(), true),
+            std::count(kept.begin(), kept.end(), true));
 }
 
 // Which shells only camera rays meet (the premise of culling): none where the water refracts,

@@ -128,8 +128,8 @@ TEST(Simplify, RippleKeepsItsCrestsWithinThePixelBound) {
   layout.config = &config;
   layout.camera = povgen::frame_camera(config, Axis::y, full.min, full.max);
   const povgen::CameraReach reach = povgen::camera_reach(layout, full.min, full.max);
-  const double tolerance = povgen::screen_tolerance(0.5, reach.nearest_distance,
-                                                    config.camera.angle, 320, 180);
+  const double tolerance =
+      povgen::screen_tolerance(0.5, reach.nearest_distance, config.camera.angle, 320, 180);
   ASSERT_GT(tolerance, 0.0);
   ASSERT_LT(tolerance, 0.01);
   std::vector<povgen::TextureCoordinate> uv =
@@ -184,10 +184,10 @@ TEST(Simplify, RenderedFrameMatchesTheFullMesh) {
   write_obj(dir / "water.obj", make_height_grid(101, 1.0, ripple));
   auto render = [&](const std::string& name, const std::string& simplify) {
     const fs::path out = dir / name;
-    const CommandResult r = run_toonwater(
-        {"povgen", "--out", out.string(), "--water", (dir / "water.obj").string(), "--set",
-         "water.simplify=" + simplify, "--set", "render.width=160", "--set",
-         "render.height=90", "--set", "render.antialias=false"});
+    const CommandResult r =
+        run_toonwater({"povgen", "--out", out.string(), "--water", (dir / "water.obj").string(),
+                       "--set", "water.simplify=" + simplify, "--set", "render.width=160", "--set",
+                       "render.height=90", "--set", "render.antialias=false"});
     EXPECT_EQ(r.exit_code, 0) << r.output;
     const Povray p = run_povray(out);
     EXPECT_EQ(p.exit_code, 0) << p.output;

@@ -35,10 +35,12 @@ void fill(std::vector<int>& label, int n, int lo, int hi, int value) {
 TEST(ToonIslands, AnIslandBelowTheAreaIsMergedAndALargerOneStays) {
   constexpr int n = 20;
   std::vector<int> label(n * n, 0);
-  label[2 * n + 2] = 1;     // one vertex
+  label[2 * n + 2] = 1;      // one vertex
   fill(label, n, 8, 14, 1);  // 36 vertices
   const std::vector<double> area(n * n, 1.0), pixels(n * n, 100.0);
-  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels, std::vector<double>{10.0, 10.0}, 0.0, label), 1u);
+  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels,
+                                        std::vector<double>{10.0, 10.0}, 0.0, label),
+            1u);
   EXPECT_EQ(label[2 * n + 2], 0);
   EXPECT_EQ(label[10 * n + 10], 1);
   int ones = 0;
@@ -52,10 +54,14 @@ TEST(ToonIslands, AnIslandTooSmallOnScreenIsMergedWhateverItsArea) {
   fill(label, n, 8, 11, 1);  // 9 vertices
   std::vector<double> area(n * n, 1.0), pixels(n * n, 1.0);
   std::vector<int> near = label;
-  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels, std::vector<double>{5.0, 5.0}, 12.0, near), 1u);
+  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels,
+                                        std::vector<double>{5.0, 5.0}, 12.0, near),
+            1u);
   EXPECT_EQ(near[9 * n + 9], 0) << "9 px < 12 px";
   for (double& p : pixels) p = 2.0;
-  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels, std::vector<double>{5.0, 5.0}, 12.0, label), 0u);
+  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels,
+                                        std::vector<double>{5.0, 5.0}, 12.0, label),
+            0u);
   EXPECT_EQ(label[9 * n + 9], 1) << "18 px";
 }
 
@@ -68,10 +74,14 @@ TEST(ToonIslands, AnIslandGrownByAMergeIsJudgedAtItsNewSize) {
   label[9 * n + 9] = 2;  // the ring of 1 holds 8 vertices, with its centre 9
   const std::vector<double> area(n * n, 1.0), pixels(n * n, 100.0);
   std::vector<int> kept = label;
-  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels, std::vector<double>{9.0, 9.0, 9.0}, 0.0, kept), 1u);
+  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels,
+                                        std::vector<double>{9.0, 9.0, 9.0}, 0.0, kept),
+            1u);
   EXPECT_EQ(kept[9 * n + 9], 1) << "the centre takes the ring's class, and the ring of 9 stays";
   EXPECT_EQ(kept[8 * n + 8], 1);
-  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels, std::vector<double>{10.0, 10.0, 10.0}, 0.0, label), 2u);
+  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels,
+                                        std::vector<double>{10.0, 10.0, 10.0}, 0.0, label),
+            2u);
   for (int l : label) EXPECT_EQ(l, 0) << "ring and centre are both too small for 10";
 }
 
@@ -81,7 +91,9 @@ TEST(ToonIslands, AWholePartOfTheMeshInOneClassStays) {
   std::vector<int> label(12, 0);
   label[9] = label[10] = label[11] = 1;
   const std::vector<double> area(12, 1.0), pixels(12, 1.0);
-  EXPECT_EQ(povgen::merge_small_islands(triangles, area, pixels, std::vector<double>{100.0, 100.0}, 100.0, label), 0u);
+  EXPECT_EQ(povgen::merge_small_islands(triangles, area, pixels, std::vector<double>{100.0, 100.0},
+                                        100.0, label),
+            0u);
   EXPECT_EQ(label[10], 1);
 }
 

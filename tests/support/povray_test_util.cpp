@@ -10,7 +10,8 @@
 
 namespace toonwater::test {
 
-TriangleMesh make_height_grid(int n, double h, const std::function<double(double, double)>& height) {
+TriangleMesh make_height_grid(int n, double h,
+                              const std::function<double(double, double)>& height) {
   TriangleMesh m;
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {

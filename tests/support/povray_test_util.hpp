@@ -1,5 +1,5 @@
-// Helpers for the povgen tests: test meshes (written with analyzer/obj_writer.hpp), running POV-Ray in a scene
-// directory, and reading its PNGs back with OpenImageIO.
+// Helpers for the povgen tests: test meshes (written with analyzer/obj_writer.hpp), running POV-Ray
+// in a scene directory, and reading its PNGs back with OpenImageIO.
 #pragma once
 
 #include "analyzer/mesh.hpp"

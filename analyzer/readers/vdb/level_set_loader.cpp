@@ -12,9 +12,9 @@ const LevelSetModule* load_level_set_module() {
   const LoadedModule module =
       load_module_beside_program("toonwater-vdb.so", "toonwater_level_set_module_entry");
   if (!module.entry)
-    throw LevelSetModuleError(module.path.string() + ": cannot load the OpenVDB module (" +
-                              module.error +
-                              "); it must lie beside the toonwater program for .vdb files to be read");
+    throw LevelSetModuleError(
+        module.path.string() + ": cannot load the OpenVDB module (" + module.error +
+        "); it must lie beside the toonwater program for .vdb files to be read");
   using Entry = const LevelSetModule* (*)();
   const LevelSetModule* loaded = reinterpret_cast<Entry>(module.entry)();
   if (!loaded || loaded->interface_version != level_set_module_interface_version)
@@ -26,7 +26,8 @@ const LevelSetModule* load_level_set_module() {
 }  // namespace
 
 const LevelSetModule& level_set_module() {
-  static const LevelSetModule* module = load_level_set_module();  // thread-safe; retried after a failure
+  static const LevelSetModule* module =
+      load_level_set_module();  // thread-safe; retried after a failure
   return *module;
 }
 

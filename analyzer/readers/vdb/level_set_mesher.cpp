@@ -36,7 +36,8 @@ std::string choose_grid(const openvdb::GridPtrVec& grids, const std::string& wan
     if (!is_scalar(*g))
       throw std::runtime_error("grid " + describe(*g) + " is not a float or double grid");
     // A signed distance field may carry no class ("unknown"); a fog volume is a density.
-    if (g->getGridClass() == openvdb::GRID_FOG_VOLUME || g->getGridClass() == openvdb::GRID_STAGGERED)
+    if (g->getGridClass() == openvdb::GRID_FOG_VOLUME ||
+        g->getGridClass() == openvdb::GRID_STAGGERED)
       throw std::runtime_error("grid " + describe(*g) + " is not a level set or a signed distance");
     return wanted;
   }
@@ -51,8 +52,10 @@ std::string choose_grid(const openvdb::GridPtrVec& grids, const std::string& wan
     only = g.get();
   }
   if (!only)
-    throw std::runtime_error("no level-set grid ('surface', 'phi' or one of class level set); "
-                             "its grids: " + present);
+    throw std::runtime_error(
+        "no level-set grid ('surface', 'phi' or one of class level set); "
+        "its grids: " +
+        present);
   return only->getName();
 }
 
@@ -86,13 +89,14 @@ TriangleMesh mesh_zero_level(const Grid& grid, double adaptivity) {
   mesh.positions.reserve(points.size());
   const std::optional<openvdb::Vec3i> mantaflow = mantaflow_resolution(grid);
   for (const auto& p : points)
-    mesh.positions.push_back(mantaflow ? normalised(grid, p, *mantaflow) : Vec3(p.x(), p.y(), p.z()));
+    mesh.positions.push_back(mantaflow ? normalised(grid, p, *mantaflow)
+                                       : Vec3(p.x(), p.y(), p.z()));
   mesh.triangles.reserve(triangles.size() + 2 * quads.size());
   // volumeToMesh winds its polygons clockwise seen from outside (towards positive distance):
   // reversed here, so that normals point out of the liquid.
   auto add = [&](unsigned a, unsigned b, unsigned c) {
-    mesh.triangles.push_back({static_cast<std::int32_t>(a), static_cast<std::int32_t>(c),
-                              static_cast<std::int32_t>(b)});
+    mesh.triangles.push_back(
+        {static_cast<std::int32_t>(a), static_cast<std::int32_t>(c), static_cast<std::int32_t>(b)});
   };
   for (const auto& t : triangles) add(t[0], t[1], t[2]);
   for (const auto& q : quads) {

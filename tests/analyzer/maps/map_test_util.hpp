@@ -62,11 +62,13 @@ inline ReadImage read_image(const std::filesystem::path& path) {
   }
   image.spec = in->spec();
   image.pixels.resize(image.spec.image_pixels() * image.spec.nchannels);
-  EXPECT_TRUE(in->read_image(0, 0, 0, image.spec.nchannels, OIIO::TypeDesc::FLOAT,
-                             image.pixels.data()));
+  EXPECT_TRUE(
+      in->read_image(0, 0, 0, image.spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()));
   return image;
 }
 
-inline std::array<int, 3> to_int(const std::array<std::uint8_t, 3>& c) { return {c[0], c[1], c[2]}; }
+inline std::array<int, 3> to_int(const std::array<std::uint8_t, 3>& c) {
+  return {c[0], c[1], c[2]};
+}
 
 }  // namespace toonwater::test

@@ -17,12 +17,11 @@ namespace fs = std::filesystem;
 TEST(MapsCli, AnalyzeWritesMapsAndPrintsTheirRanges) {
   test::ScratchDir dir;
   write_obj(dir / "wave_0007.obj", make_wave_field(61, 0.1, 6.0).mesh);
-  const auto result = test::run_toonwater(
-      {"analyze", (dir / "wave_0007.obj").string(), "--up", "z", "--maps",
-       (dir / "maps").string(), "--maps-size", "96"});
+  const auto result = test::run_toonwater({"analyze", (dir / "wave_0007.obj").string(), "--up", "z",
+                                           "--maps", (dir / "maps").string(), "--maps-size", "96"});
   ASSERT_EQ(result.exit_code, 0) << result.output;
-  for (const char* name : {"wave_0007.exr", "wave_0007_K.png", "wave_0007_H.png",
-                           "wave_0007_label.png"})
+  for (const char* name :
+       {"wave_0007.exr", "wave_0007_K.png", "wave_0007_H.png", "wave_0007_label.png"})
     EXPECT_TRUE(fs::exists(dir / "maps" / name)) << name;
   const test::ReadImage exr = test::read_image(dir / "maps" / "wave_0007.exr");
   EXPECT_EQ(std::max(exr.spec.width, exr.spec.height), 96);
@@ -37,9 +36,9 @@ TEST(MapsCli, AnalyzeWritesMapsAndPrintsTheirRanges) {
 TEST(MapsCli, GivenBoxSetsTheExtent) {
   test::ScratchDir dir;
   write_obj(dir / "w.obj", make_wave_field(41, 0.1, 6.0).mesh);
-  const auto result = test::run_toonwater({"analyze", (dir / "w.obj").string(), "--up", "z",
-                                           "--maps", dir.path().string(), "--maps-size", "50",
-                                           "--maps-box", "-2,-1,2,1"});
+  const auto result =
+      test::run_toonwater({"analyze", (dir / "w.obj").string(), "--up", "z", "--maps",
+                           dir.path().string(), "--maps-size", "50", "--maps-box", "-2,-1,2,1"});
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const test::ReadImage exr = test::read_image(dir / "w.exr");
   EXPECT_EQ(exr.spec.width, 50);

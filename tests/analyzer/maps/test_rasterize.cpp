@@ -140,7 +140,7 @@ TEST(MapRasterize, TopmostLayerWinsWhateverTheFaceOrder) {
     const TopDownMap map = rasterize_top_down(mesh, c, {}, {}, view);
     EXPECT_FLOAT_EQ(map.height[index(view, 10, 10)], 1.0f);  // inside the upper square
     EXPECT_FLOAT_EQ(map.gaussian[index(view, 10, 10)], -3.0f);
-    EXPECT_FLOAT_EQ(map.height[index(view, 1, 1)], 0.0f);    // only the lower one there
+    EXPECT_FLOAT_EQ(map.height[index(view, 1, 1)], 0.0f);  // only the lower one there
     EXPECT_FLOAT_EQ(map.gaussian[index(view, 1, 1)], 5.0f);
   }
 }
@@ -201,7 +201,8 @@ TEST(MapRasterize, ValuesBeyondFloatRangeAreClampedNotInfinite) {
   TriangleMesh mesh;
   add_square(mesh, 1.0, 0.0);
   const MapView view{Axis::z, {-1, -1, 1, 1}, 8, 8, 0.25};
-  const TopDownMap map = rasterize_top_down(mesh, constant_curvature(4, 1e300, -1e300), {}, {}, view);
+  const TopDownMap map =
+      rasterize_top_down(mesh, constant_curvature(4, 1e300, -1e300), {}, {}, view);
   constexpr float largest = std::numeric_limits<float>::max();
   std::size_t covered = 0;
   for (std::size_t i = 0; i < map.alpha.size(); ++i) {

@@ -54,8 +54,7 @@ TEST(RobustRange, MergingEqualsAddingEverythingToOne) {
     all.add(std::cos(i) * 7.0, 0.5);
   }
   a.merge(b);
-  for (double q : {0.5, 0.9, 0.98})
-    EXPECT_EQ(a.quantile(q), all.quantile(q));
+  for (double q : {0.5, 0.9, 0.98}) EXPECT_EQ(a.quantile(q), all.quantile(q));
 }
 
 // The planner's range of a sequence is the quantile over all frames pooled: between the

@@ -14,9 +14,8 @@ namespace {
 using openmesh::TriMesh;
 
 std::vector<AnalyticSurface> corpus() {
-  return {make_icosphere(3), make_uv_sphere(24, 48), make_torus(48, 24),
-          make_ellipsoid(3),  make_cylinder(48, 12),  make_saddle(33),
-          make_wave_field(61)};
+  return {make_icosphere(3),     make_uv_sphere(24, 48), make_torus(48, 24), make_ellipsoid(3),
+          make_cylinder(48, 12), make_saddle(33),        make_wave_field(61)};
 }
 
 TEST(OpenMeshAdapter, ConversionsKeepVerticesAndFacesInOrder) {
@@ -30,7 +29,8 @@ TEST(OpenMeshAdapter, ConversionsKeepVerticesAndFacesInOrder) {
     for (std::size_t f = 0; f < back.triangles.size(); ++f) {
       const Triangle& a = s.mesh.triangles[f];
       const Triangle& b = back.triangles[f];
-      const bool same = b == a || b == Triangle{a[1], a[2], a[0]} || b == Triangle{a[2], a[0], a[1]};
+      const bool same =
+          b == a || b == Triangle{a[1], a[2], a[0]} || b == Triangle{a[2], a[0], a[1]};
       EXPECT_TRUE(same) << "face " << f;
     }
   }
