@@ -6,7 +6,6 @@
 #include "analyzer/maps/robust_range.hpp"
 
 #include <cstddef>
-#include <span>
 #include <string>
 #include <vector>
 
