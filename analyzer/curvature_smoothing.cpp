@@ -22,44 +22,36 @@
 #include <cmath>
 #include <memory>
 #include <span>
-#include <type_traits>
 
 namespace toonwater {
 namespace {
 
 // The arrays of a smoothing, by plain pointers: through the unique_ptrs the compiler loaded the
 // addresses again for every corner. A vertex's weight is its area where it is a member and 0
-// elsewhere; its term, that weight times its value (a number, or a vector smoothed whole).
-template <class Value>
+// elsewhere; its term, that weight times its value.
 struct SmoothingArrays {
   const Triangle* triangles;
   const std::uint8_t* member;
   const double* area;
-  const Value* value;  // the values of the step's start
-  Value* term_sum;     // Σ over v's faces of their corners' terms
-  double* weight_sum;  // Σ over v's faces of their corners' weights: the same every step
+  const double* value;  // the values of the step's start
+  double* term_sum;     // Σ over v's faces of their corners' terms
+  double* weight_sum;   // Σ over v's faces of their corners' weights: the same every step
 
   double weight(std::int32_t v) const { return member[v] ? area[v] : 0.0; }
   // Not 0 · value where v is no member: its value may be inf.
-  Value term(std::int32_t v) const { return member[v] ? Value(area[v] * value[v]) : zero(); }
-  static Value zero() {
-    if constexpr (std::is_same_v<Value, Vec3>)
-      return Vec3::Zero();
-    else
-      return 0.0;
-  }
+  double term(std::int32_t v) const { return member[v] ? area[v] * value[v] : 0.0; }
 };
 
 // One face's corners' terms (and, in the first step, weights) added to those of its corners in
 // [low, low + size); the others are listed in `shared` (first step) or left to the gather.
-template <bool with_weights, class Value>
-void add_faces(const SmoothingArrays<Value>& a, std::size_t begin, std::size_t end,
-               std::int32_t low, std::uint32_t size, std::span<std::uint8_t> is_shared,
+template <bool with_weights>
+void add_faces(const SmoothingArrays& a, std::size_t begin, std::size_t end, std::int32_t low,
+               std::uint32_t size, std::span<std::uint8_t> is_shared,
                std::vector<std::int32_t>& shared) {
   for (std::size_t f = begin; f < end; ++f) {
     const Triangle& t = a.triangles[f];
     if (has_repeated_corner(t)) continue;  // not among the vertices' faces
-    const Value term = a.term(t[0]) + a.term(t[1]) + a.term(t[2]);
+    const double term = a.term(t[0]) + a.term(t[1]) + a.term(t[2]);
     double weight = 0.0;
     if constexpr (with_weights) weight = a.weight(t[0]) + a.weight(t[1]) + a.weight(t[2]);
     for (const std::int32_t v : t) {
@@ -76,22 +68,20 @@ void add_faces(const SmoothingArrays<Value>& a, std::size_t begin, std::size_t e
   }
 }
 
-template <class Value>
 void smooth_values(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
                    std::span<const double> vertex_area, std::span<const std::uint8_t> member,
-                   std::vector<Value>& values, int steps) {
+                   std::vector<double>& values, int steps) {
   if (steps <= 0) return;
   const std::size_t n = values.size(), face_count = mesh.triangles.size();
   // Left uninitialised by new: the threads that use them first fill them.
   std::unique_ptr<double[]> weight_sum(new double[n]);
-  std::unique_ptr<Value[]> term_sum(new Value[n]);
-  using Arrays = SmoothingArrays<Value>;
-  const Arrays a{mesh.triangles.data(), member.data(),  vertex_area.data(),
-                 values.data(),         term_sum.get(), weight_sum.get()};
+  std::unique_ptr<double[]> term_sum(new double[n]);
+  const SmoothingArrays a{mesh.triangles.data(), member.data(),  vertex_area.data(),
+                          values.data(),         term_sum.get(), weight_sum.get()};
   const std::size_t workers = chunk_count(n);
   parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
-      term_sum[v] = Arrays::zero();
+      term_sum[v] = 0.0;
       weight_sum[v] = 0.0;
     }
   });
@@ -119,7 +109,7 @@ void smooth_values(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
     parallel_chunks(shared.size(), chunk_count(shared.size()),
                     [&](std::size_t, std::size_t begin, std::size_t end) {
                       for (std::size_t i = begin; i < end; ++i) {
-                        Value term_total = Arrays::zero();
+                        double term_total = 0.0;
                         double weight_total = 0.0;
                         for (const std::int32_t f : vertex_faces.of(shared[i])) {
                           const Triangle& t = mesh.triangles[f];
@@ -135,7 +125,7 @@ void smooth_values(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
     parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
         if (member[v] && weight_sum[v] > 0.0) values[v] = term_sum[v] / weight_sum[v];
-        if (!last) term_sum[v] = Arrays::zero();
+        if (!last) term_sum[v] = 0.0;
       }
     });
   }
@@ -152,7 +142,14 @@ void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_fac
 void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
                          std::span<const double> vertex_area, std::span<const std::uint8_t> member,
                          std::vector<Vec3>& values, int steps) {
-  smooth_values(mesh, vertex_faces, vertex_area, member, values, steps);
+  // A component at a time: the sums of one component need a third of a vector's memory, and a
+  // vector's components are smoothed independently anyway.
+  std::vector<double> component(values.size());
+  for (int axis = 0; axis < 3; ++axis) {
+    for (std::size_t v = 0; v < values.size(); ++v) component[v] = values[v][axis];
+    smooth_values(mesh, vertex_faces, vertex_area, member, component, steps);
+    for (std::size_t v = 0; v < values.size(); ++v) values[v][axis] = component[v];
+  }
 }
 
 void smooth_curvature(const TriangleMesh& mesh, const VertexFaces& vertex_faces,

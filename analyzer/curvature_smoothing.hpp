@@ -22,7 +22,7 @@ namespace toonwater {
 void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
                          std::span<const double> vertex_area, std::span<const std::uint8_t> member,
                          std::vector<double>& values, int steps);
-// The same for a field of vectors, each smoothed whole (as its three components would be).
+// The same for a field of vectors: each component smoothed as above.
 void smooth_vertex_field(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
                          std::span<const double> vertex_area, std::span<const std::uint8_t> member,
                          std::vector<Vec3>& values, int steps);
