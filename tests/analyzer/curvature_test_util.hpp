@@ -101,11 +101,12 @@ inline PrincipalCurvatures principal(const CurvatureField& f, std::size_t v) {
 }
 
 inline bool all_finite(const CurvatureField& f) {
-  for (std::size_t v = 0; v < f.gaussian.size(); ++v)
-    const auto [k1, k2] = principal_curvatures(f.gaussian[v], f.mean[v]);
-  if (!std::isfinite(f.gaussian[v]) || !std::isfinite(f.mean[v]) || !std::isfinite(k1) ||
-      !std::isfinite(k2) || !std::isfinite(f.area[v]) || !f.normal[v].allFinite())
-    return false;
+  for (std::size_t v = 0; v < f.gaussian.size(); ++v) {
+    const auto [k1, k2] = principal(f, v);
+    if (!std::isfinite(f.gaussian[v]) || !std::isfinite(f.mean[v]) || !std::isfinite(k1) ||
+        !std::isfinite(k2) || !std::isfinite(f.area[v]) || !f.normal[v].allFinite())
+      return false;
+  }
   return true;
 }
 
