@@ -54,7 +54,6 @@
 
 #include "analyzer/geometry_tolerances.hpp"
 #include "analyzer/intrinsic_delaunay.hpp"
-#include "analyzer/lanes.hpp"
 #include "common/parallel.hpp"
 #include "analyzer/vertex_normals.hpp"
 
@@ -70,7 +69,6 @@
 #include <memory>
 #include <numbers>
 #include <span>
-#include <stdexcept>
 
 namespace toonwater {
 namespace {
@@ -117,140 +115,106 @@ double mollification_needed(double xa2, double xb2, double ab2) {
 
 // 2^-e for the binary exponent e of m ≥ 0, from its exponent bits alone (a few integer
 // operations, where std::ilogb and std::ldexp are calls), so that m · 2^-e lies in [1, 2). Kept
-// finite at the ends: subnormals take e = −1023, and m ≥ 2^1022, inf and NaN take e = 1022. For
-// a double or lanes (lanes.hpp).
-template <class Real>
-[[gnu::always_inline]] inline Real power_of_two_below(Real m) {
-  using Bits = BitsOf<Real>;
-  const Real clamped = select(m < 0x1p1022, m, splat<Real>(0x1p1022));
-  const Bits biased = (std::bit_cast<Bits>(clamped) >> 52) & 0x7ff;
-  return std::bit_cast<Real>((2046 - biased) << 52);
+// finite at the ends: subnormals take e = −1023, and m ≥ 2^1022, inf and NaN take e = 1022.
+double power_of_two_below(double m) {
+  const double clamped = m < 0x1p1022 ? m : 0x1p1022;
+  const std::uint64_t biased = (std::bit_cast<std::uint64_t>(clamped) >> 52) & 0x7ff;
+  return std::bit_cast<double>((2046 - biased) << 52);
 }
 
-// The terms of a block of faces, computed once for their three corners, a lane's worth of faces
-// at once, one a lane (lanes.hpp: two with SSE2, four with AVX2). Corner i's neighbours are
-// i + 1 and i + 2 (mod 3); edge[i] runs from corner i to corner i + 1. Each corner's terms are
-// then laid out as the vertex sums take them (RingSums), so that adding a corner is a few
-// whole-vector additions. A block fits in the level-1 cache beside the vertex sums it is added to.
-constexpr std::size_t block_faces = 64;
-static_assert(block_faces % lanes_of<Lanes4> == 0);
-
-struct FaceBlock {
-  // Input: the faces' scaled corner positions, [corner][axis][face].
-  alignas(32) double position[3][3][block_faces];
-  // Output, per corner and face:
-  //   ring: the Laplacian terms from the positions (xyz) and the corner's approximate angle θ̃
-  //         (NaN at a face with a zero-length edge, which has no shape and no terms);
-  //   normal_area: θ n_face (vertex_normals.hpp) and the corner's share of the mixed Voronoi area;
-  //   turn: u·v + i|u×v| times the power of two that brings the larger of its parts into
-  //         [1, 2) (add_corner); 1 at a shapeless face.
-  alignas(32) double ring[3][block_faces][4];
-  alignas(32) double normal_area[3][block_faces][4];
-  alignas(32) double turn[3][block_faces][2];
-  // Per face, for the counts of the face pass.
-  alignas(32) double double_area[block_faces];  // |u × v|
-  alignas(32) double length2[3][block_faces];   // squared edge lengths
-  alignas(32) double longest2[block_faces];
-  alignas(32) std::int64_t shapeless[block_faces];  // nonzero: a zero-length edge
-  alignas(32) std::int64_t cap[block_faces];        // nonzero: an angle above 150°
-
-  // Face slot i takes the scaled positions of triangle t.
-  void load(std::size_t i, const std::vector<Vec3>& positions, const Triangle& t, double scale) {
-    for (int corner = 0; corner < 3; ++corner)
-      for (int axis = 0; axis < 3; ++axis)
-        position[corner][axis][i] = positions[t[corner]][axis] * scale;
-  }
+// What a face gives one of its corners.
+struct CornerTerms {
+  Vec3 laplacian;            // its terms of Σ (cot α + cot β)(xᵢ − xⱼ), from the positions
+  double approximate_angle;  // θ̃; NaN at a shapeless face, which has no angles
+  Vec3 normal;               // θ n_face (vertex_normals.hpp)
+  double area;               // its share of the mixed Voronoi area
+  // u·v + i|u×v| times the power of two that brings the larger of its parts into [1, 2)
+  // (add_corner); 1 at a shapeless face.
+  double turn_re, turn_im;
 };
 
-// The terms of faces [i, i + lanes) of the block. Every corner takes the same cross
-// product u × v = edge[2] × edge[0] and the same reciprocal of its length, so the corners of
-// one face agree to the last bit on its plane and area; no lane reads another, so a face's
-// terms are the same bits whichever block and lane compute them.
-template <class Lanes>
-[[gnu::always_inline]] inline void compute_face_lanes(FaceBlock& block, std::size_t i) {
-  using LaneMask = MaskOf<Lanes>;
-  Lanes edge[3][3];
-  for (int axis = 0; axis < 3; ++axis) {
-    const Lanes p0 = load_lanes<Lanes>(&block.position[0][axis][i]);
-    const Lanes p1 = load_lanes<Lanes>(&block.position[1][axis][i]);
-    const Lanes p2 = load_lanes<Lanes>(&block.position[2][axis][i]);
-    edge[0][axis] = p1 - p0;
-    edge[1][axis] = p2 - p1;
-    edge[2][axis] = p0 - p2;
-  }
-  const Lanes length2[3] = {dot3(edge[0], edge[0]), dot3(edge[1], edge[1]), dot3(edge[2], edge[2])};
-  const LaneMask shapeless = is_shapeless_triangle(length2[0], length2[1], length2[2]);
-  const Lanes cross[3] = {edge[2][1] * edge[0][2] - edge[2][2] * edge[0][1],
-                          edge[2][2] * edge[0][0] - edge[2][0] * edge[0][2],
-                          edge[2][0] * edge[0][1] - edge[2][1] * edge[0][0]};
-  const Lanes double_area = square_root(dot3(cross, cross));
+struct FaceTerms {
+  CornerTerms corner[3];
+  double double_area;  // |u × v|
+  double length2[3];   // squared edge lengths
+  double longest2;
+  bool shapeless;  // a zero-length edge
+  bool cap;        // an angle above 150°
+};
+
+// The terms of a face, computed once for its three corners from their scaled positions.
+// Corner i's neighbours are i + 1 and i + 2 (mod 3); edge[i] runs from corner i to corner
+// i + 1. Every corner takes the same cross product u × v = edge[2] × edge[0] and the same
+// reciprocal of its length, so the corners of one face agree to the last bit on its plane and
+// area.
+FaceTerms face_terms(const Vec3 (&position)[3]) {
+  FaceTerms face;
+  const Vec3 edge[3] = {position[1] - position[0], position[2] - position[1],
+                        position[0] - position[2]};
+  for (int i = 0; i < 3; ++i) face.length2[i] = edge[i].squaredNorm();
+  face.shapeless = is_shapeless_triangle(face.length2[0], face.length2[1], face.length2[2]);
+  const Vec3 cross = edge[2].cross(edge[0]);
+  face.double_area = cross.norm();
   // At corner i, u = edge[i] and v = −edge[i + 2].
-  const Lanes corner_dot[3] = {-dot3(edge[0], edge[2]), -dot3(edge[1], edge[0]),
-                               -dot3(edge[2], edge[1])};
-  const Lanes longest2 = maximum(maximum(length2[0], length2[1]), length2[2]);
-  const Lanes inverse_area = 1.0 / double_area;
-  const Lanes smallest_dot = minimum(minimum(corner_dot[0], corner_dot[1]), corner_dot[2]);
-  const LaneMask cap = smallest_dot < cap_cotangent * double_area;
-  // Mixed Voronoi area (Meyer et al. 2002, Fig. 4), always the mesh's own.
-  const Lanes cot[3] = {corner_dot[0] * inverse_area, corner_dot[1] * inverse_area,
-                        corner_dot[2] * inverse_area};
-  const LaneMask obtuse = corner_dot[0] < 0.0 || corner_dot[1] < 0.0 || corner_dot[2] < 0.0;
+  const double corner_dot[3] = {-edge[0].dot(edge[2]), -edge[1].dot(edge[0]),
+                                -edge[2].dot(edge[1])};
+  face.longest2 = std::max({face.length2[0], face.length2[1], face.length2[2]});
+  const double inverse_area = 1.0 / face.double_area;
+  face.cap =
+      std::min({corner_dot[0], corner_dot[1], corner_dot[2]}) < cap_cotangent * face.double_area;
+  const double cot[3] = {corner_dot[0] * inverse_area, corner_dot[1] * inverse_area,
+                         corner_dot[2] * inverse_area};
+  const bool obtuse = corner_dot[0] < 0.0 || corner_dot[1] < 0.0 || corner_dot[2] < 0.0;
   for (int c = 0; c < 3; ++c) {
     const int next = c == 2 ? 0 : c + 1, last = c == 0 ? 2 : c - 1;
-    const Lanes angle = approximate_angle(double_area, corner_dot[c]);
+    CornerTerms& corner = face.corner[c];
+    corner.normal = corner_normal_term(cross, face.double_area, corner_dot[c], face.longest2);
+    if (face.shapeless) {
+      corner.laplacian = Vec3::Zero();
+      corner.approximate_angle = std::numeric_limits<double>::quiet_NaN();
+      corner.area = 0.0;
+      corner.turn_re = 1.0;
+      corner.turn_im = 0.0;
+      continue;
+    }
     // Cotangent Laplacian: edge c → next is weighted by the cotangent at last, edge c → last
     // by that at next.
-    Lanes ring[4];
-    for (int axis = 0; axis < 3; ++axis)
-      ring[axis] =
-          select(shapeless, Lanes{}, cot[next] * edge[last][axis] - cot[last] * edge[c][axis]);
-    ring[3] = select(shapeless, splat<Lanes>(std::numeric_limits<double>::quiet_NaN()), angle);
-    store_records(block.ring[c] + i, ring);
-    Lanes normal[3];
-    corner_normal_term(cross, double_area, corner_dot[c], longest2, normal);
-    const Lanes voronoi = 0.125 * (length2[c] * cot[last] + length2[last] * cot[next]);
-    const Lanes area = select(shapeless, Lanes{},
-                              select(corner_dot[c] < 0.0, 0.25 * double_area,
-                                     select(obtuse, 0.125 * double_area, voronoi)));
-    store_records(block.normal_area[c] + i, {normal[0], normal[1], normal[2], area});
-    const Lanes turn_scale = power_of_two_below(maximum(absolute(corner_dot[c]), double_area));
-    store_pairs(block.turn[c] + i, select(shapeless, splat<Lanes>(1.0), corner_dot[c] * turn_scale),
-                select(shapeless, Lanes{}, double_area * turn_scale));
-    store_lanes(&block.length2[c][i], length2[c]);
+    corner.laplacian = cot[next] * edge[last] - cot[last] * edge[c];
+    corner.approximate_angle = approximate_angle(face.double_area, corner_dot[c]);
+    // Mixed Voronoi area (Meyer et al. 2002, Fig. 4), always the mesh's own.
+    if (corner_dot[c] < 0.0)
+      corner.area = 0.25 * face.double_area;
+    else if (obtuse)
+      corner.area = 0.125 * face.double_area;
+    else
+      corner.area = 0.125 * (face.length2[c] * cot[last] + face.length2[last] * cot[next]);
+    const double turn_scale =
+        power_of_two_below(std::max(std::abs(corner_dot[c]), face.double_area));
+    corner.turn_re = corner_dot[c] * turn_scale;
+    corner.turn_im = face.double_area * turn_scale;
   }
-  store_lanes(&block.double_area[i], double_area);
-  store_lanes(&block.longest2[i], longest2);
-  store_mask(&block.shapeless[i], shapeless);
-  store_mask(&block.cap[i], cap);
+  return face;
 }
 
-// The terms of the block's first `count` faces (the slots past them hold copies of the first,
-// so that whole lanes are computed from finite positions).
-template <class Lanes>
-[[gnu::always_inline]] inline void compute_faces(FaceBlock& block, std::size_t count) {
-  constexpr std::size_t lanes = lanes_of<Lanes>;
-  const std::size_t padded = (count + lanes - 1) / lanes * lanes;
-  for (std::size_t i = count; i < padded; ++i)
-    for (int corner = 0; corner < 3; ++corner)
-      for (int axis = 0; axis < 3; ++axis)
-        block.position[corner][axis][i] = block.position[corner][axis][0];
-  for (std::size_t i = 0; i < padded; i += lanes) compute_face_lanes<Lanes>(block, i);
+FaceTerms face_terms(const TriangleMesh& mesh, const Triangle& t, double scale) {
+  const Vec3 position[3] = {mesh.positions[t[0]] * scale, mesh.positions[t[1]] * scale,
+                            mesh.positions[t[2]] * scale};
+  return face_terms(position);
 }
 
-bool is_shapeless(const FaceBlock& block, std::size_t i) { return block.shapeless[i] != 0; }
-
-// The δ that face i of the block needs (≤ 0: none).
-double block_mollification(const FaceBlock& block, std::size_t i) {
-  return block.double_area[i] >= mollification_area_ratio * block.longest2[i]
+// The δ that a face needs (≤ 0: none).
+double face_mollification(const FaceTerms& face) {
+  return face.double_area >= mollification_area_ratio * face.longest2
              ? 0.0
-             : mollification_needed(block.length2[0][i], block.length2[2][i], block.length2[1][i]);
+             : mollification_needed(face.length2[0], face.length2[2], face.length2[1]);
 }
 
 // What one vertex sums over its faces, but for its normal and area, which are summed in place
-// in the field's arrays: Σ (cot α + cot β)(xᵢ − xⱼ) and Σθ̃ (NaN once a corner of a shapeless
-// face was added) in one vector, and the running product of the turn factors.
-struct alignas(32) RingSums {
-  double value[4];
+// in the field's arrays: Σ (cot α + cot β)(xᵢ − xⱼ), Σθ̃ (NaN once a corner of a shapeless
+// face was added), and the running product of the turn factors.
+struct RingSums {
+  Vec3 laplacian;
+  double approximate_angle;
 };
 struct TurnProduct {
   double re, im;
@@ -270,7 +234,7 @@ double turn_argument(double re, double im) {
 }
 
 void start_ring(RingSums& ring, TurnProduct& turn, Vec3& normal, double& area) {
-  store_lanes(ring.value, Lanes4{});
+  ring = {Vec3::Zero(), 0.0};
   turn = {1.0, 0.0};
   normal = Vec3::Zero();
   area = 0.0;
@@ -282,7 +246,7 @@ void start_ring(RingSums& ring, TurnProduct& turn, Vec3& normal, double& area) {
 // nearly flat vertex is then the small argument itself, not the difference of two numbers near
 // 2π, and it costs one atan2 per vertex instead of one per corner. The factors are not
 // normalised by |u||v| (a square root and a division per corner) but by a power of two that
-// brings their larger part into [1, 2) (compute_face_lanes), which is exact: the argument is that
+// brings their larger part into [1, 2) (face_terms), which is exact: the argument is that
 // of the unit product up to round-off. So the product's magnitude only grows, by less than 2√2 a
 // corner; it is brought back by a power of two where it passes 2^500 (a vertex of some 300
 // faces), so that it never overflows.
@@ -292,16 +256,14 @@ constexpr double turn_renormalise_above = 0x1p500;
 constexpr std::size_t largest_turn_counted_valence = 100000;
 static_assert(largest_turn_counted_valence * 1e-5 < std::numbers::pi);
 
-[[gnu::always_inline]] inline void add_corner(const FaceBlock& block, std::size_t i, int corner,
-                                              RingSums& ring, TurnProduct& turn, Vec3& normal,
-                                              double& area) {
-  store_lanes(ring.value,
-              load_lanes<Lanes4>(ring.value) + load_lanes<Lanes4>(block.ring[corner][i]));
-  const double* normal_area = block.normal_area[corner][i];
-  normal += Vec3(normal_area[0], normal_area[1], normal_area[2]);
-  area += normal_area[3];
+void add_corner(const CornerTerms& terms, RingSums& ring, TurnProduct& turn, Vec3& normal,
+                double& area) {
+  ring.laplacian += terms.laplacian;
+  ring.approximate_angle += terms.approximate_angle;
+  normal += terms.normal;
+  area += terms.area;
   // Written out: std::complex's operator* and abs guard against inf/NaN at several times the cost.
-  const double re = block.turn[corner][i][0], im = block.turn[corner][i][1];
+  const double re = terms.turn_re, im = terms.turn_im;
   const double next_re = turn.re * re - turn.im * im;
   const double next_im = turn.re * im + turn.im * re;
   turn = {next_re, next_im};
@@ -360,103 +322,81 @@ struct GatherCounts {
   spanning.push_back(v);
 }
 
-// The face pass over faces [begin, end): each face's terms are computed once, a block at a
-// time, and added to the sums of those of its corners whose first face lies in [begin, end).
-// The first face of a vertex starts its sums, so no array needs clearing beforehand. A vertex
-// whose faces all lie in one chunk is thus summed in the order of its faces, which is the
-// order of its row (build_vertex_faces fills each row in ascending face order). A vertex with
-// faces in two chunks is listed by the later chunk, and the vertex pass sums it again from its
-// row, in that same order: either way the same sums, whatever the number of chunks. Forced
-// inline so that each of the two instantiations below compiles all of it for its own
-// instruction set.
+// The face pass over faces [begin, end): each face's terms are computed once and added to the
+// sums of those of its corners whose first face lies in [begin, end). The first face of a
+// vertex starts its sums, so no array needs clearing beforehand. A vertex whose faces all lie
+// in one chunk is thus summed in the order of its faces, which is the order of its row
+// (build_vertex_faces fills each row in ascending face order). A vertex with faces in two
+// chunks is listed by the later chunk, and the vertex pass sums it again from its row, in that
+// same order: either way the same sums, whatever the number of chunks.
 // The counts are kept on the stack and stored once: the workers' counts share a cache line,
 // and adding to them in place made the two cores take that line from each other at every face.
-template <class Lanes>
-[[gnu::always_inline]] inline void sum_faces(const GatherInput& in, std::size_t begin,
-                                             std::size_t end, CurvatureField& field,
-                                             GatherCounts& counts_out,
-                                             std::vector<std::int32_t>& spanning) {
+void sum_faces(const GatherInput& in, std::size_t begin, std::size_t end, CurvatureField& field,
+               GatherCounts& counts_out, std::vector<std::int32_t>& spanning) {
   GatherCounts counts;
   const VertexFaces& vf = in.topology.vertex_faces;
-  const std::vector<Triangle>& triangles = in.mesh.triangles;
-  FaceBlock block;
-  for (std::size_t block_begin = begin; block_begin < end; block_begin += block_faces) {
-    const std::size_t count = std::min(block_faces, end - block_begin);
-    for (std::size_t i = 0; i < count; ++i)
-      block.load(i, in.mesh.positions, triangles[block_begin + i], in.scale);
-    compute_faces<Lanes>(block, count);
-    for (std::size_t i = 0; i < count; ++i) {
-      const std::size_t f = block_begin + i;
-      const Triangle& t = triangles[f];
-      if (has_repeated_corner(t)) continue;  // in no row (topology.hpp)
-      if (is_shapeless(block, i)) {
-        ++counts.shapeless;
-      } else {
-        const double mollification = block_mollification(block, i);
-        if (mollification > 0.0) {
-          ++counts.mollified;
-          counts.mollification = std::max(counts.mollification, mollification);
-        }
-        counts.caps += block.cap[i] != 0;
+  for (std::size_t f = begin; f < end; ++f) {
+    const Triangle& t = in.mesh.triangles[f];
+    if (has_repeated_corner(t)) continue;  // in no row (topology.hpp)
+    const FaceTerms face = face_terms(in.mesh, t, in.scale);
+    if (face.shapeless) {
+      ++counts.shapeless;
+    } else {
+      const double mollification = face_mollification(face);
+      if (mollification > 0.0) {
+        ++counts.mollified;
+        counts.mollification = std::max(counts.mollification, mollification);
       }
-      for (int corner = 0; corner < 3; ++corner) {
-        const std::int32_t v = t[corner];
-        // The chunk of v's first face sums v. If v's faces reach into a later chunk, that chunk
-        // lists v and the vertex pass sums it again from the start; the first chunk's partial
-        // sums are never read.
-        const auto first = static_cast<std::size_t>(vf.face_indices[vf.offsets[v]]);
-        if (first < begin) {
-          list_spanning(spanning, v);
-          continue;
-        }
-        if (first == f) start_ring(in.rings[v], in.turns[v], field.normal[v], field.area[v]);
-        add_corner(block, i, corner, in.rings[v], in.turns[v], field.normal[v], field.area[v]);
+      counts.caps += face.cap;
+    }
+    for (int corner = 0; corner < 3; ++corner) {
+      const std::int32_t v = t[corner];
+      // The chunk of v's first face sums v. If v's faces reach into a later chunk, that chunk
+      // lists v and the vertex pass sums it again from the start; the first chunk's partial
+      // sums are never read.
+      const auto first = static_cast<std::size_t>(vf.face_indices[vf.offsets[v]]);
+      if (first < begin) {
+        list_spanning(spanning, v);
+        continue;
       }
+      if (first == f) start_ring(in.rings[v], in.turns[v], field.normal[v], field.area[v]);
+      add_corner(face.corner[corner], in.rings[v], in.turns[v], field.normal[v], field.area[v]);
     }
   }
   counts_out = counts;
 }
 
-// The sums of vertex v from its row, by the same block code as the face pass, so with the
-// same bits for each face's terms.
-template <class Lanes>
-[[gnu::always_inline]] inline void sum_row(const GatherInput& in, std::int32_t vertex,
-                                           FaceBlock& block, CurvatureField& field) {
-  const std::span<const std::int32_t> row = in.topology.vertex_faces.of(vertex);
+// The sums of vertex v from its row, by the same face_terms as the face pass, so with the same
+// bits for each face's terms.
+void sum_row(const GatherInput& in, std::int32_t vertex, CurvatureField& field) {
   const auto v = static_cast<std::size_t>(vertex);
   start_ring(in.rings[v], in.turns[v], field.normal[v], field.area[v]);
-  for (std::size_t piece = 0; piece < row.size(); piece += block_faces) {
-    const std::size_t count = std::min(block_faces, row.size() - piece);
-    for (std::size_t i = 0; i < count; ++i)
-      block.load(i, in.mesh.positions, in.mesh.triangles[row[piece + i]], in.scale);
-    compute_faces<Lanes>(block, count);
-    for (std::size_t i = 0; i < count; ++i)
-      add_corner(block, i, corner_of(in.mesh.triangles[row[piece + i]], vertex), in.rings[v],
-                 in.turns[v], field.normal[v], field.area[v]);
+  for (std::int32_t f : in.topology.vertex_faces.of(vertex)) {
+    const Triangle& t = in.mesh.triangles[f];
+    add_corner(face_terms(in.mesh, t, in.scale).corner[corner_of(t, vertex)], in.rings[v],
+               in.turns[v], field.normal[v], field.area[v]);
   }
 }
 
 // The vertex pass over vertices [begin, end): sums again the vertices with faces in two chunks,
 // starts those in no face (which the face pass never saw) with empty sums, then turns every
 // vertex's sums into its fields.
-template <class Lanes>
-[[gnu::always_inline]] inline void finish_vertices(const GatherInput& in, std::size_t begin,
-                                                   std::size_t end, CurvatureField& field) {
+void finish_vertices(const GatherInput& in, std::size_t begin, std::size_t end,
+                     CurvatureField& field) {
   const VertexFaces& vf = in.topology.vertex_faces;
   const double scale = in.scale, scale2 = scale * scale;
-  FaceBlock block;
   for (auto it = std::lower_bound(in.spanning.begin(), in.spanning.end(),
                                   static_cast<std::int32_t>(begin));
        it != in.spanning.end() && static_cast<std::size_t>(*it) < end; ++it)
-    sum_row<Lanes>(in, *it, block, field);
+    sum_row(in, *it, field);
   for (std::size_t v = begin; v < end; ++v) {
     const auto vertex = static_cast<std::int32_t>(v);
     const auto valence = static_cast<std::size_t>(vf.offsets[v + 1] - vf.offsets[v]);
     RingSums& ring = in.rings[v];
     TurnProduct& turn = in.turns[v];
     if (valence == 0) start_ring(ring, turn, field.normal[v], field.area[v]);
-    Vec3 laplacian(ring.value[0], ring.value[1], ring.value[2]);
-    const double approximate_angle_sum = ring.value[3];
+    Vec3 laplacian = ring.laplacian;
+    const double approximate_angle_sum = ring.approximate_angle;
     if (in.intrinsic) {
       // The Laplacian from the intrinsic triangulation's faces instead of the mesh's.
       laplacian = Vec3::Zero();
@@ -511,39 +451,6 @@ template <class Lanes>
     field.status[v] = CurvatureStatus::computed;
   }
 }
-
-// The same code for any x86-64 (SSE2, two lanes) and for processors with AVX2 and FMA (four
-// lanes), chosen at run time: the portable build must not assume AVX2. This file is compiled
-// with floating-point contraction allowed (analyzer/CMakeLists.txt), which on x86-64 only the
-// second can use: there a·b + c becomes one fused multiply-add, rounded once. Its results differ
-// from the portable path's by round-off only (tested); multiplying by the power-of-two scale
-// stays exact, so the scale invariance holds in both. Elsewhere there is only the portable code.
-// The AVX2 copy does not earn its place in time: whole `analyze` with the portable copy alone
-// differed by under 5 % at 55k and 1M vertices (2026-12-04, bench/meshlab_compare.sh's meshes,
-// 7–9 alternating runs); it stays because its fused roundings are the bits of the outputs.
-void sum_faces_portable(const GatherInput& in, std::size_t begin, std::size_t end,
-                        CurvatureField& field, GatherCounts& counts,
-                        std::vector<std::int32_t>& spanning) {
-  sum_faces<Lanes2>(in, begin, end, field, counts, spanning);
-}
-void finish_vertices_portable(const GatherInput& in, std::size_t begin, std::size_t end,
-                              CurvatureField& field) {
-  finish_vertices<Lanes2>(in, begin, end, field);
-}
-
-#if defined(__x86_64__) && defined(__GNUC__)
-#define TOONWATER_CURVATURE_AVX2_FMA 1
-[[gnu::target("avx2,fma")]] void sum_faces_avx2_fma(const GatherInput& in, std::size_t begin,
-                                                    std::size_t end, CurvatureField& field,
-                                                    GatherCounts& counts,
-                                                    std::vector<std::int32_t>& spanning) {
-  sum_faces<Lanes4>(in, begin, end, field, counts, spanning);
-}
-[[gnu::target("avx2,fma")]] void finish_vertices_avx2_fma(const GatherInput& in, std::size_t begin,
-                                                          std::size_t end, CurvatureField& field) {
-  finish_vertices<Lanes4>(in, begin, end, field);
-}
-#endif
 
 }  // namespace
 
@@ -602,19 +509,7 @@ void extrapolate_from_neighbours(const TriangleMesh& mesh, const VertexFaces& vf
   field.extrapolated_vertices = total.extrapolated;
 }
 
-bool avx2_fma_supported() {
-#ifdef TOONWATER_CURVATURE_AVX2_FMA
-  static const bool supported = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  return supported;
-#else
-  return false;
-#endif
-}
-
-CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& topology,
-                                 CurvatureKernel kernel) {
-  if (kernel == CurvatureKernel::avx2_fma && !avx2_fma_supported())
-    throw std::invalid_argument("compute_curvature: this processor has no AVX2 and FMA");
+CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& topology) {
   const std::size_t n = mesh.positions.size();
   const double scale = power_of_two_scale(mesh.positions);
 
@@ -643,25 +538,13 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
   const std::size_t m = mesh.triangles.size();
   const auto rings = std::make_unique_for_overwrite<RingSums[]>(n);
   const auto turns = std::make_unique_for_overwrite<TurnProduct[]>(n);
-  bool use_avx2_fma = false;
-#ifdef TOONWATER_CURVATURE_AVX2_FMA
-  use_avx2_fma = kernel == CurvatureKernel::avx2_fma ||
-                 (kernel == CurvatureKernel::fastest && avx2_fma_supported());
-#endif
   auto sum_all = [&](const IntrinsicTriangulation* intrinsic) {
     std::vector<GatherCounts> counts(workers);
     std::vector<std::vector<std::int32_t>> chunk_spanning(workers);
     GatherInput input{mesh, topology, scale, intrinsic, {}, rings.get(), turns.get()};
     parallel_chunks(m, workers, [&](std::size_t worker, std::size_t begin, std::size_t end) {
       std::vector<std::int32_t> spanning;  // moved once: the chunks' vectors share a cache line
-      auto sum_chunk = [&] {
-#ifdef TOONWATER_CURVATURE_AVX2_FMA
-        if (use_avx2_fma)
-          return sum_faces_avx2_fma(input, begin, end, field, counts[worker], spanning);
-#endif
-        sum_faces_portable(input, begin, end, field, counts[worker], spanning);
-      };
-      sum_chunk();
+      sum_faces(input, begin, end, field, counts[worker], spanning);
       chunk_spanning[worker] = std::move(spanning);
     });
     std::vector<std::int32_t> spanning;
@@ -671,10 +554,7 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
     spanning.erase(std::unique(spanning.begin(), spanning.end()), spanning.end());
     input.spanning = spanning;
     parallel_chunks(n, workers, [&](std::size_t, std::size_t begin, std::size_t end) {
-#ifdef TOONWATER_CURVATURE_AVX2_FMA
-      if (use_avx2_fma) return finish_vertices_avx2_fma(input, begin, end, field);
-#endif
-      finish_vertices_portable(input, begin, end, field);
+      finish_vertices(input, begin, end, field);
     });
     GatherCounts total;
     for (const GatherCounts& c : counts) {

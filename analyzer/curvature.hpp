@@ -11,13 +11,13 @@
 //   k1,2 = H ± sqrt(max(H² − K, 0))
 //   n̂  = angle-weighted vertex normal (Thürmer and Wüthrich 1998)
 //
-// One pass over the faces on every core computes each face's terms once, two or four at a time,
-// over the flat position and triangle arrays (no halfedge circulators), and adds them to its
-// corners' sums; a vertex whose faces span two cores' ranges is summed afterwards from its row,
-// in the same order, so the result does not depend on the core count. See curvature.cpp for how
-// the angle sum is kept exact, how thin and degenerate faces are handled (L from the intrinsic
-// Delaunay triangulation of mollified edge lengths where the mesh has caps or near-collinear
-// faces), and boundaries and non-manifold vertices.
+// One pass over the faces on every core computes each face's terms once, over the flat position
+// and triangle arrays (no halfedge circulators), and adds them to its corners' sums; a vertex
+// whose faces span two cores' ranges is summed afterwards from its row, in the same order, so
+// the result does not depend on the core count. See curvature.cpp for how the angle sum is kept
+// exact, how thin and degenerate faces are handled (L from the intrinsic Delaunay triangulation
+// of mollified edge lengths where the mesh has caps or near-collinear faces), and boundaries
+// and non-manifold vertices.
 #pragma once
 
 #include "analyzer/mesh.hpp"
@@ -57,15 +57,8 @@ struct CurvatureField {
   std::size_t undefined_vertices = 0;
 };
 
-// The same gather compiled for any x86-64 and for processors with AVX2 and FMA (fused
-// multiply-adds: results differ by round-off only). `fastest` takes the second where the
-// processor has it; asking for `avx2_fma` where it has not throws std::invalid_argument.
-enum class CurvatureKernel : std::uint8_t { fastest, portable, avx2_fma };
-bool avx2_fma_supported();
-
 // `mesh` should be consistently oriented (orient_consistently) for the signs to mean anything.
-CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& topology,
-                                 CurvatureKernel kernel = CurvatureKernel::fastest);
+CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& topology);
 
 struct PrincipalCurvatures {
   double k1 = 0.0, k2 = 0.0;  // k1 >= k2

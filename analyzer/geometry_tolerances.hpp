@@ -22,16 +22,14 @@ namespace toonwater {
 
 constexpr double degenerate_area_ratio = 1e-12;
 
-// From a face's three squared edge lengths. For a double, or faces in vector lanes (lanes.hpp:
-// a mask then).
-template <class Real>
-inline auto is_shapeless_triangle(Real edge0_squared, Real edge1_squared, Real edge2_squared) {
+// From a face's three squared edge lengths.
+inline bool is_shapeless_triangle(double edge0_squared, double edge1_squared,
+                                  double edge2_squared) {
   return edge0_squared == 0.0 || edge1_squared == 0.0 || edge2_squared == 0.0;
 }
 
-// From a face's doubled area and its longest squared edge; for a double or vector lanes.
-template <class Real>
-inline auto is_degenerate_triangle(Real double_area, Real longest_squared) {
+// From a face's doubled area and its longest squared edge.
+inline bool is_degenerate_triangle(double double_area, double longest_squared) {
   return !(double_area > degenerate_area_ratio * longest_squared);
 }
 

@@ -191,19 +191,37 @@ WaterPlan plan_water(const SceneConfig& config, const PovgenRequest& request, st
   return plan;
 }
 
-// What the survey finds over the whole sequence.
+// What the survey finds over the whole sequence, and what reading it took.
 struct SequenceSurvey {
   bool have_box = false;
   Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();  // POV-Ray frame
   std::vector<double> normal_noise;                     // each frame's with water
   CurvatureRanges view;                                 // the curvature view's colour range
   std::optional<MapPlanner> maps;
+  // Each frame's reads (its water file, read and analysed, and its animated objects' files),
+  // which the frame loop's result for it starts from.
+  std::vector<FrameResult> frames;
+  ObjectWork static_objects;  // the static objects' files read
+  std::size_t water_reads = 0;
   void grow_box(const Vec3& lower, const Vec3& upper, Axis up) {
     const Vec3 a = to_povray(lower, up), b = to_povray(upper, up);  // a signed permutation
     box_min = have_box ? Vec3(box_min.cwiseMin(a.cwiseMin(b))) : Vec3(a.cwiseMin(b));
     box_max = have_box ? Vec3(box_max.cwiseMax(a.cwiseMax(b))) : Vec3(a.cwiseMax(b));
     have_box = true;
   }
+};
+
+template <class F>
+double seconds_of(F&& work) {
+  const auto start = Clock::now();
+  work();
+  return seconds_since(start);
+}
+
+// An object's mesh as read, and the read.
+struct ObjectRead {
+  TriangleMesh mesh;
+  ObjectWork work;
 };
 
 // Everything one run of generate_scene shares between its steps.
@@ -218,7 +236,6 @@ struct SceneRun {
   SceneLayout layout;
   LightGeometry light;
   fs::path out_dir;  // the staging directory
-  PovgenReport report;
   struct Box {
     Vec3 min = Vec3::Zero(), max = Vec3::Zero();
   };
@@ -235,29 +252,20 @@ struct SceneRun {
   // animated one's for the frame being written), taken by that include: read once, not twice.
   std::vector<std::optional<TriangleMesh>> object_mesh;
 
-  void write(const fs::path& name, const std::string& text) {
-    const auto start = Clock::now();
-    write_file_atomically(out_dir / name, text);
-    report.write_seconds += seconds_since(start);
+  // A file of the scene written; the seconds it took.
+  double write(const fs::path& name, const std::string& text) {
+    return seconds_of([&] { write_file_atomically(out_dir / name, text); });
   }
-  TriangleMesh read_object(const fs::path& path) {
+  ObjectRead read_object(const fs::path& path) {
     const auto start = Clock::now();
     InputMesh m = read_mesh(path);
-    report.read_seconds += seconds_since(start);
-    ++report.object_reads;
-    return std::move(m.mesh);
+    return {std::move(m.mesh), ObjectWork{.reads = 1, .read_seconds = seconds_since(start)}};
   }
-  // Object i's mesh from `path`: the survey's copy where it kept one, else read now.
-  TriangleMesh take_object(std::size_t i, const fs::path& path) {
+  // Object i's mesh from `path`: the survey's copy where it kept one (its read counted there),
+  // else read now.
+  ObjectRead take_object(std::size_t i, const fs::path& path) {
     std::optional<TriangleMesh> kept = std::exchange(object_mesh[i], std::nullopt);
-    return kept ? std::move(*kept) : read_object(path);
-  }
-  // One water frame from its file, read and analysed (frame_source.hpp).
-  SourceFrame read_water(FrameSource& source, const fs::path& path) {
-    SourceFrame f = source.read(path);
-    report.read_seconds += f.read_seconds;
-    report.analysis_seconds += f.analysis_seconds;
-    return f;
+    return kept ? ObjectRead{std::move(*kept), {}} : read_object(path);
   }
   // A frame with water, prepared for the scene; a sequence's frames in order, so that the
   // strokes persist where the flow is coherent.
@@ -277,6 +285,14 @@ void throw_if_stopped(const SceneRun& run, const std::atomic<bool>* stop) {
   if (stop && stop->load()) throw InterruptedError(run.request.out_dir.string() + ": interrupted");
 }
 
+// A water frame's file read and analysed: the reads of its result.
+FrameResult frame_reads(const SourceFrame& f) {
+  FrameResult reads;
+  reads.read_seconds = f.read_seconds;
+  reads.analysis_seconds = f.analysis_seconds;
+  return reads;
+}
+
 // The survey, for a sequence that shares something: each water frame read and analysed once,
 // what the sequence shares gathered from it, and what writing it needs kept in `cache`; with
 // the default camera, the objects' meshes too, for the camera's box (read once: kept for
@@ -294,13 +310,16 @@ SequenceSurvey survey_sequence(SceneRun& run, FrameCache& cache, const ProgressF
   for (std::size_t i = 0; read_objects && i < run.objects.size(); ++i) {
     const ObjectSource& o = run.objects[i];
     if (o.placement.animated) continue;
-    run.object_mesh[i] = run.read_object(o.sequence.frames.begin()->second);
-    grow(*run.object_mesh[i]);
+    ObjectRead read = run.read_object(o.sequence.frames.begin()->second);
+    survey.static_objects += read.work;
+    grow(read.mesh);
+    run.object_mesh[i] = std::move(read.mesh);
   }
   std::size_t done = 0;
   for (const auto& [frame, path] : run.water.frames) {
     throw_if_stopped(run, stop);
-    SourceFrame f = run.read_water(source, path);
+    SourceFrame f = source.read(path);
+    FrameResult reads = frame_reads(f);
     record.clear();
     record.string(f.empty);
     if (f.has_water()) {
@@ -311,58 +330,35 @@ SequenceSurvey survey_sequence(SceneRun& run, FrameCache& cache, const ProgressF
         survey.maps->add(*f.analysis);
         pack_map_inputs(record, *f.analysis);
       }
+      // Its preparation time travels with it (PreparedSurface::analysis_seconds).
       const PreparedSurface prepared = run.prepare(f);
       survey.normal_noise.push_back(prepared.normal_noise);
       pack_surface(record, prepared);
     }
     for (const ObjectSource& o : run.objects) {
       if (!read_objects || !o.placement.animated) continue;
-      const TriangleMesh mesh = run.read_object(o.sequence.frames.at(frame));
-      grow(mesh);
-      mesh_fields(record, mesh);
+      const ObjectRead read = run.read_object(o.sequence.frames.at(frame));
+      reads.objects += read.work;
+      grow(read.mesh);
+      mesh_fields(record, read.mesh);
     }
     cache.put(record.bytes());
+    survey.frames.push_back(std::move(reads));
     if (progress) progress(PovgenPass::survey, ++done, run.water.frames.size());
   }
-  run.report.water_reads += source.reads();
+  survey.water_reads = source.reads();
   return survey;
 }
 
-// An object's shell, written whole: it is small next to the water's, and the water and other
-// objects come near it (shell_culling.hpp). Counted in the report.
-void count_whole_shell(SceneRun& run, const SceneMesh& mesh, std::span<const double> offsets) {
-  if (offsets.empty()) return;
-  run.report.shell_faces += mesh.triangles.size();
-  run.report.shell_faces_kept += mesh.triangles.size();
-}
-
-// The water's shell faces written (shell_culling.hpp): empty for all of them (then the shell
-// stays closed), else a mark per face. `keep`: the faces the shell is limited to anyway.
-// `may_cull`: nothing beyond shell_culling.hpp's rule forbids culling this shell.
-std::vector<bool> kept_water_shell_faces(SceneRun& run, const SceneMesh& mesh,
-                                         std::span<const double> offsets, bool may_cull,
-                                         std::span<const KeepOutBox> keep_out,
-                                         const std::vector<bool>* keep) {
-  std::vector<bool> kept;
-  if (offsets.empty()) return kept;
-  run.report.shell_faces += mesh.triangles.size();
-  // The water's shell is no_reflection whenever the water reflects (scene_writer.cpp).
-  if (run.request.cull_shells && may_cull &&
-      shell_met_by_camera_rays_only(run.config, /*shell_no_reflection=*/true))
-    kept = shell_faces_seen_from_behind(mesh, offsets, run.layout.camera.location, keep_out, keep);
-  else if (keep)
-    kept = *keep;
-  const auto count = static_cast<std::size_t>(std::count(kept.begin(), kept.end(), true));
-  if (!keep && count == kept.size()) kept.clear();  // every face: the shell stays closed
-  run.report.shell_faces_kept += kept.empty() ? mesh.triangles.size() : count;
-  return kept;
-}
-
 // One object's include for a frame (0 for a static object), and its box for the water line.
-void write_object(SceneRun& run, std::size_t i, const fs::path& path, long frame) {
+// Its shell is written whole: it is small next to the water's, and the water and other objects
+// come near it (shell_culling.hpp).
+ObjectWork write_object(SceneRun& run, std::size_t i, const fs::path& path, long frame) {
   const ObjectConfig& oc = *run.objects[i].placement.config;
+  ObjectRead read = run.take_object(i, path);
+  ObjectWork work = read.work;
   const PreparedSurface s =
-      prepare_surface(geometry_analysis(run.take_object(i, path)), run.request.up, nullptr);
+      prepare_surface(geometry_analysis(std::move(read.mesh)), run.request.up, nullptr);
   check_scene_extent(s.mesh, path);
   if (s.mesh.triangles.empty())
     throw InputError(path.string() + ": object '" + oc.name + "': all " +
@@ -372,11 +368,12 @@ void write_object(SceneRun& run, std::size_t i, const fs::path& path, long frame
       run.config.outline.enabled && oc.outline
           ? shell_offsets(run.config.outline, s.mesh, run.layout.camera, run.config.render.width)
           : std::vector<double>{};
-  count_whole_shell(run, s.mesh, offsets);
+  if (!offsets.empty()) work.shell_faces = s.mesh.triangles.size();
   std::string text = mesh_include(s, "Obj_" + oc.name, texture_coordinates(s, run.light), offsets,
                                   nullptr, nullptr);
-  run.report.write_seconds += seconds_since(start);
-  run.write(object_include_name(oc.name, run.objects[i].placement.animated, frame), text);
+  work.write_seconds = seconds_since(start);
+  work.write_seconds +=
+      run.write(object_include_name(oc.name, run.objects[i].placement.animated, frame), text);
   // The object with its shell: the water's shell faces keep away from it to be dropped.
   const double grow = offsets.empty() ? 0.0 : *std::max_element(offsets.begin(), offsets.end());
   run.object_box[i] = {s.mesh.min, s.mesh.max};
@@ -389,12 +386,15 @@ void write_object(SceneRun& run, std::size_t i, const fs::path& path, long frame
     run.contact_depth[i] = 0.5 * *middle;
   }
   run.keep_out[i] = {s.mesh.min.array() - grow, s.mesh.max.array() + grow};
+  return work;
 }
 
-void write_animated_objects(SceneRun& run, long frame, long written_frame) {
+ObjectWork write_animated_objects(SceneRun& run, long frame, long written_frame) {
+  ObjectWork work;
   for (std::size_t i = 0; i < run.objects.size(); ++i)
     if (run.objects[i].placement.animated)
-      write_object(run, i, run.objects[i].sequence.frames.at(frame), written_frame);
+      work += write_object(run, i, run.objects[i].sequence.frames.at(frame), written_frame);
+  return work;
 }
 
 bool refracts(const SceneRun& run) {
@@ -418,27 +418,11 @@ std::string object_waters(SceneRun& run, const SceneMesh* frame_water) {
   return text;
 }
 
-// A frame with no liquid: the scene still needs its include, with nothing in it.
-void write_empty_frame(SceneRun& run, long frame, long written_frame, const std::string& why) {
-  if (run.water.frames.size() == 1) throw InputError(why);
-  run.report.empty_frames.push_back(why);
-  write_animated_objects(run, frame, written_frame);
-  run.write(water_include_name(written_frame), empty_water_include() + object_waters(run, nullptr));
-}
-
-// The water include of one frame that has water.
-void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long written_frame) {
-  const SceneConfig& config = run.config;
-  // The band limits are the sequence's from its first frame on (no survey: this frame's).
+// The sequence's water box and band limits grow with each frame that has water; the band
+// limits are the sequence's from its first frame on (no survey: this frame's).
+void add_to_layout(SceneRun& run, const PreparedSurface& s) {
   if (!run.have_water_box && run.layout.normal_noise == 0.0)
     run.layout.normal_noise = s.normal_noise;
-  s.view_range = run.view_range;
-  run.report.analysis_seconds += s.analysis_seconds;
-  run.report.vertices += s.mesh.positions.size();
-  run.report.degenerate_faces += s.mesh.degenerate_faces;
-  run.report.replaced_normals += s.mesh.replaced_normals;
-  run.report.ridge_vertices += s.ridge_vertices;
-  run.report.valley_vertices += s.valley_vertices;
   if (!run.have_water_box) {
     run.layout.water_min = s.mesh.min;
     run.layout.water_max = s.mesh.max;
@@ -446,98 +430,209 @@ void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long writt
   }
   run.layout.water_min = run.layout.water_min.cwiseMin(s.mesh.min);
   run.layout.water_max = run.layout.water_max.cwiseMax(s.mesh.max);
+}
 
-  write_animated_objects(run, frame, written_frame);
-  run.report.faces += s.mesh.triangles.size();
-  std::vector<TextureCoordinate> uv = water_coordinates(s, run.light, run.layout);
-  const auto simplify_start = Clock::now();
-  simplify_water(s, uv, run.layout, run.plan.flow);
-  run.report.simplify_seconds += seconds_since(simplify_start);
-  run.report.faces_kept += s.mesh.triangles.size();
-  const auto start = Clock::now();
+// A see-through closed volume (WaterBody): an opaque body gives free surface and body their
+// own textures (scene.pov); a clear one keeps the shell on the free surface only, as rays
+// refracted through the volume leave it through the floor and walls and would meet the
+// inside of a closed shell there, painting the water in the line colour.
+struct WaterBodyFaces {
+  std::optional<FaceTextures> textures;          // an opaque body: surface and body
+  std::optional<std::vector<bool>> shell_limit;  // a clear body: the faces its shell keeps to
+};
+
+WaterBodyFaces water_body_faces(const SceneRun& run, const SceneMesh& mesh) {
+  WaterBodyFaces out;
+  if (!(mesh.closed && refracts(run))) return out;
+  std::vector<bool> upward = upward_faces(mesh);
+  if (run.config.water.body == WaterBody::opaque) {
+    FaceTextures& textures = out.textures.emplace();
+    textures.names = {kWaterSurfaceTexture, kWaterBodyTexture};
+    textures.index.resize(upward.size());
+    for (std::size_t f = 0; f < upward.size(); ++f) textures.index[f] = upward[f] ? 0 : 1;
+  } else {
+    out.shell_limit = std::move(upward);
+  }
+  return out;
+}
+
+// The water's outline shell faces written (shell_culling.hpp): `kept` empty for all of them
+// (then the shell stays closed), else a mark per face; its faces, and how many are written.
+struct WaterShell {
+  std::vector<bool> kept;
+  std::size_t faces = 0, faces_kept = 0;
+};
+
+// `may_cull`: nothing beyond shell_culling.hpp's rule forbids culling this shell. `limit`: the
+// faces the shell is limited to anyway.
+WaterShell water_shell(const SceneRun& run, const SceneMesh& mesh, std::span<const double> offsets,
+                       bool may_cull, const std::vector<bool>* limit) {
+  WaterShell shell;
+  if (offsets.empty()) return shell;
+  shell.faces = mesh.triangles.size();
+  // The water's shell is no_reflection whenever the water reflects (scene_writer.cpp).
+  if (run.request.cull_shells && may_cull &&
+      shell_met_by_camera_rays_only(run.config, /*shell_no_reflection=*/true))
+    shell.kept = shell_faces_seen_from_behind(mesh, offsets, run.layout.camera.location,
+                                              run.keep_out, limit);
+  else if (limit)
+    shell.kept = *limit;
+  const auto count =
+      static_cast<std::size_t>(std::count(shell.kept.begin(), shell.kept.end(), true));
+  if (!limit && count == shell.kept.size()) shell.kept.clear();  // every face: stays closed
+  shell.faces_kept = shell.kept.empty() ? shell.faces : count;
+  return shell;
+}
+
+// A frame with no liquid: the scene still needs its include, with nothing in it.
+void write_empty_frame(SceneRun& run, long frame, long written_frame, const std::string& why,
+                       FrameResult& result) {
+  if (run.water.frames.size() == 1) throw InputError(why);
+  result.empty = why;
+  result.objects += write_animated_objects(run, frame, written_frame);
+  result.write_seconds += run.write(water_include_name(written_frame),
+                                    empty_water_include() + object_waters(run, nullptr));
+}
+
+// A water frame's include: its text (the render mesh with its textures, outline shell and flow
+// strokes, then each object's water) and its outline shell's faces, all and written.
+struct WaterInclude {
+  std::string text;
+  std::size_t shell_faces = 0, shell_faces_kept = 0;
+};
+
+WaterInclude water_include(SceneRun& run, const PreparedSurface& s,
+                           std::span<const TextureCoordinate> uv) {
+  const SceneConfig& config = run.config;
   const std::vector<double> offsets =
       config.outline.enabled
           ? shell_offsets(config.outline, s.mesh, run.layout.camera, config.render.width)
           : std::vector<double>{};
-  // A see-through closed volume (WaterBody): an opaque body gives free surface and body their
-  // own textures (scene.pov); a clear one keeps the shell on the free surface only, as rays
-  // refracted through the volume leave it through the floor and walls and would meet the
-  // inside of a closed shell there, painting the water in the line colour.
-  std::optional<FaceTextures> textures;
-  std::vector<bool> upward;
-  const bool see_through_volume = s.mesh.closed && refracts(run);
-  if (see_through_volume) upward = upward_faces(s.mesh);
-  if (see_through_volume && config.water.body == WaterBody::opaque) {
-    run.layout.closed_water = true;
-    textures.emplace();
-    textures->names = {kWaterSurfaceTexture, kWaterBodyTexture};
-    textures->index.resize(upward.size());
-    for (std::size_t f = 0; f < upward.size(); ++f) textures->index[f] = upward[f] ? 0 : 1;
-  }
-  const bool free_surface_shell = see_through_volume && config.water.body == WaterBody::clear;
+  const WaterBodyFaces body = water_body_faces(run, s.mesh);
+  if (body.textures) run.layout.closed_water = true;
   // Flow lines are strokes on the water, reaching up towards its shell.
-  const std::vector<bool> shell_faces =
-      kept_water_shell_faces(run, s.mesh, offsets, s.flow_lines.empty(), run.keep_out,
-                             free_surface_shell ? &upward : nullptr);
-  const std::string text = mesh_include(s, "Water", uv, offsets, textures ? &*textures : nullptr,
-                                        shell_faces.empty() ? nullptr : &shell_faces) +
-                           object_waters(run, &s.mesh);
-  run.report.write_seconds += seconds_since(start);
-  run.write(water_include_name(written_frame), text);
+  const WaterShell shell = water_shell(run, s.mesh, offsets, s.flow_lines.empty(),
+                                       body.shell_limit ? &*body.shell_limit : nullptr);
+  WaterInclude include;
+  include.text = mesh_include(s, "Water", uv, offsets, body.textures ? &*body.textures : nullptr,
+                              shell.kept.empty() ? nullptr : &shell.kept) +
+                 object_waters(run, &s.mesh);
+  include.shell_faces = shell.faces;
+  include.shell_faces_kept = shell.faces_kept;
+  return include;
 }
 
+// The water include of one frame that has water, with its counts and times in `result`.
+void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long written_frame,
+                       FrameResult& result) {
+  add_to_layout(run, s);
+  s.view_range = run.view_range;
+  result.vertices = s.mesh.positions.size();
+  result.faces = s.mesh.triangles.size();
+  result.degenerate_faces = s.mesh.degenerate_faces;
+  result.replaced_normals = s.mesh.replaced_normals;
+  result.ridge_vertices = s.ridge_vertices;
+  result.valley_vertices = s.valley_vertices;
+  result.objects += write_animated_objects(run, frame, written_frame);
+
+  std::vector<TextureCoordinate> uv = water_coordinates(s, run.light, run.layout);
+  result.simplify_seconds = seconds_of([&] { simplify_water(s, uv, run.layout, run.plan.flow); });
+  result.faces_kept = s.mesh.triangles.size();
+
+  const auto start = Clock::now();
+  const WaterInclude include = water_include(run, s, uv);
+  result.shell_faces = include.shell_faces;
+  result.shell_faces_kept = include.shell_faces_kept;
+  result.write_seconds = seconds_since(start);
+  result.write_seconds += run.write(water_include_name(written_frame), include.text);
+}
+
+// A water frame as the frame loop takes it: why it has no water ("" when it has), its maps'
+// inputs (with maps) and its prepared surface.
+struct LoopFrame {
+  std::string empty;
+  std::optional<MapInputs> maps;
+  PreparedSurface surface;
+};
+
+// Frame i from the survey's cache; the survey's copies of its animated objects go to their
+// includes (SceneRun::object_mesh).
+LoopFrame take_cached_frame(SceneRun& run, FrameCache& cache, std::size_t i, std::string& bytes) {
+  cache.take(i, bytes);
+  RecordReader record(bytes);
+  LoopFrame in;
+  in.empty = record.string();
+  if (in.empty.empty() && run.map_view) in.maps = unpack_map_inputs(record);
+  if (in.empty.empty()) in.surface = unpack_surface(record);
+  for (std::size_t o = 0; run.plan.survey_reads_objects() && o < run.objects.size(); ++o)
+    if (run.objects[o].placement.animated) mesh_fields(record, run.object_mesh[o].emplace());
+  return in;
+}
+
+// One frame's maps and includes; `result` holds its reads, and is returned complete.
+FrameResult write_frame(SceneRun& run, LoopFrame in, long frame, const fs::path& path,
+                        FrameResult result) {
+  result.frame = frame;
+  const long written_frame = run.layout.animation ? frame : 0;
+  if (!in.empty.empty()) {
+    write_empty_frame(run, frame, written_frame, in.empty, result);
+    return result;
+  }
+  PreparedSurface& s = in.surface;
+  result.analysis_seconds += s.analysis_seconds;
+  if (in.maps) {
+    result.maps_seconds = seconds_of([&] {
+      write_maps(run.request.maps_dir, frame_stem(path),
+                 rasterize_top_down(in.maps->surface, in.maps->curvature, in.maps->label,
+                                    in.maps->free_surface, *run.map_view),
+                 run.map_ranges);
+    });
+    result.maps = true;
+  }
+  check_scene_extent(s.mesh, path);
+  // POV-Ray rejects a mesh2 without faces: a frame of zero-area faces only has no water.
+  if (s.mesh.triangles.empty())
+    write_empty_frame(run, frame, written_frame,
+                      path.string() + ": all " + std::to_string(s.mesh.degenerate_faces) +
+                          " faces are degenerate (zero area)",
+                      result);
+  else
+    write_water_frame(run, s, frame, written_frame, result);
+  return result;
+}
+
+// The frame loop's results, in frame order, and the water files it read itself.
+struct FrameLoop {
+  std::vector<FrameResult> frames;
+  std::size_t water_reads = 0;
+};
+
 // The frame loop: each water frame's include written, and its maps, from its one read and
-// analysis: taken from the survey's `cache`, or, without one, read and analysed here.
-void write_frames(SceneRun& run, FrameCache* cache, const ProgressFn& progress,
-                  const std::atomic<bool>* stop) {
+// analysis: taken from the survey's `cache` (with the survey's `reads` of each frame), or,
+// without one, read and analysed here.
+FrameLoop write_frames(SceneRun& run, FrameCache* cache, std::vector<FrameResult> reads,
+                       const ProgressFn& progress, const std::atomic<bool>* stop) {
+  FrameLoop loop;
   std::optional<FrameSource> source;
   if (!cache) source.emplace(run.plan.frames);
-  std::size_t done = 0;
   std::string bytes;  // one buffer for every frame's record
   for (const auto& [frame, path] : run.water.frames) {
     throw_if_stopped(run, stop);
-    const long written_frame = run.layout.animation ? frame : 0;
-    std::string empty;
-    std::optional<MapInputs> maps;
-    PreparedSurface s;
+    const std::size_t i = loop.frames.size();
     if (cache) {
-      cache->take(run.report.frames, bytes);
-      RecordReader record(bytes);
-      empty = record.string();
-      if (empty.empty() && run.map_view) maps = unpack_map_inputs(record);
-      if (empty.empty()) s = unpack_surface(record);
-      for (std::size_t i = 0; run.plan.survey_reads_objects() && i < run.objects.size(); ++i)
-        if (run.objects[i].placement.animated) mesh_fields(record, run.object_mesh[i].emplace());
+      LoopFrame in = take_cached_frame(run, *cache, i, bytes);
+      loop.frames.push_back(write_frame(run, std::move(in), frame, path, std::move(reads[i])));
     } else {
-      SourceFrame f = run.read_water(*source, path);
-      empty = f.empty;
-      if (f.has_water()) s = run.prepare(f);
+      SourceFrame f = source->read(path);
+      LoopFrame in;
+      in.empty = f.empty;
+      if (f.has_water()) in.surface = run.prepare(f);
+      loop.frames.push_back(write_frame(run, std::move(in), frame, path, frame_reads(f)));
     }
-    if (!empty.empty()) {
-      write_empty_frame(run, frame, written_frame, empty);
-    } else {
-      if (maps) {
-        const auto start = Clock::now();
-        write_maps(run.request.maps_dir, frame_stem(path),
-                   rasterize_top_down(maps->surface, maps->curvature, maps->label,
-                                      maps->free_surface, *run.map_view),
-                   run.map_ranges);
-        run.report.maps_seconds += seconds_since(start);
-        ++run.report.map_frames;
-      }
-      check_scene_extent(s.mesh, path);
-      // POV-Ray rejects a mesh2 without faces: a frame of zero-area faces only has no water.
-      if (s.mesh.triangles.empty())
-        write_empty_frame(run, frame, written_frame,
-                          path.string() + ": all " + std::to_string(s.mesh.degenerate_faces) +
-                              " faces are degenerate (zero area)");
-      else
-        write_water_frame(run, s, frame, written_frame);
-    }
-    ++run.report.frames;
-    if (progress) progress(PovgenPass::frames, ++done, run.water.frames.size());
+    if (progress) progress(PovgenPass::frames, i + 1, run.water.frames.size());
   }
-  if (source) run.report.water_reads += source->reads();
+  if (source) loop.water_reads = source->reads();
+  return loop;
 }
 
 }  // namespace
@@ -554,8 +649,9 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   run.layout.first_frame = run.layout.animation ? water.frames.begin()->first : 0;
   run.layout.last_frame = run.layout.animation ? water.frames.rbegin()->first : 0;
   run.light = light_geometry(config.light, request.up);
-  run.report.first_frame = run.layout.first_frame;
-  run.report.last_frame = run.layout.last_frame;
+  RunResult totals;
+  totals.first_frame = run.layout.first_frame;
+  totals.last_frame = run.layout.last_frame;
   run.object_box.resize(run.objects.size());
   run.keep_out.resize(run.objects.size());
   run.submerged.assign(run.objects.size(), false);
@@ -567,6 +663,7 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   SceneDirectory scene(request.out_dir, request.force);
   // The maps directories this run makes go again if it fails (they are empty then).
   const NewDirectories new_maps_directories(request.maps_dir);
+  PovgenReport report;
   try {
     run.out_dir = scene.staging();
     // With maps, every file of the scene and the maps is renamed into place at the end, together
@@ -594,21 +691,26 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
       const MapOptions map_options;
       run.map_view = survey.maps->view(map_options);
       run.map_ranges = survey.maps->ranges(map_options.percentile);
-      run.report.map_ranges = run.map_ranges;
+      totals.map_ranges = run.map_ranges;
     }
 
     // Static objects first.
+    totals.static_objects = survey.static_objects;
     for (std::size_t i = 0; i < run.objects.size(); ++i)
       if (!run.objects[i].placement.animated)
-        write_object(run, i, run.objects[i].sequence.frames.begin()->second, 0);
-    write_frames(run, cache ? &*cache : nullptr, progress, stop);
+        totals.static_objects +=
+            write_object(run, i, run.objects[i].sequence.frames.begin()->second, 0);
+    FrameLoop loop =
+        write_frames(run, cache ? &*cache : nullptr, std::move(survey.frames), progress, stop);
+    totals.water_reads = survey.water_reads + loop.water_reads;
     // A sequence without water anywhere has nothing to show or frame, as a single empty file.
-    if (run.report.frames > 0 && run.report.empty_frames.size() == run.report.frames)
+    if (!loop.frames.empty() && std::all_of(loop.frames.begin(), loop.frames.end(),
+                                            [](const FrameResult& f) { return !f.empty.empty(); }))
       throw InputError(request.water_pattern + ": no frame of the sequence holds any water (" +
-                       run.report.empty_frames.front() + ")");
+                       loop.frames.front().empty + ")");
     if (cache) {
-      run.report.cached_frames = cache->size();
-      run.report.spilled_frames = cache->spilled();
+      totals.cached_frames = cache->size();
+      totals.spilled_frames = cache->spilled();
     }
     cache.reset();
 
@@ -616,16 +718,17 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
       run.objects[i].placement.submerged = run.submerged[i];
       run.layout.objects.push_back(run.objects[i].placement);
     }
-    run.write("toon.inc", scene_toon_inc(run.layout));
-    run.write("scene.ini", scene_ini(run.layout));
-    run.write("scene.pov", scene_pov(run.layout));
+    totals.write_seconds += run.write("toon.inc", scene_toon_inc(run.layout));
+    totals.write_seconds += run.write("scene.ini", scene_ini(run.layout));
+    totals.write_seconds += run.write("scene.pov", scene_pov(run.layout));
     if (batch) batch->commit();
     scene.commit();
+    report = summarise(std::move(loop.frames), totals);
   } catch (...) {
     new_maps_directories.remove_empty();
     throw;
   }
-  return run.report;
+  return report;
 }
 
 }  // namespace toonwater::povgen

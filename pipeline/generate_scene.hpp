@@ -17,6 +17,7 @@
 #include "analyzer/stroke_persistence.hpp"
 #include "analyzer/flow_strokes.hpp"
 #include "analyzer/maps/map_planner.hpp"
+#include "pipeline/frame_result.hpp"
 #include "scene/config.hpp"
 #include "scene/prepared_surface.hpp"
 
@@ -74,25 +75,8 @@ struct PovgenRequest {
   bool cull_shells = true;
 };
 
-struct PovgenReport {
-  std::size_t frames = 0;
-  long first_frame = 0, last_frame = 0;
-  std::size_t vertices = 0;               // water vertices, all frames
-  std::size_t faces = 0, faces_kept = 0;  // water faces, all frames: analysed, and rendered
-  std::size_t degenerate_faces = 0, replaced_normals = 0;
-  std::size_t shell_faces = 0,
-              shell_faces_kept = 0;  // outline shells, water and objects, all frames
-  std::size_t ridge_vertices = 0, valley_vertices = 0;
-  std::vector<std::string> empty_frames;  // "PATH: why", frames left without water (no faces)
-  double read_seconds = 0, analysis_seconds = 0, simplify_seconds = 0, write_seconds = 0;
-  // Water mesh files read: once per frame. Object mesh files read: once per static object,
-  // once per frame for an animated one.
-  std::size_t water_reads = 0, object_reads = 0;
-  std::size_t cached_frames = 0, spilled_frames = 0;  // kept for the frame loop; of them on disk
-  std::size_t map_frames = 0;                         // frames with maps (those with water)
-  MapRanges map_ranges;                               // the maps' shared colour ranges
-  double maps_seconds = 0;
-};
+// generate_scene returns a PovgenReport (frame_result.hpp): each frame's FrameResult, and
+// their sums.
 
 // The passes over the frames that report progress: the survey (each frame read and analysed,
 // where the sequence shares something, e.g. the default camera's box), then the frame loop

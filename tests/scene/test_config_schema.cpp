@@ -1,6 +1,7 @@
 // The configuration's schema (scene/config_schema.hpp) against its documentation and its own
 // rules: docs/scenes.md's key table lists every key, in the schema's order, with the schema's
-// default; integer keys take whole numbers only, and a bad value in a file names file and line.
+// default; integer keys take whole numbers only, and a bad value in a file names file and line;
+// the config fuzzer's dictionary (tests/fuzz/config.dict) names every table and key.
 #include "scene/config.hpp"
 #include "tests/support/scene_config.hpp"
 #include "tests/support/test_support.hpp"
@@ -85,6 +86,23 @@ TEST(ConfigSchema, TheReadmeTableListsEveryKeyWithItsDefault) {
     EXPECT_EQ(row.default_value, defaults) << "docs/scenes.md default of " << row.keys.front();
   }
   for (; next < schema.size(); ++next) ADD_FAILURE() << schema[next].key << " is not documented";
+}
+
+// libFuzzer reaches a key's reader only by spelling the key; its dictionary gives it the words.
+TEST(ConfigSchema, TheFuzzersDictionaryNamesEveryTableAndKey) {
+  const std::string dictionary =
+      read_text(std::string(TOONWATER_SOURCE_DIR) + "/tests/fuzz/config.dict");
+  const auto listed = [&](const std::string& word) {
+    return dictionary.find("\n\"" + word + "\"\n") != std::string::npos ||
+           dictionary.rfind("\"" + word + "\"\n", 0) == 0;
+  };
+  for (const povgen::ConfigKey& k : povgen::config_keys()) {
+    const std::size_t dot = k.key.find('.');
+    const std::string table = k.key.substr(0, dot), name = k.key.substr(dot + 1);
+    EXPECT_TRUE(listed(table == "object" ? "[[object]]" : "[" + table + "]"))
+        << "tests/fuzz/config.dict lacks the table of " << k.key;
+    EXPECT_TRUE(listed(name)) << "tests/fuzz/config.dict lacks " << k.key;
+  }
 }
 
 TEST(ConfigSchema, EveryKeyHasATypeAndHelp) {
