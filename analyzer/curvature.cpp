@@ -457,9 +457,6 @@ void finish_vertices(const GatherInput& in, std::size_t begin, std::size_t end,
 void set_curvature(CurvatureField& field, std::size_t v, double gaussian, double mean) {
   field.gaussian[v] = gaussian;
   field.mean[v] = mean;
-  const double root = std::sqrt(std::max(mean * mean - gaussian, 0.0));
-  field.k1[v] = mean + root;
-  field.k2[v] = mean - root;
 }
 
 void extrapolate_from_neighbours(const TriangleMesh& mesh, const VertexFaces& vf,
@@ -528,8 +525,6 @@ CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& t
       } else {
         field.gaussian.resize(n);
         field.mean.resize(n);
-        field.k1.resize(n);
-        field.k2.resize(n);
       }
     }
   });

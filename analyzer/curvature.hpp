@@ -23,6 +23,8 @@
 #include "analyzer/mesh.hpp"
 #include "analyzer/topology.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -39,9 +41,7 @@ struct CurvatureField {
   std::vector<Vec3> normal;  // unit length; zero only where undefined
   std::vector<double> area;  // mixed Voronoi area
   std::vector<double> gaussian;
-  std::vector<double> mean;
-  std::vector<double> k1;  // k1 >= k2
-  std::vector<double> k2;
+  std::vector<double> mean;  // k1 and k2 follow from K and H: principal_curvatures
   std::vector<CurvatureStatus> status;
   // Faces left out: a repeated corner or a zero-length edge (no shape).
   std::size_t degenerate_faces = 0;
@@ -60,8 +60,19 @@ struct CurvatureField {
 // `mesh` should be consistently oriented (orient_consistently) for the signs to mean anything.
 CurvatureField compute_curvature(const TriangleMesh& mesh, const MeshTopology& topology);
 
+struct PrincipalCurvatures {
+  double k1 = 0.0, k2 = 0.0;  // k1 >= k2
+};
+
+// k1,2 = H ± sqrt(max(H² − K, 0)); computed where they are needed rather than stored beside K
+// and H (two arrays of the field's size).
+inline PrincipalCurvatures principal_curvatures(double gaussian, double mean) {
+  const double root = std::sqrt(std::max(mean * mean - gaussian, 0.0));
+  return {mean + root, mean - root};
+}
+
 // Shared by the estimators.
-// Sets K and H of vertex v and the principal curvatures k1,2 = H ± sqrt(max(H² − K, 0)).
+// Sets K and H of vertex v.
 void set_curvature(CurvatureField& field, std::size_t v, double gaussian, double mean);
 // Vertices whose status is `extrapolated` take the mean K and H of their `computed` neighbours;
 // those with none become `undefined` (all zero). Then counts both kinds in the field.

@@ -27,9 +27,8 @@ void check_consistent(const Analysis& analysis) {
       std::all_of(
           analysis.input_to_surface.begin(), analysis.input_to_surface.end(),
           [rows](std::int32_t s) { return s >= 0 && static_cast<std::size_t>(s) < rows; }) &&
-      c.gaussian.size() == rows && c.mean.size() == rows && c.k1.size() == rows &&
-      c.k2.size() == rows && c.area.size() == rows && analysis.flow.label.size() == rows &&
-      analysis.flow.field.size() == rows;
+      c.gaussian.size() == rows && c.mean.size() == rows && c.area.size() == rows &&
+      analysis.flow.label.size() == rows && analysis.flow.field.size() == rows;
   if (!consistent)
     throw std::invalid_argument("curvature export: the analysis does not belong to the mesh");
 }
@@ -47,8 +46,8 @@ void append_csv_rows(const Analysis& analysis, std::size_t begin, std::size_t en
   for (std::size_t v = begin; v < end; ++v) {
     const std::size_t s = analysis.input_to_surface[v];
     const Vec3& p = analysis.surface.positions[s];
-    const double values[8] = {p.x(),     p.y(),   p.z(),   c.gaussian[s],
-                              c.mean[s], c.k1[s], c.k2[s], c.area[s]};
+    const auto [k1, k2] = principal_curvatures(c.gaussian[s], c.mean[s]);
+    const double values[8] = {p.x(), p.y(), p.z(), c.gaussian[s], c.mean[s], k1, k2, c.area[s]};
     char* out = row;
     for (const double value : values) {
       out = std::to_chars(out, row + max_csv_row_bytes, finite_or_zero(value)).ptr;
@@ -137,13 +136,14 @@ void write_curvature_ply(const std::filesystem::path& path,
     for (std::size_t v = first; v < first + block.size() / vertex_bytes; ++v) {
       const std::size_t s = analysis.input_to_surface[v];
       const Vec3& p = analysis.surface.positions[s];
+      const auto [k1, k2] = principal_curvatures(c.gaussian[s], c.mean[s]);
       const double values[10] = {p.x(),
                                  p.y(),
                                  p.z(),
                                  c.gaussian[s],
                                  c.mean[s],
-                                 c.k1[s],
-                                 c.k2[s],
+                                 k1,
+                                 k2,
                                  c.area[s],
                                  static_cast<double>(analysis.flow.label[s]),
                                  analysis.flow.field[s]};

@@ -298,6 +298,20 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topo
   const int steps =
       options.smoothing_steps.value_or(smoothing_steps_for_radius(defaults.smoothing_radius));
 
+  // The tank's walls (step 2), for the field and the shading normals.
+  const bool closed = topology.boundary_edges == 0 && topology.nonmanifold_edges == 0;
+  const TankWalls walls =
+      closed ? find_tank_walls(mesh, options.up, flow.median_edge_length) : TankWalls{};
+  flow.walls = walls.count();
+  const std::vector<double> wall_weight =
+      wall_weights(mesh, options.up, walls, defaults.wall_near * flow.median_edge_length,
+                   defaults.wall_far * flow.median_edge_length);
+  // The shading normals before the field: their smoothing, of vectors, is the analysis's
+  // largest allocation, and the field and its copy need not be held beside it.
+  flow.shading_normal =
+      shading_normals(mesh, vertex_faces, curvature, member, wall_weight, options.up,
+                      smoothing_steps_for_radius(defaults.shading_radius), flow.normal_noise);
+
   // The field's source, smoothed (step 1): H, or the paper's sign(H)·|K|.
   std::vector<double> field(n, 0.0);
   for (std::size_t v = 0; v < n; ++v) {
@@ -308,13 +322,14 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topo
         paper ? (mean == 0.0 ? 0.0 : std::copysign(std::abs(curvature.gaussian[v]), mean)) : mean;
     field[v] = std::isfinite(value) ? value : 0.0;
   }
-  const std::vector<double> raw = field;
-  smooth_vertex_field(mesh, vertex_faces, curvature.area, member, field, steps);
-
-  // The threshold, held above the noise floor unless given.
-  flow.noise_floor = smoothed_noise_floor(
-      raw, field, member,
-      smoothing_noise_gain(mesh, vertex_faces, curvature.area, member, member, steps));
+  {
+    const std::vector<double> raw = field;
+    smooth_vertex_field(mesh, vertex_faces, curvature.area, member, field, steps);
+    // The threshold, held above the noise floor unless given.
+    flow.noise_floor = smoothed_noise_floor(
+        raw, field, member,
+        smoothing_noise_gain(mesh, vertex_faces, curvature.area, member, member, steps));
+  }
   flow.sequence_noise_floor =
       coherence ? coherence->sequence_noise_floor(flow.noise_floor) : flow.noise_floor;
   const double c = options.threshold_relative.value_or(defaults.threshold_relative);
@@ -325,14 +340,6 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topo
           ? scene_threshold
           : std::max(scene_threshold, defaults.noise_multiple * flow.sequence_noise_floor));
 
-  // The tank's walls (step 2), for the field and the shading normals.
-  const bool closed = topology.boundary_edges == 0 && topology.nonmanifold_edges == 0;
-  const TankWalls walls =
-      closed ? find_tank_walls(mesh, options.up, flow.median_edge_length) : TankWalls{};
-  flow.walls = walls.count();
-  const std::vector<double> wall_weight =
-      wall_weights(mesh, options.up, walls, defaults.wall_near * flow.median_edge_length,
-                   defaults.wall_far * flow.median_edge_length);
   if (flow.threshold > 0.0 && std::isfinite(flow.threshold)) {
     for (std::size_t v = 0; v < n; ++v) {
       field[v] = member[v] ? field[v] / flow.threshold * wall_weight[v] : 0.0;
@@ -341,10 +348,6 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topo
   } else {
     std::fill(field.begin(), field.end(), 0.0);
   }
-  flow.shading_normal =
-      shading_normals(mesh, vertex_faces, curvature, member, wall_weight, options.up,
-                      smoothing_steps_for_radius(defaults.shading_radius), flow.normal_noise);
-
   flow.smoothed_field = field;
   if (coherence) coherence->blend(mesh, flow, field, flow.shading_normal);
   label_flow_field(mesh, curvature.area, std::move(field), flow);

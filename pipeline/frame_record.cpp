@@ -10,8 +10,6 @@ void map_input_fields(Record& record, Mesh& surface, Curvature& curvature, Label
   mesh_fields(record, surface);
   record.field(curvature.gaussian);
   record.field(curvature.mean);
-  record.field(curvature.k1);
-  record.field(curvature.k2);
   record.field(label);
   record.field(free_surface);
 }

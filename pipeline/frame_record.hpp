@@ -22,7 +22,7 @@ namespace toonwater::povgen {
 // and free surface.
 struct MapInputs {
   TriangleMesh surface;
-  CurvatureField curvature;  // gaussian, mean, k1, k2
+  CurvatureField curvature;  // gaussian, mean
   std::vector<std::int8_t> label;
   std::vector<std::uint8_t> free_surface;
 };

@@ -144,8 +144,12 @@ TopDownMap rasterize_top_down(const TriangleMesh& surface, const CurvatureField&
       map.height[i] = finite_float(c.depth[i]);
       map.gaussian[i] = blend(curvature.gaussian);
       map.mean[i] = blend(curvature.mean);
-      map.k1[i] = blend(curvature.k1);
-      map.k2[i] = blend(curvature.k2);
+      const PrincipalCurvatures k[3] = {
+          principal_curvatures(curvature.gaussian[t[0]], curvature.mean[t[0]]),
+          principal_curvatures(curvature.gaussian[t[1]], curvature.mean[t[1]]),
+          principal_curvatures(curvature.gaussian[t[2]], curvature.mean[t[2]])};
+      map.k1[i] = finite_float(w0 * k[0].k1 + w1 * k[1].k1 + w2 * k[2].k1);
+      map.k2[i] = finite_float(w0 * k[0].k2 + w1 * k[1].k2 + w2 * k[2].k2);
       const int nearest = w0 >= w1 && w0 >= w2 ? 0 : (w1 >= w2 ? 1 : 2);
       map.label[i] = label.empty() ? 0.0f : static_cast<float>(label[t[nearest]]);
       map.alpha[i] = 1.0f;

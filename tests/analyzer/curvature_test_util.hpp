@@ -95,11 +95,18 @@ inline Errors relative_errors(const AnalyticSurface& s) {
           rms_error(c.field.mean, s.mean, s.interior, h_scale)};
 }
 
+// Vertex v's principal curvatures, from the field's K and H.
+inline PrincipalCurvatures principal(const CurvatureField& f, std::size_t v) {
+  return principal_curvatures(f.gaussian[v], f.mean[v]);
+}
+
 inline bool all_finite(const CurvatureField& f) {
-  for (std::size_t v = 0; v < f.gaussian.size(); ++v)
-    if (!std::isfinite(f.gaussian[v]) || !std::isfinite(f.mean[v]) || !std::isfinite(f.k1[v]) ||
-        !std::isfinite(f.k2[v]) || !std::isfinite(f.area[v]) || !f.normal[v].allFinite())
+  for (std::size_t v = 0; v < f.gaussian.size(); ++v) {
+    const auto [k1, k2] = principal(f, v);
+    if (!std::isfinite(f.gaussian[v]) || !std::isfinite(f.mean[v]) || !std::isfinite(k1) ||
+        !std::isfinite(k2) || !std::isfinite(f.area[v]) || !f.normal[v].allFinite())
       return false;
+  }
   return true;
 }
 

@@ -47,8 +47,6 @@ struct Fixture {
     CurvatureField& c = analysis.curvature;
     c.gaussian = {0.1, -2.5e-17, nan, 1.7976931348623157e308};
     c.mean = {-1.0 / 3.0, 4.9406564584124654e-324, inf, 2.0};
-    c.k1 = {1e22, 3.0, -inf, 0.0};
-    c.k2 = {-1e-22, -0.0, 7.0, 1e-7};
     c.area = {0.5, 0.25, 0.125, 6.02214076e23};
     analysis.flow.label = {1, 0, -1, 1};
     analysis.flow.field = {1.5, 0.25, -3.0, nan};
@@ -58,13 +56,14 @@ struct Fixture {
   std::vector<double> expected_row(std::size_t v) const {
     const std::size_t s = analysis.input_to_surface[v];
     const CurvatureField& c = analysis.curvature;
+    const auto [k1, k2] = principal_curvatures(c.gaussian[s], c.mean[s]);
     std::vector<double> row{input.positions[v].x(),
                             input.positions[v].y(),
                             input.positions[v].z(),
                             c.gaussian[s],
                             c.mean[s],
-                            c.k1[s],
-                            c.k2[s],
+                            k1,
+                            k2,
                             c.area[s],
                             static_cast<double>(analysis.flow.label[s]),
                             analysis.flow.field[s]};
@@ -139,7 +138,7 @@ TEST(CurvatureExport, CsvOfManyVerticesKeepsInputOrder) {
     analysis.surface.positions.emplace_back(static_cast<double>(n - 1 - s), 0.5, -1.0);
   CurvatureField& c = analysis.curvature;
   for (std::size_t s = 0; s < n; ++s) c.gaussian.push_back(static_cast<double>(s) + 0.25);
-  c.mean = c.k1 = c.k2 = c.area = std::vector<double>(n, 1.0);
+  c.mean = c.area = std::vector<double>(n, 1.0);
   analysis.flow.label.assign(n, 0);
   analysis.flow.field.assign(n, 0.0);
   const std::vector<std::string> lines = split(csv_of(analysis), '\n');

@@ -32,8 +32,6 @@ CurvatureField constant_curvature(std::size_t vertices, double k, double h) {
   CurvatureField c;
   c.gaussian.assign(vertices, k);
   c.mean.assign(vertices, h);
-  c.k1.assign(vertices, h);
-  c.k2.assign(vertices, h);
   return c;
 }
 
