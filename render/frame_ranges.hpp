@@ -8,7 +8,7 @@
 
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // For `processes` local processes: each run gets its share of them, rounded, at least one range
 // and at most one range per frame. With gaps there can be more ranges than processes.
@@ -22,4 +22,4 @@ std::vector<long> frames_in(const FrameRange& range);
 
 std::string format_range(const FrameRange& range);  // "A-B"
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

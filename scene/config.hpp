@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 class ConfigError : public std::runtime_error {
  public:
@@ -196,4 +196,4 @@ FrameRange parse_frame_range(const std::string& text, const std::string& key);
 // else replaced by '_', at most 24 characters, never empty.
 std::string sanitize_identifier(const std::string& text);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater
