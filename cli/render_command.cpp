@@ -6,6 +6,7 @@
 #include "cli/stop_signals.hpp"
 #include "cli/validators.hpp"
 #include "render/render.hpp"
+#include "scene/config.hpp"  // parse_frame_range
 
 #include <atomic>
 #include <csignal>

@@ -8,6 +8,7 @@
 #include "analyzer/mesh_reader.hpp"
 #include "render/farm_parallel.hpp"
 #include "render/farm_slurm.hpp"
+#include "scene/config.hpp"  // parse_frame_range
 
 #include <unistd.h>
 

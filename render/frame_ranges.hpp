@@ -4,8 +4,9 @@
 // frame longer where they cannot all be equal; only how many ranges a run is cut into differs.
 #pragma once
 
-#include "scene/config.hpp"  // FrameRange
+#include "common/frame_range.hpp"
 
+#include <string>
 #include <vector>
 
 namespace toonwater {

@@ -16,7 +16,7 @@
 // is killed: POV-Ray's shut-down idles about 0.4 s, which would otherwise end the run.
 #pragma once
 
-#include "scene/config.hpp"
+#include "common/frame_range.hpp"
 
 #include <atomic>
 #include <cstddef>

@@ -15,6 +15,7 @@
 #include "analyzer/analysis_settings.hpp"
 
 #include "analyzer/mesh.hpp"
+#include "common/frame_range.hpp"
 #include "scene/render_presets.hpp"
 
 #include <array>
@@ -140,11 +141,6 @@ struct ObjectConfig {
   Color color{0.92, 0.45, 0.18};
   bool outline = true;
   ReflectionTarget reflection = ReflectionTarget::concrete;
-};
-
-struct FrameRange {
-  long first = 0;
-  long last = 0;
 };
 
 struct RenderConfig {
