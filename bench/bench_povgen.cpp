@@ -42,18 +42,17 @@ fs::path scratch(const std::string& name) {
 
 void BM_PovgenFrame(benchmark::State& state) {
   const TriangleMesh mesh = wave_field(static_cast<int>(state.range(0)));
-  const povgen::SceneConfig config;
-  const povgen::LightGeometry light = povgen::light_geometry(config.light, Axis::z);
+  const SceneConfig config;
+  const LightGeometry light = light_geometry(config.light, Axis::z);
   const fs::path dir = scratch("frame");
   double analysis = 0, writing = 0;
   for (auto _ : state) {
-    const auto s = povgen::prepare_surface(mesh, Axis::z, &config.flow, nullptr);
+    const auto s = prepare_surface(mesh, Axis::z, &config.flow, nullptr);
     const auto start = std::chrono::steady_clock::now();
-    const povgen::CameraPlacement camera =
-        povgen::frame_camera(config, Axis::z, s.mesh.min, s.mesh.max);
-    const std::string text = povgen::mesh_include(
-        s, "Water", povgen::texture_coordinates(s, light),
-        povgen::shell_offsets(config.outline, s.mesh, camera, config.render.width));
+    const CameraPlacement camera = frame_camera(config, Axis::z, s.mesh.min, s.mesh.max);
+    const std::string text =
+        mesh_include(s, "Water", texture_coordinates(s, light),
+                     shell_offsets(config.outline, s.mesh, camera, config.render.width));
     write_file_atomically(dir / "water_0001.inc", text);
     writing += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     analysis += s.analysis_seconds;
@@ -68,13 +67,13 @@ BENCHMARK(BM_PovgenFrame)->Arg(235)->Arg(707)->Unit(benchmark::kMillisecond)->Us
 void BM_Mesh2Write(benchmark::State& state) {
   const TriangleMesh mesh = wave_field(static_cast<int>(state.range(0)));
   std::vector<Vec3> normals(mesh.positions.size(), Vec3(0, 0, 1));
-  const auto sm = povgen::make_scene_mesh(mesh, normals, false, Axis::z);
-  const auto uv = povgen::toon_coordinates(sm, {}, {});
+  const auto sm = make_scene_mesh(mesh, normals, false, Axis::z);
+  const auto uv = toon_coordinates(sm, {}, {});
   const fs::path dir = scratch("mesh2");
   std::size_t bytes = 0;
   for (auto _ : state) {
     std::string text;
-    povgen::append_mesh2(text, "Water_mesh", sm, uv);
+    append_mesh2(text, "Water_mesh", sm, uv);
     write_file_atomically(dir / "water.inc", text);
     bytes = text.size();
   }
@@ -99,14 +98,14 @@ void BM_PovrayRender(benchmark::State& state) {
   const fs::path dir = scratch("povray" + std::to_string(n));
   const TriangleMesh water = wave_field(n);
   write_obj(dir / "water.obj", water);
-  povgen::ConfigSources sources;
+  ConfigSources sources;
   sources.overrides = {"render.antialias=false"};
-  const povgen::SceneConfig config = povgen::load_config(sources);
-  povgen::PovgenRequest request;
+  const SceneConfig config = load_config(sources);
+  PovgenRequest request;
   request.water_pattern = (dir / "water.obj").string();
   request.up = Axis::z;
   request.out_dir = dir / "scene";
-  povgen::generate_scene(config, request, {}, nullptr);
+  generate_scene(config, request, {}, nullptr);
 
   double parse = 0, trace = 0;
   for (auto _ : state) {
@@ -160,27 +159,26 @@ TriangleMesh calm_with_ripple(int n) {
 // 640×360, water.simplify = 0.5): its time and the faces it keeps.
 void BM_SimplifyWater(benchmark::State& state) {
   const TriangleMesh water = calm_with_ripple(static_cast<int>(state.range(0)));
-  povgen::ConfigSources sources;
+  ConfigSources sources;
   sources.overrides = {"render.width=640", "render.height=360", "water.simplify=0.5"};
-  const povgen::SceneConfig config = povgen::load_config(sources);
-  const povgen::LightGeometry light = povgen::light_geometry(config.light, Axis::z);
-  const povgen::PreparedSurface full =
-      povgen::prepare_surface(water, Axis::z, &config.flow, nullptr);
-  povgen::SceneLayout layout;
+  const SceneConfig config = load_config(sources);
+  const LightGeometry light = light_geometry(config.light, Axis::z);
+  const PreparedSurface full = prepare_surface(water, Axis::z, &config.flow, nullptr);
+  SceneLayout layout;
   layout.config = &config;
   layout.up = Axis::z;
   layout.water_min = full.mesh.min;
   layout.water_max = full.mesh.max;
-  layout.camera = povgen::frame_camera(config, Axis::z, full.mesh.min, full.mesh.max);
+  layout.camera = frame_camera(config, Axis::z, full.mesh.min, full.mesh.max);
   std::size_t kept = 0;
   double seconds = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    povgen::PreparedSurface s = full;
-    std::vector<povgen::TextureCoordinate> uv = povgen::water_coordinates(s, light, layout);
+    PreparedSurface s = full;
+    std::vector<TextureCoordinate> uv = water_coordinates(s, light, layout);
     state.ResumeTiming();
     const auto start = std::chrono::steady_clock::now();
-    const povgen::SimplifyStats stats = povgen::simplify_water(s, uv, layout, &config.flow);
+    const SimplifyStats stats = simplify_water(s, uv, layout, &config.flow);
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     kept = stats.faces_after;
   }
@@ -222,18 +220,18 @@ void BM_SimplifiedRender(benchmark::State& state) {
   const TriangleMesh water = calm_with_ripple(n);
   write_obj(dir / "water.obj", water);
   auto generate = [&](const std::string& simplify) {
-    povgen::ConfigSources sources;
+    ConfigSources sources;
     sources.overrides = {"render.antialias=false", "render.width=640", "render.height=360",
                          "water.simplify=" + simplify};
-    const povgen::SceneConfig config = povgen::load_config(sources);
-    povgen::PovgenRequest request;
+    const SceneConfig config = load_config(sources);
+    PovgenRequest request;
     request.water_pattern = (dir / "water.obj").string();
     request.up = Axis::z;
     request.out_dir = dir / ("scene_" + simplify);
-    return povgen::generate_scene(config, request, {}, nullptr);
+    return generate_scene(config, request, {}, nullptr);
   };
-  const povgen::PovgenReport full_report = generate("0");
-  const povgen::PovgenReport report = generate("0.5");
+  const PovgenReport full_report = generate("0");
+  const PovgenReport report = generate("0.5");
 
   RenderedScene full, simplified;
   for (auto _ : state) {
@@ -301,19 +299,18 @@ void BM_PovrayShellCulling(benchmark::State& state) {
     }
     write_file_atomically(dir / "water.obj", obj);
   }
-  povgen::PovgenReport culled_report;
+  PovgenReport culled_report;
   auto generate = [&](const std::string& name, bool outline, bool cull) {
-    povgen::ConfigSources sources;
+    ConfigSources sources;
     sources.overrides = {"render.antialias=false", "render.width=320", "render.height=180",
                          "water.transmit=0",
                          std::string("outline.enabled=") + (outline ? "true" : "false")};
-    povgen::PovgenRequest request;
+    PovgenRequest request;
     request.water_pattern = (dir / "water.obj").string();
     request.up = Axis::z;
     request.out_dir = dir / name;
     request.cull_shells = cull;
-    const povgen::PovgenReport r =
-        povgen::generate_scene(povgen::load_config(sources), request, {}, nullptr);
+    const PovgenReport r = generate_scene(load_config(sources), request, {}, nullptr);
     if (outline && cull) culled_report = r;
   };
   generate("plain", false, true);

@@ -131,13 +131,13 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? exit_code::success : exit_code::bad_input;
   } catch (const toonwater::InputError& e) {
     return fail(e.what(), exit_code::bad_input);
-  } catch (const toonwater::povgen::ConfigError& e) {
+  } catch (const toonwater::ConfigError& e) {
     return fail(e.what(), exit_code::bad_input);
   } catch (const toonwater::InterruptedError& e) {
     return fail(e.what(), exit_code::interrupted);
   } catch (const toonwater::OutputError& e) {
     return fail(e.what(), exit_code::output_failed);
-  } catch (const toonwater::povgen::PovrayError& e) {
+  } catch (const toonwater::PovrayError& e) {
     return fail(e.what(), exit_code::povray_failed);
   } catch (const toonwater::LevelSetModuleError& e) {
     return fail(e.what(), exit_code::incomplete_install);

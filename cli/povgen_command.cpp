@@ -40,13 +40,13 @@ struct PovgenArgs {
 
 void run_povgen(const PovgenArgs& args) {
   if (!args.maps.empty()) image_codec();  // a missing image module fails before any work
-  povgen::ConfigSources sources;
+  ConfigSources sources;
   if (!args.config.empty()) sources.file = args.config;
   sources.object_patterns = args.objects;
   sources.overrides = args.overrides;
-  const povgen::SceneConfig config = povgen::load_config(sources);
+  const SceneConfig config = load_config(sources);
 
-  povgen::PovgenRequest request;
+  PovgenRequest request;
   request.water_pattern = args.water;
   request.water_transform = transform_from(args.water_transform);
   check_level_set_options(args.water_level_set, args.water);
@@ -63,18 +63,18 @@ void run_povgen(const PovgenArgs& args) {
   // Each pass's progress is timed from its own start, so the time left is the pass's.
   FrameProgress shown("povgen");
   auto pass_start = std::chrono::steady_clock::now(), last_update = pass_start;
-  std::optional<povgen::PovgenPass> shown_pass;
-  auto progress = [&](povgen::PovgenPass pass, std::size_t done, std::size_t total) {
+  std::optional<PovgenPass> shown_pass;
+  auto progress = [&](PovgenPass pass, std::size_t done, std::size_t total) {
     const auto now = std::chrono::steady_clock::now();
     if (shown_pass && *shown_pass != pass) pass_start = last_update;  // as the last pass ended
     shown_pass = pass;
     last_update = now;
     shown.update(done, total, std::chrono::duration<double>(now - pass_start).count(),
-                 pass == povgen::PovgenPass::survey ? "survey" : nullptr);
+                 pass == PovgenPass::survey ? "survey" : nullptr);
   };
-  povgen::PovgenReport r;
+  PovgenReport r;
   try {
-    r = povgen::generate_scene(config, request, progress, stop);
+    r = generate_scene(config, request, progress, stop);
   } catch (...) {
     shown.finish_line();
     throw;

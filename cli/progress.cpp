@@ -32,8 +32,6 @@ std::string printable(const std::string& word) {
   return word.size() > 400 ? out + "..." : out;
 }
 
-std::string printable_shell_word(const std::string& word) {
-  return povgen::shell_quote(printable(word));
-}
+std::string printable_shell_word(const std::string& word) { return shell_quote(printable(word)); }
 
 }  // namespace toonwater::cli

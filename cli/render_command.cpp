@@ -6,6 +6,7 @@
 #include "cli/stop_signals.hpp"
 #include "cli/validators.hpp"
 #include "render/render.hpp"
+#include "scene/config.hpp"  // parse_frame_range
 
 #include <atomic>
 #include <csignal>
@@ -26,11 +27,11 @@ struct RenderArgs {
 
 // `force`: the farm options' --force (local and farm renders skip frames with an image alike).
 void run_render(const RenderArgs& args, bool force) {
-  povgen::RenderRequest request;
+  RenderRequest request;
   request.scene_dir = args.dir;
   request.skip_rendered = !force;
-  request.jobs = args.jobs > 0 ? args.jobs : povgen::default_render_processes();
-  if (!args.frames.empty()) request.frames = povgen::parse_frame_range(args.frames, "--frames");
+  request.jobs = args.jobs > 0 ? args.jobs : default_render_processes();
+  if (!args.frames.empty()) request.frames = parse_frame_range(args.frames, "--frames");
   // The POV-Ray executable: TOONWATER_POVRAY when set (a path or a name on PATH), else povray.
   if (const char* povray = std::getenv("TOONWATER_POVRAY"); povray && *povray)
     request.povray = povray;
@@ -41,9 +42,9 @@ void run_render(const RenderArgs& args, bool force) {
   auto progress = [&](std::size_t done, std::size_t total, double elapsed) {
     shown.update(done, total, elapsed);
   };
-  povgen::RenderReport r;
+  RenderReport r;
   try {
-    r = povgen::render_frames(request, progress);
+    r = render_frames(request, progress);
   } catch (...) {
     shown.finish_line();
     throw;
@@ -54,8 +55,8 @@ void run_render(const RenderArgs& args, bool force) {
       stderr, "render: %zu frame(s) rendered, %zu skipped (already rendered), %zu failed, %.2f s\n",
       r.rendered, r.skipped, r.failures.size(), r.seconds);
   if (!r.failures.empty())
-    throw povgen::PovrayError(args.dir + ": " + std::to_string(r.failures.size()) +
-                              " frame(s) failed to render");
+    throw PovrayError(args.dir + ": " + std::to_string(r.failures.size()) +
+                      " frame(s) failed to render");
 }
 
 }  // namespace

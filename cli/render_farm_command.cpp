@@ -8,6 +8,7 @@
 #include "analyzer/mesh_reader.hpp"
 #include "render/farm_parallel.hpp"
 #include "render/farm_slurm.hpp"
+#include "scene/config.hpp"  // parse_frame_range
 
 #include <unistd.h>
 
@@ -28,7 +29,7 @@ std::string own_executable() {
   return exe.string();
 }
 
-void report_failures(const std::vector<povgen::FrameFailure>& failures) {
+void report_failures(const std::vector<FrameFailure>& failures) {
   for (const auto& f : failures)
     std::fprintf(stderr, "render: frame %ld failed: %s\n", f.frame, f.message.c_str());
 }
@@ -56,11 +57,11 @@ void add_render_farm_options(CLI::App* cmd, const std::shared_ptr<FarmArgs>& far
 
 bool run_render_on_farm(const std::string& dir, const std::string& frames, const FarmArgs& farm) {
   if (farm.status) {
-    const povgen::FarmStatus s = povgen::slurm_status(dir);
+    const FarmStatus s = slurm_status(dir);
     std::printf("%s\n", s.line.c_str());
     report_failures(s.failures);
     if (!s.failures.empty())
-      throw povgen::PovrayError(std::to_string(s.failures.size()) + " frame(s) failed to render");
+      throw PovrayError(std::to_string(s.failures.size()) + " frame(s) failed to render");
     return true;
   }
   if (farm.on.empty()) {
@@ -71,23 +72,23 @@ bool run_render_on_farm(const std::string& dir, const std::string& frames, const
           "need --on slurm|parallel");
     return false;
   }
-  povgen::FarmRequest request;
+  FarmRequest request;
   request.scene_dir = dir;
-  if (!frames.empty()) request.frames = povgen::parse_frame_range(frames, "--frames");
+  if (!frames.empty()) request.frames = parse_frame_range(frames, "--frames");
   request.force = farm.force;
   if (farm.frames_per_task) request.frames_per_task = farm.frames_per_task;
   request.toonwater = own_executable();
   // A stop signal stops the farm's tasks (GNU parallel's, or the Slurm job with scancel).
   request.stop = stop_on_signals();
 
-  povgen::FarmReport r;
+  FarmReport r;
   if (farm.on == "slurm") {
     if (!farm.hosts.empty()) throw InputError("--hosts is for --on parallel");
-    povgen::SlurmOptions options;
+    SlurmOptions options;
     options.partition = farm.partition;
     options.sbatch_args = farm.sbatch_args;
     options.wait = !farm.no_wait;
-    r = povgen::render_on_slurm(request, options, print_progress);
+    r = render_on_slurm(request, options, print_progress);
     if (farm.no_wait) {
       if (r.job_id.empty())
         std::fprintf(stderr, "render: every frame has its image already\n");
@@ -99,9 +100,9 @@ bool run_render_on_farm(const std::string& dir, const std::string& frames, const
     if (farm.hosts.empty()) throw InputError("--on parallel needs --hosts FILE");
     if (!farm.partition.empty() || !farm.sbatch_args.empty() || farm.no_wait)
       throw InputError("--partition, --sbatch-arg and --no-wait are for --on slurm");
-    povgen::ParallelOptions options;
+    ParallelOptions options;
     options.hosts_file = farm.hosts;
-    r = povgen::render_on_parallel(request, options, print_progress);
+    r = render_on_parallel(request, options, print_progress);
   }
   report_failures(r.failures);
   std::fprintf(stderr,
@@ -109,7 +110,7 @@ bool run_render_on_farm(const std::string& dir, const std::string& frames, const
                "%zu task(s) resubmitted, %.2f s\n",
                r.rendered, r.skipped, r.failures.size(), r.resubmitted_tasks, r.seconds);
   if (!r.failures.empty())
-    throw povgen::PovrayError(std::to_string(r.failures.size()) + " frame(s) failed to render");
+    throw PovrayError(std::to_string(r.failures.size()) + " frame(s) failed to render");
   return true;
 }
 
@@ -122,9 +123,9 @@ void add_render_task_command(CLI::App& app) {
   cmd->add_option("dir", *dir, "Scene directory")->required()->check(NonEmptyPath);
   cmd->add_option("--frames", *frames, "Frame range A-B")->required();
   cmd->callback([dir, frames] {
-    povgen::RenderRequest request;
+    RenderRequest request;
     request.scene_dir = *dir;
-    request.frames = povgen::parse_frame_range(*frames, "--frames");
+    request.frames = parse_frame_range(*frames, "--frames");
     // Slurm ends a cancelled or preempted task with SIGTERM: povray is stopped, nothing partial
     // stays.
     request.stop = stop_on_signals();
@@ -132,12 +133,12 @@ void add_render_task_command(CLI::App& app) {
     ::gethostname(host, sizeof host - 1);
     std::fprintf(stderr, "render-task: frames %s of %s on %s\n", printable(*frames).c_str(),
                  printable(*dir).c_str(), printable(host).c_str());
-    const povgen::RenderReport r = povgen::render_frames_in_one_process(request, nullptr);
+    const RenderReport r = render_frames_in_one_process(request, nullptr);
     report_failures(r.failures);
     std::fprintf(stderr, "render-task: %zu frame(s) rendered, %zu failed, %.2f s\n", r.rendered,
                  r.failures.size(), r.seconds);
     if (!r.failures.empty())
-      throw povgen::PovrayError(std::to_string(r.failures.size()) + " frame(s) failed to render");
+      throw PovrayError(std::to_string(r.failures.size()) + " frame(s) failed to render");
   });
 }
 

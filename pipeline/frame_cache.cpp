@@ -6,7 +6,7 @@
 #include <cerrno>
 #include <system_error>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 std::string error_text() { return std::generic_category().message(errno); }
@@ -60,4 +60,4 @@ void FrameCache::take(std::size_t i, std::string& record) {
     throw OutputError("cannot read " + path_.string() + ": " + error_text());
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

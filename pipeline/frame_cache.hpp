@@ -21,7 +21,7 @@
 #include <type_traits>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 template <class T>
 constexpr bool is_vector = false;
@@ -146,4 +146,4 @@ class RecordReader {
   std::size_t at_ = 0;
 };
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

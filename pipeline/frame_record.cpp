@@ -1,7 +1,7 @@
 // A frame's record in the frame cache, field by field (see frame_record.hpp).
 #include "pipeline/frame_record.hpp"
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 template <class Record, class Mesh, class Curvature, class Labels, class FreeSurface>
@@ -55,4 +55,4 @@ PreparedSurface unpack_surface(RecordReader& in) {
   return s;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -16,7 +16,7 @@
 #include <type_traits>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // What the maps of a frame are drawn from (rasterize_top_down): its surface, curvature, labels
 // and free surface.
@@ -39,4 +39,4 @@ MapInputs unpack_map_inputs(RecordReader& in);
 void pack_surface(RecordWriter& out, const PreparedSurface& s);
 PreparedSurface unpack_surface(RecordReader& in);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

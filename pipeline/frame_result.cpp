@@ -2,7 +2,7 @@
 
 #include <utility>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 ObjectWork& ObjectWork::operator+=(const ObjectWork& o) {
   reads += o.reads;
@@ -51,4 +51,4 @@ PovgenReport summarise(std::vector<FrameResult> frames, const RunResult& run) {
   return r;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // Objects' includes: their mesh files read, their outline shells (written whole, shell_culling.hpp)
 // and the time reading and writing them took.
@@ -71,4 +71,4 @@ struct PovgenReport {
 // The report of a run: its frames' results summed, with the run's own work.
 PovgenReport summarise(std::vector<FrameResult> frames, const RunResult& run);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -26,7 +26,7 @@
 #include <optional>
 #include <utility>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 namespace fs = std::filesystem;
@@ -731,4 +731,4 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   return report;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -31,7 +31,7 @@
 #include <string>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // The one mapping from the scene's configuration to the analysis of its water frames:
 // `scene_flow` is the flow settings the scene draws with (flow regions, or a curvature view,
@@ -94,4 +94,4 @@ using ProgressFn = std::function<void(PovgenPass, std::size_t, std::size_t)>;
 PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& request,
                             const ProgressFn& progress, const std::atomic<bool>* stop);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -18,7 +18,7 @@
 #include <system_error>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 namespace fs = std::filesystem;
@@ -301,4 +301,4 @@ void SceneDirectory::commit() {
   staging_.clear();
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

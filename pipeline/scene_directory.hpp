@@ -23,7 +23,7 @@
 #include <filesystem>
 #include <string>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 class SceneDirectory {
  public:
@@ -49,4 +49,4 @@ class SceneDirectory {
 // The name of the marker file.
 inline constexpr const char* scene_marker = ".toonwater-scene";
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -7,7 +7,7 @@
 #include <cctype>
 #include <charconv>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 namespace fs = std::filesystem;
@@ -122,4 +122,4 @@ Sequence find_sequence(const std::string& pattern, const fs::path& base_dir) {
   return seq;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -11,7 +11,7 @@
 #include <map>
 #include <string>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 struct Sequence {
   std::map<long, std::filesystem::path> frames;  // frame number -> file
@@ -21,4 +21,4 @@ struct Sequence {
 // Throws InputError (mesh_reader.hpp) naming the pattern when nothing matches.
 Sequence find_sequence(const std::string& pattern, const std::filesystem::path& base_dir);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

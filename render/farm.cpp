@@ -15,7 +15,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 namespace fs = std::filesystem;
 
@@ -168,4 +168,4 @@ std::optional<FarmState> read_farm_state(const fs::path& dir) {
   return state;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 struct FarmRequest {
   std::filesystem::path scene_dir;
@@ -88,4 +88,4 @@ struct FarmState {
 void write_farm_state(const std::filesystem::path& dir, const FarmState& state);
 std::optional<FarmState> read_farm_state(const std::filesystem::path& dir);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

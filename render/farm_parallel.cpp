@@ -16,7 +16,7 @@
 #include <sstream>
 #include <thread>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 namespace fs = std::filesystem;
 
@@ -144,4 +144,4 @@ FarmReport render_on_parallel(const FarmRequest& request, const ParallelOptions&
   return report;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

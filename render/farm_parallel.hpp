@@ -10,7 +10,7 @@
 
 #include <string>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 struct ParallelOptions {
   std::string hosts_file;  // GNU parallel's --sshloginfile
@@ -22,4 +22,4 @@ struct ParallelOptions {
 FarmReport render_on_parallel(const FarmRequest& request, const ParallelOptions& options,
                               const FarmProgressFn& progress);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

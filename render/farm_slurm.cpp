@@ -7,7 +7,7 @@
 #include <sstream>
 #include <thread>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 namespace fs = std::filesystem;
@@ -176,4 +176,4 @@ FarmStatus slurm_status(const fs::path& scene_dir) {
   return status;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

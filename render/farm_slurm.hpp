@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 struct SlurmOptions {
   std::string partition;                 // empty: the cluster's default
@@ -34,4 +34,4 @@ struct FarmStatus {
 };
 FarmStatus slurm_status(const std::filesystem::path& scene_dir);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <string>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 // The runs of consecutive frames in `frames` (in order), each cut into `ranges_of(length)`
@@ -59,4 +59,4 @@ std::string format_range(const FrameRange& range) {
   return std::to_string(range.first) + "-" + std::to_string(range.last);
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -4,11 +4,12 @@
 // frame longer where they cannot all be equal; only how many ranges a run is cut into differs.
 #pragma once
 
-#include "scene/config.hpp"  // FrameRange
+#include "common/frame_range.hpp"
 
+#include <string>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // For `processes` local processes: each run gets its share of them, rounded, at least one range
 // and at most one range per frame. With gaps there can be more ranges than processes.
@@ -22,4 +23,4 @@ std::vector<long> frames_in(const FrameRange& range);
 
 std::string format_range(const FrameRange& range);  // "A-B"
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -22,7 +22,7 @@
 #include <sstream>
 #include <thread>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 namespace fs = std::filesystem;
@@ -461,4 +461,4 @@ RenderReport render_frames_in_one_process(const RenderRequest& request,
   return report.finish();
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -16,7 +16,7 @@
 // is killed: POV-Ray's shut-down idles about 0.4 s, which would otherwise end the run.
 #pragma once
 
-#include "scene/config.hpp"
+#include "common/frame_range.hpp"
 
 #include <atomic>
 #include <cstddef>
@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // Some frames failed to render (the CLI's exit code "POV-Ray failed").
 class PovrayError : public std::runtime_error {
@@ -117,4 +117,4 @@ RenderReport render_frames_in_one_process(const RenderRequest& request,
 // The error lines of a POV-Ray log: lines mentioning an error, else its last line.
 std::string povray_error_message(const std::string& log);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -198,8 +198,8 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
                                                        const fs::path& picture_dir,
                                                        double pixels_per_cell,
                                                        const std::vector<FlowCriterion>& criteria,
-                                                       std::optional<povgen::FrameRange> frames) {
-  povgen::Sequence sequence = povgen::find_sequence(pattern, fs::current_path());
+                                                       std::optional<FrameRange> frames) {
+  Sequence sequence = find_sequence(pattern, fs::current_path());
   if (frames)
     std::erase_if(sequence.frames,
                   [&](const auto& f) { return f.first < frames->first || f.first > frames->last; });
@@ -220,7 +220,7 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
   location[w] = max[w] + height;
   location[v] -= 1e-4 * height;  // not exactly overhead: POV-Ray's sky vector must not be the view
 
-  povgen::SceneConfig config;
+  SceneConfig config;
   config.camera.location = location;
   config.camera.look_at = centre;
   config.camera.angle =
@@ -233,7 +233,7 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
   config.water.reflection = 0.0;
   config.water.ks = 0.0;
   config.outline.enabled = false;
-  const povgen::Color red{1, 0, 0}, green{0, 1, 0};
+  const Color red{1, 0, 0}, green{0, 1, 0};
   config.flow.ridge_color = red;
   config.flow.valley_color = green;
 
@@ -244,15 +244,15 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
     config.flow.analysis.criterion = criterion;
     const fs::path scene_dir = work_dir / ("flow_" + study.criterion);
     write_and_render(config, pattern, up, scene_dir, "flow study");
-    povgen::SceneLayout layout;
+    SceneLayout layout;
     layout.animation = sequence.frames.size() > 1;
     layout.last_frame = sequence.frames.rbegin()->first;
     std::vector<double> ratios;
     std::size_t flow_pixels = 0;
     double speck_pixels = 0;
     for (const auto& [frame, path] : sequence.frames) {
-      const FlowMask mask = flow_mask(read_rgb(scene_dir / povgen::frame_image_name(layout, frame)),
-                                      {1, 0, 0}, {0, 1, 0});
+      const FlowMask mask =
+          flow_mask(read_rgb(scene_dir / frame_image_name(layout, frame)), {1, 0, 0}, {0, 1, 0});
       const FlowPictureMetrics m = measure_flow_mask(mask, pixels_per_cell);
       ++study.frames;
       study.flow_pixels_by_frame[frame] = m.flow_pixels;
@@ -271,7 +271,7 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(const std::string& patter
     std::advance(middle, sequence.frames.size() / 2);
     study.picture = picture_dir / ("flow_" + study.criterion + ".png");
     fs::create_directories(picture_dir);
-    fs::copy_file(scene_dir / povgen::frame_image_name(layout, middle->first), study.picture,
+    fs::copy_file(scene_dir / frame_image_name(layout, middle->first), study.picture,
                   fs::copy_options::overwrite_existing);
     studies.push_back(std::move(study));
   }

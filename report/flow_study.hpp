@@ -86,6 +86,6 @@ std::vector<SequenceFlowStudy> run_sequence_flow_study(
     const std::string& pattern, Axis up, const std::filesystem::path& work_dir,
     const std::filesystem::path& picture_dir, double pixels_per_cell,
     const std::vector<FlowCriterion>& criteria = {FlowCriterion::mean, FlowCriterion::paper},
-    std::optional<povgen::FrameRange> frames = {});
+    std::optional<FrameRange> frames = {});
 
 }  // namespace toonwater::report

@@ -19,8 +19,7 @@ namespace fs = std::filesystem;
 
 // The classes of a pixel, in the pure colours the scene draws them in.
 enum Class : std::int8_t { other = -1, bright, medium, dark, ridge, valley };
-constexpr std::array<povgen::Color, 5> kColours{
-    {{1, 1, 0}, {0, 0, 1}, {0, 1, 1}, {1, 0, 0}, {0, 1, 0}}};
+constexpr std::array<Color, 5> kColours{{{1, 1, 0}, {0, 0, 1}, {0, 1, 1}, {1, 0, 0}, {0, 1, 0}}};
 
 std::vector<std::int8_t> classify(const Image& image) {
   std::vector<std::int8_t> classes(static_cast<std::size_t>(image.width) * image.height, other);
@@ -77,7 +76,7 @@ std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
   location[v] -=
       1e-4 * distance;  // not exactly overhead: POV-Ray's sky vector must not be the view
 
-  povgen::SceneConfig config;
+  SceneConfig config;
   config.camera.location = location;
   config.camera.look_at = centre;
   config.camera.angle = 2.0 * std::atan(0.5 * span / distance) * 180.0 / std::numbers::pi;
@@ -98,25 +97,25 @@ std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
   config.flow.ridge_color = kColours[ridge];
   config.flow.valley_color = kColours[valley];
   for (const std::string& mesh : options.objects) {
-    povgen::ObjectConfig object;
+    ObjectConfig object;
     object.name = "object" + std::to_string(config.objects.size());
     object.mesh = mesh;
     object.base_dir = fs::current_path();
     object.color = {1, 0, 1};
     object.outline = false;
-    object.reflection = povgen::ReflectionTarget::none;
+    object.reflection = ReflectionTarget::none;
     config.objects.push_back(object);
   }
 
   const fs::path scene_dir = work_dir / "overhead";
   write_and_render(config, pattern, options.up, scene_dir, "overhead study");
 
-  povgen::Sequence sequence = povgen::find_sequence(pattern, fs::current_path());
+  Sequence sequence = find_sequence(pattern, fs::current_path());
   if (options.frames)
     std::erase_if(sequence.frames, [&](const auto& f) {
       return f.first < options.frames->first || f.first > options.frames->last;
     });
-  povgen::SceneLayout layout;
+  SceneLayout layout;
   layout.animation = sequence.frames.size() > 1;
   layout.last_frame = sequence.frames.rbegin()->first;
   const double cell_pixels = options.cell * options.cell / (pixel * pixel);
@@ -124,7 +123,7 @@ std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
   std::vector<OverheadFrame> frames;
   std::vector<std::int8_t> previous;
   for (const auto& [frame, path] : sequence.frames) {
-    const Image image = read_rgb(scene_dir / povgen::frame_image_name(layout, frame));
+    const Image image = read_rgb(scene_dir / frame_image_name(layout, frame));
     const std::vector<std::int8_t> classes = classify(image);
     const std::vector<std::size_t> size = piece_sizes(classes, image.width, image.height);
     OverheadFrame f;

@@ -26,7 +26,7 @@ struct OverheadOptions {
   double cell = 0;          // the simulation's cell, scene units
   Vec3 tank_min, tank_max;  // input axes: the picture frames the box, its sides across up are walls
   std::vector<std::string> objects;  // mesh patterns, drawn in a colour of their own
-  std::optional<povgen::FrameRange> frames;
+  std::optional<FrameRange> frames;
   int width = 640, height = 400;
 };
 

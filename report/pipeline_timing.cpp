@@ -38,19 +38,19 @@ PipelineTiming time_pipeline(const PipelineInput& input, const std::filesystem::
   t.analysis_one_ring = median_analysis_seconds(mesh.mesh, input.up, Estimator::one_ring);
   t.analysis_jet = median_analysis_seconds(mesh.mesh, input.up, Estimator::jet);
 
-  povgen::SceneConfig config;
+  SceneConfig config;
   config.render.width = width;
   config.render.height = height;
-  povgen::PovgenRequest request;
+  PovgenRequest request;
   request.water_pattern = std::filesystem::absolute(input.mesh).string();
   request.up = input.up;
   request.out_dir = work_dir;
-  const povgen::PovgenReport written = povgen::generate_scene(config, request, {}, nullptr);
+  const PovgenReport written = generate_scene(config, request, {}, nullptr);
   t.scene_writing = written.write_seconds;
 
-  povgen::RenderRequest render;
+  RenderRequest render;
   render.scene_dir = work_dir;
-  const povgen::RenderReport rendered = povgen::render_frames(render, {});
+  const RenderReport rendered = render_frames(render, {});
   // A single-frame povgen scene renders to frame.png (scene.ini's Output_File_Name).
   if (!rendered.failures.empty())
     t.povray_failure = rendered.failures[0].message;

@@ -24,7 +24,7 @@ struct Rendered {
 };
 
 Rendered render(const fs::path& scene_dir, const RenderPreset& preset, int width, int height) {
-  povgen::RenderRequest request;
+  RenderRequest request;
   request.scene_dir = scene_dir;
   request.extra_arguments = {"+W" + std::to_string(width / preset.divisor),
                              "+H" + std::to_string(height / preset.divisor)};
@@ -34,7 +34,7 @@ Rendered render(const fs::path& scene_dir, const RenderPreset& preset, int width
   } else {
     request.extra_arguments.push_back("-A");
   }
-  const povgen::RenderReport report = povgen::render_frames(request, {});
+  const RenderReport report = render_frames(request, {});
   if (!report.failures.empty())
     throw std::runtime_error("render preset " + preset.name + ": " + report.failures[0].message);
   // A single-frame povgen scene renders to frame.png (scene.ini's Output_File_Name).
@@ -88,7 +88,7 @@ RenderQualityResult measure_render_quality(const fs::path& scene_dir, int width,
   const Palette palette = flat_colours(reference.image);
   result.reference_bands = palette.size();
   const Image& ref = reference.image;
-  for (const RenderPreset& preset : povgen::render_presets()) {
+  for (const RenderPreset& preset : render_presets()) {
     const Rendered r = render(scene_dir, preset, width, height);
     double squared = 0.0;
     std::size_t mismatched = 0;

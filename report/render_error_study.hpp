@@ -20,7 +20,6 @@
 
 namespace toonwater::report {
 
-using povgen::RenderPreset;
 const RenderPreset& reference_preset();
 
 struct RenderQualitySample {

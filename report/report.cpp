@@ -139,8 +139,8 @@ ReportResult write_report(const ReportOptions& options) {
     progress("flow criteria: mantaflow-wake from above");
     try {
       // A quick run measures frames 10–15 (the wake at its busiest) at 2 pixels a cell.
-      std::optional<povgen::FrameRange> frames;
-      if (options.size == ReportSize::quick) frames = povgen::FrameRange{10, 15};
+      std::optional<FrameRange> frames;
+      if (options.size == ReportSize::quick) frames = FrameRange{10, 15};
       // The pictures go to the work directory first, and into DIR with the other outputs.
       result.flow_sequence = run_sequence_flow_study(
           fs::absolute(wake_frames).string(), Axis::z, work, work, pixels_per_cell,

@@ -8,18 +8,18 @@
 
 namespace toonwater::report {
 
-void write_and_render(const povgen::SceneConfig& config, const std::string& pattern, Axis up,
+void write_and_render(const SceneConfig& config, const std::string& pattern, Axis up,
                       const std::filesystem::path& scene_dir, const std::string& study) {
-  povgen::PovgenRequest request;
+  PovgenRequest request;
   request.water_pattern = pattern;
   request.base_dir = std::filesystem::current_path();
   request.up = up;
   request.out_dir = scene_dir;
-  povgen::generate_scene(config, request, {}, nullptr);
-  povgen::RenderRequest render;
+  generate_scene(config, request, {}, nullptr);
+  RenderRequest render;
   render.scene_dir = scene_dir;
   render.jobs = 2;
-  const povgen::RenderReport rendered = povgen::render_frames(render, {});
+  const RenderReport rendered = render_frames(render, {});
   if (!rendered.failures.empty())
     throw std::runtime_error(study + ": frame " + std::to_string(rendered.failures[0].frame) +
                              ": " + rendered.failures[0].message);

@@ -12,7 +12,7 @@ namespace toonwater::report {
 
 // Writes the scene of `pattern` (relative to the working directory) into `scene_dir` and
 // renders every frame. Throws std::runtime_error naming `study` and the first failed frame.
-void write_and_render(const povgen::SceneConfig& config, const std::string& pattern, Axis up,
+void write_and_render(const SceneConfig& config, const std::string& pattern, Axis up,
                       const std::filesystem::path& scene_dir, const std::string& study);
 
 }  // namespace toonwater::report

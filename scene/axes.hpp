@@ -15,7 +15,7 @@
 
 #include "analyzer/mesh.hpp"
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 inline Vec3 to_povray(const Vec3& p, Axis up) {
   switch (up) {
@@ -29,4 +29,4 @@ inline Vec3 to_povray(const Vec3& p, Axis up) {
   return {p.x(), p.y(), -p.z()};
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -13,7 +13,7 @@
 #include <set>
 #include <sstream>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 namespace fs = std::filesystem;
 
@@ -123,4 +123,4 @@ SceneConfig load_config(const ConfigSources& sources) {
   return config;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

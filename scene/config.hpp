@@ -15,6 +15,7 @@
 #include "analyzer/analysis_settings.hpp"
 
 #include "analyzer/mesh.hpp"
+#include "common/frame_range.hpp"
 #include "scene/render_presets.hpp"
 
 #include <array>
@@ -24,7 +25,7 @@
 #include <string>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 class ConfigError : public std::runtime_error {
  public:
@@ -142,11 +143,6 @@ struct ObjectConfig {
   ReflectionTarget reflection = ReflectionTarget::concrete;
 };
 
-struct FrameRange {
-  long first = 0;
-  long last = 0;
-};
-
 struct RenderConfig {
   int width = 640;
   int height = 480;
@@ -196,4 +192,4 @@ FrameRange parse_frame_range(const std::string& text, const std::string& key);
 // else replaced by '_', at most 24 characters, never empty.
 std::string sanitize_identifier(const std::string& text);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

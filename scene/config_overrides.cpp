@@ -7,7 +7,7 @@
 #include <sstream>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 // The value as TOML, or as a string when it is not TOML (a bare word). Parsed without a source
@@ -61,4 +61,4 @@ void apply_override(toml::table& root, const std::string& assignment) {
   table->insert_or_assign(parts.back(), *parsed.get("v"));
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -8,10 +8,10 @@
 
 #include <string>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // Sets the key in `root`, creating its section when absent. Throws ConfigError naming the key
 // for a malformed assignment, a key of the wrong depth or an object that does not exist.
 void apply_override(toml::table& root, const std::string& assignment);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

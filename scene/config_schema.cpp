@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 std::string source_location(const toml::node& node) {
   const toml::source_region& source = node.source();
@@ -481,4 +481,4 @@ std::vector<ConfigKey> config_keys() {
   return keys;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

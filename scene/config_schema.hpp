@@ -14,7 +14,7 @@
 
 #include <string>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // "FILE:LINE: " for a node read from a file; "" for one that --set made.
 std::string source_location(const toml::node& node);
@@ -27,4 +27,4 @@ void read_section(const std::string& name, const toml::node& node, SceneConfig& 
 // One [[object]] table; `prefix` ("object.2") names its keys in errors.
 ObjectConfig read_object(const toml::node& node, const std::string& prefix);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

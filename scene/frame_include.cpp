@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <optional>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 double water_line(const SceneMesh& water, const Vec3& lo, const Vec3& hi) {
   const Vec3 grow = 0.25 * (hi - lo);
@@ -75,4 +75,4 @@ std::string mesh_include(const PreparedSurface& surface, const std::string& pref
   return text;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

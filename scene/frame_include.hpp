@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // The texture coordinates written per vertex: toon coordinates, or the curvature view's values.
 std::vector<TextureCoordinate> texture_coordinates(const PreparedSurface& surface,
@@ -40,4 +40,4 @@ std::string mesh_include(const PreparedSurface& surface, const std::string& pref
 // where no water is.
 double water_line(const SceneMesh& water, const Vec3& lo, const Vec3& hi);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 // Appends to a std::string through a cursor, growing it in large steps, so the hot loops do
@@ -271,4 +271,4 @@ void append_shell_mesh2(std::string& out, std::string_view identifier, const Sce
          nullptr, decimals);
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -24,7 +24,7 @@
 #include <string_view>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // The largest |coordinate| a scene's meshes may have: positions are written as fixed-point
 // integers of up to 9e18 (with at least no decimal), and outline shells lie a little outside
@@ -63,4 +63,4 @@ Triangle shell_winding(const SceneMesh& mesh, const Triangle& t);
 void append_shell_mesh2(std::string& out, std::string_view identifier, const SceneMesh& mesh,
                         std::span<const double> offsets, const std::vector<bool>* keep = nullptr);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -8,7 +8,7 @@
 
 #include <utility>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 bool is_closed(const MeshTopology& t) { return t.boundary_edges == 0 && t.nonmanifold_edges == 0; }
@@ -49,4 +49,4 @@ PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow, Wat
   return out;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

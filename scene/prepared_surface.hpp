@@ -13,7 +13,7 @@
 #include <type_traits>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 struct PreparedSurface {
   SceneMesh mesh;
@@ -80,4 +80,4 @@ void for_each_field(Surface& s, F&& f) {
   f(analysis_seconds);
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

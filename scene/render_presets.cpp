@@ -1,6 +1,6 @@
 #include "scene/render_presets.hpp"
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 const std::vector<RenderPreset>& render_presets() {
   static const std::vector<RenderPreset> presets = {
@@ -15,4 +15,4 @@ const RenderPreset& render_preset(RenderQuality quality) {
   return render_presets()[static_cast<std::size_t>(quality)];
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

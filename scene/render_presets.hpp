@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 enum class RenderQuality { draft, preview, final };
 
@@ -30,4 +30,4 @@ const RenderPreset& render_preset(RenderQuality quality);
 // The presets in order of cost: draft, preview, final.
 const std::vector<RenderPreset>& render_presets();
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

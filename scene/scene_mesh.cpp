@@ -7,7 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 SceneMesh make_scene_mesh(const TriangleMesh& surface, std::span<const Vec3> normals, bool closed,
                           Axis up) {
@@ -98,4 +98,4 @@ std::vector<TextureCoordinate> value_coordinates(std::span<const double> values,
   return uv;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -19,7 +19,7 @@
 #include <span>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 struct SceneMesh {
   std::vector<Vec3> positions;       // POV-Ray frame
@@ -60,4 +60,4 @@ std::vector<TextureCoordinate> toon_coordinates(const SceneMesh& mesh, const Lig
 // for the curvature view's colour map (range > 0).
 std::vector<TextureCoordinate> value_coordinates(std::span<const double> values, double range);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -12,7 +12,7 @@
 #include <numbers>
 #include <stdexcept>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 std::string num(double v) {
@@ -479,4 +479,4 @@ std::string scene_ini(const SceneLayout& l) {
   return s;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

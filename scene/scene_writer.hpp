@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 struct ObjectPlacement {
   const ObjectConfig* config = nullptr;
@@ -119,4 +119,4 @@ std::string scene_ini(const SceneLayout& layout);
 // The scene's toon.inc: the template's parts that scene.pov uses.
 std::string scene_toon_inc(const SceneLayout& layout);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 Color linear_from_srgb(const Color& srgb) {
   // The sRGB transfer function (IEC 61966-2-1), as POV-Ray's `srgb` keyword applies it.
@@ -50,4 +50,4 @@ Color submerged_tint(const Color& object_srgb, const Color& water_srgb) {
   return out;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -18,7 +18,7 @@
 
 #include "scene/config.hpp"
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // Share of the water's medium colour in an object's colour under water (mixed in sRGB).
 inline constexpr double kSubmergedTint = 0.25;
@@ -44,4 +44,4 @@ Color seen_through_water(const Color& wanted, const Color& gain, const Color& wa
 // An object's colour under water: its sRGB colour with kSubmergedTint of the water's medium.
 Color submerged_tint(const Color& object_srgb, const Color& water_srgb);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

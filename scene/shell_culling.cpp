@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 // How far POV-Ray's copy of a written coordinate may be from ours, relative to the largest
@@ -81,4 +81,4 @@ std::vector<bool> shell_faces_seen_from_behind(const SceneMesh& mesh,
   return seen;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -68,7 +68,7 @@
 #include <span>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // Whether every ray that can meet a shell is a camera ray, as above: the water does not
 // refract, and it does not reflect or the shell is no_reflection.
@@ -88,4 +88,4 @@ std::vector<bool> shell_faces_seen_from_behind(const SceneMesh& mesh,
                                                std::span<const KeepOutBox> keep_out = {},
                                                const std::vector<bool>* keep = nullptr);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -13,7 +13,7 @@
 #include <numbers>
 #include <optional>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 // Largest change of L·n and of the flow field s a collapse may make. Band and flow-region
@@ -456,4 +456,4 @@ SimplifyStats simplify_water(PreparedSurface& surface, std::vector<TextureCoordi
       simplify_options(layout.config->water, water_thresholds(layout), flow, tolerance));
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

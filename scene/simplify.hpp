@@ -37,7 +37,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 struct SimplifyOptions {
   double tolerance = 0;          // world units; 0 leaves the mesh as it is
@@ -78,4 +78,4 @@ SimplifyStats simplify_surface(PreparedSurface& surface, std::vector<TextureCoor
 SimplifyStats simplify_water(PreparedSurface& surface, std::vector<TextureCoordinate>& uv,
                              const SceneLayout& layout, const FlowConfig* flow);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 void put_number(std::string& out, double v) {
@@ -75,4 +75,4 @@ void append_flow_lines(std::string& out, std::span<const FlowLine> lines) {
   }
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

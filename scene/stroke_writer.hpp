@@ -17,10 +17,10 @@
 #include <span>
 #include <string>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // `lines` in POV-Ray's frame. Repeated points are dropped; a line left with fewer than two
 // points, or with no width anywhere, is not written.
 void append_flow_lines(std::string& out, std::span<const FlowLine> lines);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cctype>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 void check_before_parsing(std::string_view text, const std::string& where) {
   std::size_t line = 1;
@@ -56,4 +56,4 @@ toml::table parse_toml(std::string_view text, std::string_view source) {
   return toml::parse(text, source);
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

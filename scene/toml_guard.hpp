@@ -22,7 +22,7 @@
 #include <string>
 #include <string_view>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // Keys nest at most this many levels (a scene configuration needs three).
 inline constexpr int max_key_depth = 16;
@@ -34,4 +34,4 @@ void check_before_parsing(std::string_view text, const std::string& where);
 // toml::parse_error.
 toml::table parse_toml(std::string_view text, std::string_view source);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

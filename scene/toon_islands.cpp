@@ -13,7 +13,7 @@
 #include <queue>
 #include <unordered_map>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 namespace {
 
@@ -208,4 +208,4 @@ std::size_t merge_toon_islands(const SceneMesh& mesh, const Vec3& eye,
   return merges;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

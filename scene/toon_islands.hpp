@@ -40,7 +40,7 @@
 #include <utility>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 struct IslandLimits {
   double radius_edges = 1.5;   // median edge lengths of the mesh
@@ -68,4 +68,4 @@ std::size_t merge_toon_islands(const SceneMesh& mesh, const Vec3& eye,
                                std::span<const double> pixel_width, const ToonLimits& limits,
                                const IslandLimits& island, std::vector<TextureCoordinate>& uv);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 std::string toon_template_parts(const std::vector<std::string>& parts) {
   const std::string_view text = toon_template();
@@ -36,4 +36,4 @@ std::string toon_template_parts(const std::vector<std::string>& parts) {
   return out;
 }
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

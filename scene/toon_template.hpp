@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 
 // The text of templates/toon.inc.
 std::string_view toon_template();
@@ -15,4 +15,4 @@ std::string_view toon_template();
 // "silhouette"): what a scene directory gets, so it holds no macro its scene does not call.
 std::string toon_template_parts(const std::vector<std::string>& parts);
 
-}  // namespace toonwater::povgen
+}  // namespace toonwater

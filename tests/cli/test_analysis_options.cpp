@@ -33,9 +33,8 @@ std::string help_entry(const std::string& help, const std::string& option) {
   return help.substr(at + 1, help.find("\n  -", at + 1) - at - 1);
 }
 
-const povgen::ConfigKey* scene_key(const std::vector<povgen::ConfigKey>& keys,
-                                   const std::string& key) {
-  for (const povgen::ConfigKey& k : keys)
+const ConfigKey* scene_key(const std::vector<ConfigKey>& keys, const std::string& key) {
+  for (const ConfigKey& k : keys)
     if (k.key == key) return &k;
   return nullptr;
 }
@@ -43,11 +42,11 @@ const povgen::ConfigKey* scene_key(const std::vector<povgen::ConfigKey>& keys,
 TEST(AnalysisOptions, EverySettingIsAnOptionAndAKeyWithOneRangeAndDefault) {
   const CommandResult help = run_toonwater({"analyze", "--help"});
   ASSERT_EQ(help.exit_code, 0) << help.output;
-  const std::vector<povgen::ConfigKey> keys = povgen::config_keys();
+  const std::vector<ConfigKey> keys = config_keys();
   for (const AnalysisSetting& setting : analysis_settings()) {
     const std::string entry = help_entry(help.output, setting.option);
     ASSERT_FALSE(entry.empty()) << "no --" << setting.option << " in analyze --help";
-    const povgen::ConfigKey* key = scene_key(keys, "flow." + setting.key);
+    const ConfigKey* key = scene_key(keys, "flow." + setting.key);
     ASSERT_NE(key, nullptr) << "no scene key flow." << setting.key;
     if (setting.is_word()) {
       for (const auto& [word, value] : setting.words) {

@@ -20,7 +20,7 @@
 namespace {
 
 namespace fs = std::filesystem;
-using namespace toonwater::povgen;
+using namespace toonwater;
 
 void require_color(const Color& c) {
   for (const double v : c)

@@ -53,26 +53,26 @@ void write_frames(const fs::path& dir) {
   }
 }
 
-povgen::PovgenReport generate(const fs::path& dir, const std::string& out,
-                              const std::vector<std::string>& overrides, bool maps,
-                              std::size_t cache_bytes = povgen::PovgenRequest{}.frame_cache_bytes,
-                              const povgen::ProgressFn& progress = {}) {
-  povgen::ConfigSources sources;
+PovgenReport generate(const fs::path& dir, const std::string& out,
+                      const std::vector<std::string>& overrides, bool maps,
+                      std::size_t cache_bytes = PovgenRequest{}.frame_cache_bytes,
+                      const ProgressFn& progress = {}) {
+  ConfigSources sources;
   sources.overrides = overrides;
-  const povgen::SceneConfig config = povgen::load_config(sources);
-  povgen::PovgenRequest request;
+  const SceneConfig config = load_config(sources);
+  PovgenRequest request;
   request.water_pattern = (dir / "water_####.obj").string();
   request.base_dir = dir;
   request.out_dir = dir / out;
   if (maps) request.maps_dir = dir / (out + "_maps");
   request.frame_cache_bytes = cache_bytes;
-  return povgen::generate_scene(config, request, progress, nullptr);
+  return generate_scene(config, request, progress, nullptr);
 }
 
 TEST(PovgenFrameReads, MapsAndACurvatureViewReadEachFrameOnce) {
   ScratchDir dir;
   write_frames(dir.path());
-  const povgen::PovgenReport r = generate(dir.path(), "mean", {"water.shading=mean"}, true);
+  const PovgenReport r = generate(dir.path(), "mean", {"water.shading=mean"}, true);
   EXPECT_EQ(r.frames, frame_count);
   EXPECT_EQ(r.map_frames, frame_count);
   // One read a frame, not two (a survey and the frame loop) or five.
@@ -88,7 +88,7 @@ TEST(PovgenFrameReads, MapsAndACurvatureViewReadEachFrameOnce) {
 TEST(PovgenFrameReads, AToonSceneThatSharesNothingReadsEachFrameOnce) {
   ScratchDir dir;
   write_frames(dir.path());
-  const povgen::PovgenReport r = generate(
+  const PovgenReport r = generate(
       dir.path(), "toon", {"camera.location=[0, 3, -3]", "camera.look_at=[0, 0, 0]"}, false);
   EXPECT_EQ(r.frames, frame_count);
   EXPECT_EQ(r.water_reads, frame_count);
@@ -101,21 +101,21 @@ TEST(PovgenFrameReads, AToonSceneThatSharesNothingReadsEachFrameOnce) {
 TEST(PovgenFrameReads, TheSurveyReportsItsFramesBeforeTheFrameLoop) {
   ScratchDir dir;
   write_frames(dir.path());
-  using Call = std::tuple<povgen::PovgenPass, std::size_t, std::size_t>;
+  using Call = std::tuple<PovgenPass, std::size_t, std::size_t>;
   const auto calls_of = [&](const std::string& out, const std::vector<std::string>& overrides) {
     std::vector<Call> calls;
-    generate(dir.path(), out, overrides, false, povgen::PovgenRequest{}.frame_cache_bytes,
-             [&](povgen::PovgenPass pass, std::size_t done, std::size_t total) {
+    generate(dir.path(), out, overrides, false, PovgenRequest{}.frame_cache_bytes,
+             [&](PovgenPass pass, std::size_t done, std::size_t total) {
                calls.emplace_back(pass, done, total);
              });
     return calls;
   };
   std::vector<Call> loop;
   for (std::size_t f = 1; f <= frame_count; ++f)
-    loop.emplace_back(povgen::PovgenPass::frames, f, frame_count);
+    loop.emplace_back(PovgenPass::frames, f, frame_count);
   std::vector<Call> survey_then_loop;
   for (std::size_t f = 1; f <= frame_count; ++f)
-    survey_then_loop.emplace_back(povgen::PovgenPass::survey, f, frame_count);
+    survey_then_loop.emplace_back(PovgenPass::survey, f, frame_count);
   survey_then_loop.insert(survey_then_loop.end(), loop.begin(), loop.end());
   EXPECT_EQ(calls_of("framed", {}), survey_then_loop) << "the default camera surveys";
   EXPECT_EQ(calls_of("fixed", {"camera.location=[0, 3, -3]", "camera.look_at=[0, 0, 0]"}), loop)
@@ -147,18 +147,18 @@ TEST(PovgenFrameReads, TheDefaultCameraReadsEachObjectFileOnce) {
   }
   const auto scene = [&](const std::string& out, std::size_t cache_bytes,
                          const std::vector<std::string>& overrides = {}) {
-    povgen::ConfigSources sources;
+    ConfigSources sources;
     sources.overrides = overrides;
     sources.object_patterns = {(dir / "rock.obj").string(), (dir / "buoy_####.obj").string()};
-    povgen::PovgenRequest request;
+    PovgenRequest request;
     request.water_pattern = (dir / "water_####.obj").string();
     request.base_dir = dir.path();
     request.out_dir = dir / out;
     request.frame_cache_bytes = cache_bytes;
-    return povgen::generate_scene(povgen::load_config(sources), request, {}, nullptr);
+    return generate_scene(load_config(sources), request, {}, nullptr);
   };
-  const povgen::PovgenReport memory = scene("memory", povgen::PovgenRequest{}.frame_cache_bytes);
-  const povgen::PovgenReport file = scene("file", 0);
+  const PovgenReport memory = scene("memory", PovgenRequest{}.frame_cache_bytes);
+  const PovgenReport file = scene("file", 0);
   EXPECT_EQ(memory.object_reads, 1 + frame_count);
   EXPECT_EQ(file.object_reads, 1 + frame_count);
   EXPECT_EQ(file.spilled_frames, frame_count);
@@ -180,8 +180,8 @@ TEST(PovgenFrameReads, FramesSpilledToAFileGiveTheSameSceneAndMaps) {
   ScratchDir dir;
   write_frames(dir.path());
   const std::vector<std::string> view = {"water.shading=mean"};
-  const povgen::PovgenReport memory = generate(dir.path(), "memory", view, true);
-  const povgen::PovgenReport file = generate(dir.path(), "file", view, true, 0);
+  const PovgenReport memory = generate(dir.path(), "memory", view, true);
+  const PovgenReport file = generate(dir.path(), "file", view, true, 0);
   EXPECT_EQ(memory.spilled_frames, 0u);
   EXPECT_EQ(file.spilled_frames, frame_count);
   EXPECT_EQ(file.water_reads, frame_count);
@@ -200,10 +200,9 @@ TEST(PovgenFrameReads, FramesSpilledToAFileGiveTheSameSceneAndMaps) {
 TEST(PovgenFrameReads, SceneMapsEqualTheSequenceMaps) {
   ScratchDir dir;
   write_frames(dir.path());
-  const povgen::PovgenReport r = generate(dir.path(), "toon", {}, true);
+  const PovgenReport r = generate(dir.path(), "toon", {}, true);
   FrameSourceOptions options;
-  options.analysis =
-      povgen::analysis_options(povgen::FlowConfig{}, Axis::y, povgen::WaterShading::toon);
+  options.analysis = analysis_options(FlowConfig{}, Axis::y, WaterShading::toon);
   options.coherent = true;
   FrameSource source(options);
   std::vector<Analysis> analyses;

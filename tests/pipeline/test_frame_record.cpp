@@ -12,7 +12,7 @@
 #include <string>
 #include <unistd.h>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 namespace fs = std::filesystem;
@@ -120,4 +120,4 @@ TEST(FrameRecord, ReadingPastTheRecordsEndIsAnError) {
 }
 
 }  // namespace
-}  // namespace toonwater::povgen
+}  // namespace toonwater

@@ -58,17 +58,17 @@ const std::vector<Case> cases = {
     {"fixed", {"camera.location=[0, 3, -3]", "camera.look_at=[0, 0, 0]"}, false},
 };
 
-povgen::PovgenReport generate(const fs::path& dir, const Case& c) {
+PovgenReport generate(const fs::path& dir, const Case& c) {
   const std::string& out = c.name;
-  povgen::ConfigSources sources;
+  ConfigSources sources;
   sources.overrides = c.overrides;
   sources.object_patterns = {(dir / "rock.obj").string(), (dir / "buoy_####.obj").string()};
-  povgen::PovgenRequest request;
+  PovgenRequest request;
   request.water_pattern = (dir / "water_####.obj").string();
   request.base_dir = dir;
   request.out_dir = dir / out;
   if (c.maps) request.maps_dir = dir / (out + "_maps");
-  return povgen::generate_scene(povgen::load_config(sources), request, {}, nullptr);
+  return generate_scene(load_config(sources), request, {}, nullptr);
 }
 
 TEST(PovgenFrameResults, EachFrameCountsItsOwnMesh) {
@@ -76,10 +76,10 @@ TEST(PovgenFrameResults, EachFrameCountsItsOwnMesh) {
   write_sequence(dir.path());
   for (const Case& c : cases) {
     const std::string& name = c.name;
-    const povgen::PovgenReport r = generate(dir.path(), c);
+    const PovgenReport r = generate(dir.path(), c);
     ASSERT_EQ(r.per_frame.size(), static_cast<std::size_t>(frame_count)) << name;
     for (long f = 1; f <= frame_count; ++f) {
-      const povgen::FrameResult& result = r.per_frame[static_cast<std::size_t>(f - 1)];
+      const FrameResult& result = r.per_frame[static_cast<std::size_t>(f - 1)];
       EXPECT_EQ(result.frame, f) << name;
       EXPECT_EQ(result.objects.reads, 1u) << name << " frame " << f << ": its buoy";
       if (f == empty_frame) continue;
@@ -100,9 +100,9 @@ TEST(PovgenFrameResults, AFrameWithoutWaterCarriesItsReason) {
   write_sequence(dir.path());
   for (const Case& c : cases) {
     const std::string& name = c.name;
-    const povgen::PovgenReport r = generate(dir.path(), c);
+    const PovgenReport r = generate(dir.path(), c);
     ASSERT_EQ(r.per_frame.size(), static_cast<std::size_t>(frame_count)) << name;
-    const povgen::FrameResult& empty = r.per_frame[empty_frame - 1];
+    const FrameResult& empty = r.per_frame[empty_frame - 1];
     EXPECT_NE(empty.empty.find(numbered("water", empty_frame) + ": contains no faces"),
               std::string::npos)
         << name << ": " << empty.empty;
@@ -119,10 +119,10 @@ TEST(PovgenFrameResults, TheReportIsTheSumOfItsFrames) {
   write_sequence(dir.path());
   for (const Case& c : cases) {
     const std::string& name = c.name;
-    const povgen::PovgenReport r = generate(dir.path(), c);
-    povgen::FrameResult sum;
+    const PovgenReport r = generate(dir.path(), c);
+    FrameResult sum;
     std::size_t map_frames = 0;
-    for (const povgen::FrameResult& f : r.per_frame) {
+    for (const FrameResult& f : r.per_frame) {
       sum.vertices += f.vertices;
       sum.faces += f.faces;
       sum.faces_kept += f.faces_kept;

@@ -38,19 +38,19 @@ TEST(PovgenConfig, ReadsEveryKindOfValueAndOverrides) {
   EXPECT_DOUBLE_EQ(c.light.position->z(), 3.0);
   ASSERT_EQ(c.objects.size(), 1u);
   EXPECT_EQ(c.objects[0].name, "ball");
-  EXPECT_EQ(c.objects[0].reflection, povgen::ReflectionTarget::abstract);
+  EXPECT_EQ(c.objects[0].reflection, ReflectionTarget::abstract);
   EXPECT_DOUBLE_EQ(c.objects[0].color[1], 1.0);
   ASSERT_TRUE(c.render.frames.has_value());
   EXPECT_EQ(c.render.frames->first, 3);
   EXPECT_EQ(c.render.frames->last, 7);
-  EXPECT_EQ(c.outline.units, povgen::WidthUnits::world);
+  EXPECT_EQ(c.outline.units, WidthUnits::world);
 }
 
 TEST(PovgenConfig, BandThresholdsAreRelativeUnlessAbsoluteOnesAreGiven) {
-  EXPECT_EQ(config_from("").water.bands, povgen::BandThresholds::relative);
-  EXPECT_EQ(config_from("[water]\nt_bright = 0.6\n").water.bands, povgen::BandThresholds::absolute);
+  EXPECT_EQ(config_from("").water.bands, BandThresholds::relative);
+  EXPECT_EQ(config_from("[water]\nt_bright = 0.6\n").water.bands, BandThresholds::absolute);
   EXPECT_EQ(config_from("[water]\nt_medium = 0.1\nbands = \"relative\"\n").water.bands,
-            povgen::BandThresholds::relative);
+            BandThresholds::relative);
   const auto c = config_from("", {"water.dt_bright=0.1", "water.dt_medium=-0.2"});
   EXPECT_DOUBLE_EQ(c.water.dt_bright, 0.1);
   EXPECT_DOUBLE_EQ(c.water.dt_medium, -0.2);
@@ -58,9 +58,9 @@ TEST(PovgenConfig, BandThresholdsAreRelativeUnlessAbsoluteOnesAreGiven) {
   EXPECT_NE(config_error("", {"water.bands=steep"}).find("'water.bands'"), std::string::npos);
   EXPECT_NE(config_error("", {"water.body=glass"}).find("'water.body'"), std::string::npos);
   // Outline widths are in pixels by default; a unit's own default width applies when none is given.
-  EXPECT_EQ(c.outline.units, povgen::WidthUnits::pixels);
+  EXPECT_EQ(c.outline.units, WidthUnits::pixels);
   EXPECT_FALSE(c.outline.width.has_value());
-  EXPECT_EQ(config_from("", {"water.body=clear"}).water.body, povgen::WaterBody::clear);
+  EXPECT_EQ(config_from("", {"water.body=clear"}).water.body, WaterBody::clear);
 }
 
 TEST(PovgenConfig, ErrorsNameTheKey) {
@@ -87,8 +87,8 @@ TEST(PovgenConfig, ErrorsNameTheKey) {
 }
 
 TEST(PovgenConfig, IdentifiersAreSanitisedAndUnique) {
-  EXPECT_EQ(povgen::sanitize_identifier("a\"}#declare\nX"), "a___declare_X");
-  EXPECT_EQ(povgen::sanitize_identifier(""), "object");
+  EXPECT_EQ(sanitize_identifier("a\"}#declare\nX"), "a___declare_X");
+  EXPECT_EQ(sanitize_identifier(""), "object");
   const auto c = config_from(
       "[[object]]\nmesh = \"x.obj\"\nname = \"boat\"\n[[object]]\nmesh = \"y.obj\"\nname = "
       "\"boat\"\n");
@@ -104,7 +104,7 @@ TEST(PovgenMesh2, LeavesOutDegenerateFacesReplacesZeroNormalsNeverWritesNan) {
   m.triangles = {
       {0, 2, 1}, {0, 1, 3}, {1, 1, 2}};  // a good face, a collinear one, a repeated corner
   std::vector<Vec3> normals(m.positions.size(), Vec3::Zero());  // all undefined
-  const povgen::SceneMesh sm = povgen::make_scene_mesh(m, normals, false, Axis::y);
+  const SceneMesh sm = make_scene_mesh(m, normals, false, Axis::y);
   EXPECT_EQ(sm.triangles.size(), 1u);
   EXPECT_EQ(sm.degenerate_faces, 2u);
   EXPECT_EQ(sm.replaced_normals, m.positions.size());
@@ -113,8 +113,8 @@ TEST(PovgenMesh2, LeavesOutDegenerateFacesReplacesZeroNormalsNeverWritesNan) {
   EXPECT_NEAR(sm.normals[4].y(), 1.0, 1e-12);  // isolated: the up axis
 
   std::string text;
-  const auto uv = povgen::toon_coordinates(sm, {}, {});
-  povgen::append_mesh2(text, "M", sm, uv);
+  const auto uv = toon_coordinates(sm, {}, {});
+  append_mesh2(text, "M", sm, uv);
   EXPECT_NE(text.find("vertex_vectors { 6,"), std::string::npos);
   EXPECT_NE(text.find("normal_vectors { 6,"), std::string::npos);
   EXPECT_NE(text.find("uv_vectors { 6,"), std::string::npos);
@@ -129,9 +129,9 @@ TEST(PovgenMesh2, ClosedMeshesGetAnInsideVectorAndShellsMoveAlongNormals) {
   const TriangleMesh sphere = make_sphere(Vec3::Zero(), 1.0, 6, 8);
   std::vector<Vec3> normals;
   for (const Vec3& p : sphere.positions) normals.push_back(p.normalized());
-  const povgen::SceneMesh sm = povgen::make_scene_mesh(sphere, normals, true, Axis::y);
+  const SceneMesh sm = make_scene_mesh(sphere, normals, true, Axis::y);
   std::string text;
-  povgen::append_shell_mesh2(text, "S", sm, std::vector<double>(sm.positions.size(), 0.5));
+  append_shell_mesh2(text, "S", sm, std::vector<double>(sm.positions.size(), 0.5));
   EXPECT_NE(text.find("inside_vector"), std::string::npos);
   EXPECT_EQ(text.find("uv_vectors"), std::string::npos);
   EXPECT_NE(text.find("<0,1.5,0>"), std::string::npos) << text.substr(0, 200);
@@ -142,17 +142,17 @@ TEST(PovgenMesh2, BandCoordinateFollowsLightDotNormalForParallelAndPointLights) 
   m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}};
   m.triangles = {{0, 2, 1}};
   const std::vector<Vec3> up(3, Vec3(0, 1, 0));
-  const povgen::SceneMesh sm = povgen::make_scene_mesh(m, up, false, Axis::y);
-  povgen::LightGeometry sun;
+  const SceneMesh sm = make_scene_mesh(m, up, false, Axis::y);
+  LightGeometry sun;
   sun.vector = Vec3(0, 1, 0);
   const std::vector<double> flow_field{-1.0, 0.25, 9.0};  // 9 is clamped at 4
-  auto uv = povgen::toon_coordinates(sm, sun, flow_field);
+  auto uv = toon_coordinates(sm, sun, flow_field);
   EXPECT_NEAR(uv[0][0], 0.5 + 0.4999, 1e-6);
   EXPECT_NEAR(uv[0][1], 0.5 - 0.12, 1e-6);
   EXPECT_NEAR(uv[1][1], 0.5 + 0.03, 1e-6);
   EXPECT_NEAR(uv[2][1], 0.5 + 0.48, 1e-6);
-  povgen::LightGeometry lamp{false, Vec3(1, 1, 0)};  // 45° above vertex 0, straight above vertex 1
-  uv = povgen::toon_coordinates(sm, lamp, {});
+  LightGeometry lamp{false, Vec3(1, 1, 0)};  // 45° above vertex 0, straight above vertex 1
+  uv = toon_coordinates(sm, lamp, {});
   EXPECT_NEAR(uv[0][0], 0.5 + 0.4999 * std::sqrt(0.5), 1e-6);
   EXPECT_NEAR(uv[1][0], 0.5 + 0.4999, 1e-6);
   EXPECT_NEAR(uv[0][1], 0.5, 1e-6);

@@ -15,13 +15,12 @@ namespace toonwater::test {
 namespace {
 
 namespace fs = std::filesystem;
-using povgen::FrameRange;
 
 TEST(FarmTasks, ShellQuotingSurvivesTheShell) {
   ScratchDir dir;
   const std::string hostile = "a b'c\"$(touch " + (dir / "pwned").string() + ")";
-  const std::string line = "printf %s " + povgen::shell_quote(hostile) + " > " +
-                           povgen::shell_quote((dir / "out").string());
+  const std::string line =
+      "printf %s " + shell_quote(hostile) + " > " + shell_quote((dir / "out").string());
   ASSERT_EQ(std::system(line.c_str()), 0);
   EXPECT_EQ(read_text(dir / "out"), hostile);
   EXPECT_FALSE(fs::exists(dir / "pwned"));

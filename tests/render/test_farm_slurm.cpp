@@ -146,8 +146,8 @@ TEST_F(SlurmFarm, SigtermCancelsTheJobAndExitsInterrupted) {
   const std::string job = output.substr(at + 10, output.find(':', at) - at - 10);
   bool gone = false;
   for (int i = 0; i < 300 && !gone; ++i) {
-    gone = povgen::run_command({"squeue", "-h", "-j", job}).out.find_first_not_of(" \n") ==
-           std::string::npos;
+    gone =
+        run_command({"squeue", "-h", "-j", job}).out.find_first_not_of(" \n") == std::string::npos;
     if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   EXPECT_TRUE(gone) << "slurm job " << job << " still queued or running";

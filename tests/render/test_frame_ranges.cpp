@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-namespace toonwater::povgen {
+namespace toonwater {
 namespace {
 
 using Pairs = std::vector<std::pair<long, long>>;
@@ -75,4 +75,4 @@ TEST(FrameRanges, ARangeIsWrittenAsFirstDashLast) {
 }
 
 }  // namespace
-}  // namespace toonwater::povgen
+}  // namespace toonwater

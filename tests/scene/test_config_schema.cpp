@@ -73,7 +73,7 @@ TEST(ConfigSchema, TheReadmeTableListsEveryKeyWithItsDefault) {
   const std::vector<Row> rows =
       documented_keys(read_text(std::string(TOONWATER_SOURCE_DIR) + "/docs/scenes.md"));
   ASSERT_FALSE(rows.empty()) << "no key table in docs/scenes.md";
-  const std::vector<povgen::ConfigKey> schema = povgen::config_keys();
+  const std::vector<ConfigKey> schema = config_keys();
   std::size_t next = 0;
   for (const Row& row : rows) {
     std::string defaults;  // a row of several keys lists their defaults in order, ", " between
@@ -96,7 +96,7 @@ TEST(ConfigSchema, TheFuzzersDictionaryNamesEveryTableAndKey) {
     return dictionary.find("\n\"" + word + "\"\n") != std::string::npos ||
            dictionary.rfind("\"" + word + "\"\n", 0) == 0;
   };
-  for (const povgen::ConfigKey& k : povgen::config_keys()) {
+  for (const ConfigKey& k : config_keys()) {
     const std::size_t dot = k.key.find('.');
     const std::string table = k.key.substr(0, dot), name = k.key.substr(dot + 1);
     EXPECT_TRUE(listed(table == "object" ? "[[object]]" : "[" + table + "]"))
@@ -106,9 +106,9 @@ TEST(ConfigSchema, TheFuzzersDictionaryNamesEveryTableAndKey) {
 }
 
 TEST(ConfigSchema, EveryKeyHasATypeAndHelp) {
-  const std::vector<povgen::ConfigKey> schema = povgen::config_keys();
+  const std::vector<ConfigKey> schema = config_keys();
   EXPECT_EQ(schema.size(), 57u);
-  for (const povgen::ConfigKey& k : schema) {
+  for (const ConfigKey& k : schema) {
     EXPECT_FALSE(k.type.empty()) << k.key;
     EXPECT_FALSE(k.help.empty()) << k.key;
     EXPECT_FALSE(k.default_value.empty()) << k.key;
@@ -117,9 +117,9 @@ TEST(ConfigSchema, EveryKeyHasATypeAndHelp) {
 
 TEST(ConfigSchema, DefaultsShownAreTheStructsDefaults) {
   const auto find = [](const std::string& key) {
-    for (const povgen::ConfigKey& k : povgen::config_keys())
+    for (const ConfigKey& k : config_keys())
       if (k.key == key) return k;
-    return povgen::ConfigKey{};
+    return ConfigKey{};
   };
   EXPECT_EQ(find("camera.angle").default_value, "40");
   EXPECT_EQ(find("water.dt_medium").default_value, "-0.05");

@@ -15,8 +15,6 @@
 namespace toonwater::test {
 namespace {
 
-using povgen::ConfigError;
-
 std::string repeat(const std::string& piece, int times) {
   std::string out;
   out.reserve(piece.size() * static_cast<std::size_t>(times));
@@ -83,9 +81,9 @@ TEST(HostileConfig, EnormousFilesAreReadOrRejectedNamingTheKey) {
   ScratchDir dir;
   write_text(dir / "scene.toml",
              repeat("[[object]]\nmesh = \"ball.obj\"\nname = \"boat\"\n", 20000));
-  povgen::ConfigSources sources;
+  ConfigSources sources;
   sources.file = dir / "scene.toml";
-  const povgen::SceneConfig config = povgen::load_config(sources);
+  const SceneConfig config = load_config(sources);
   ASSERT_EQ(config.objects.size(), 20000u);
   EXPECT_EQ(config.objects[0].name, "boat");
   EXPECT_EQ(config.objects[1].name, "boat_2");
@@ -117,10 +115,10 @@ TEST(HostileConfig, NonAsciiInStringsCommentsAndBareOverridesIsRead) {
   write_text(dir / "scene.toml",
              "# caf\xc3\xa9 \xe2\x98\x83\n[[object]]\nmesh = \"\xe6\xb0\xb4.obj\"\n"
              "name = '\xe6\xb0\xb4\xe9\x9d\xa2'\n[[object]]\nmesh = '''b\xc3\xa9.obj'''\n");
-  povgen::ConfigSources sources;
+  ConfigSources sources;
   sources.file = dir / "scene.toml";
   sources.overrides = {"object.1.name=caf\xc3\xa9"};  // a bare word: a string
-  const povgen::SceneConfig config = povgen::load_config(sources);
+  const SceneConfig config = load_config(sources);
   ASSERT_EQ(config.objects.size(), 2u);
   EXPECT_EQ(config.objects[0].mesh, "\xe6\xb0\xb4.obj");
   EXPECT_EQ(config.objects[0].name, "______");

@@ -9,11 +9,9 @@
 namespace toonwater::test {
 namespace {
 
-using povgen::Color;
-
 // POV-Ray's pixel through the surface: (1 − kt)·water + r·S + kt·gain⊙X.
 Color composed(const Color& pigment, const Color& gain, const Color& water,
-               const povgen::WaterSurfaceLook& look) {
+               const WaterSurfaceLook& look) {
   Color out{};
   for (int c = 0; c < 3; ++c)
     out[c] =
@@ -22,16 +20,15 @@ Color composed(const Color& pigment, const Color& gain, const Color& water,
 }
 
 TEST(SeenThroughWater, TheComposedPixelIsTheColourWanted) {
-  povgen::SceneConfig config;
+  SceneConfig config;
   config.light.color = {1.0, 0.9, 0.8};
   for (const double transmit : {0.1, 0.4, 0.75}) {
     config.water.transmit = transmit;
-    const povgen::WaterSurfaceLook look = povgen::water_surface_look(config);
+    const WaterSurfaceLook look = water_surface_look(config);
     const Color gain{0.2 + 0.8 * 1.0, 0.2 + 0.8 * 0.9, 0.2 + 0.8 * 0.8};
     for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(look.gain[c], gain[c]);
-    const Color wanted =
-        povgen::linear_from_srgb(povgen::submerged_tint({0.92, 0.45, 0.18}, config.water.medium));
-    const Color x = povgen::seen_through_water(wanted, gain, look.calm, look);
+    const Color wanted = linear_from_srgb(submerged_tint({0.92, 0.45, 0.18}, config.water.medium));
+    const Color x = seen_through_water(wanted, gain, look.calm, look);
     const Color pixel = composed(x, gain, look.calm, look);
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(pixel[c], wanted[c], 1e-12) << transmit << " channel " << c;
@@ -40,15 +37,15 @@ TEST(SeenThroughWater, TheComposedPixelIsTheColourWanted) {
 }
 
 TEST(SeenThroughWater, TheTintKeepsTheObjectsHueAndNothingIsSeenThroughOpaqueWater) {
-  const Color tint = povgen::submerged_tint({1.0, 0.0, 0.0}, {0.0, 0.0, 1.0});
-  EXPECT_DOUBLE_EQ(tint[0], 1.0 - povgen::kSubmergedTint);
-  EXPECT_DOUBLE_EQ(tint[2], povgen::kSubmergedTint);
-  povgen::SceneConfig config;
+  const Color tint = submerged_tint({1.0, 0.0, 0.0}, {0.0, 0.0, 1.0});
+  EXPECT_DOUBLE_EQ(tint[0], 1.0 - kSubmergedTint);
+  EXPECT_DOUBLE_EQ(tint[2], kSubmergedTint);
+  SceneConfig config;
   config.water.transmit = 0.0;
-  const povgen::WaterSurfaceLook look = povgen::water_surface_look(config);
-  const Color x = povgen::seen_through_water({0.5, 0.5, 0.5}, {1, 1, 1}, look.calm, look);
+  const WaterSurfaceLook look = water_surface_look(config);
+  const Color x = seen_through_water({0.5, 0.5, 0.5}, {1, 1, 1}, look.calm, look);
   for (double c : x) EXPECT_EQ(c, 0.0);
-  EXPECT_NEAR(povgen::linear_from_srgb({0.5, 0.5, 0.5})[0], 0.21404, 1e-5);
+  EXPECT_NEAR(linear_from_srgb({0.5, 0.5, 0.5})[0], 0.21404, 1e-5);
 }
 
 }  // namespace

@@ -20,7 +20,7 @@ namespace toonwater::test {
 namespace {
 
 namespace fs = std::filesystem;
-using namespace toonwater::povgen;
+using namespace toonwater;
 
 struct ExampleCase {
   std::string example;   // examples/NAME

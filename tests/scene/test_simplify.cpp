@@ -19,7 +19,6 @@ namespace toonwater::test {
 namespace {
 
 namespace fs = std::filesystem;
-using povgen::PreparedSurface;
 
 double ripple(double x, double z) {
   const double r2 = x * x + z * z;
@@ -43,7 +42,7 @@ double point_triangle_squared(const Vec3& p, const Vec3& a, const Vec3& b, const
 }
 
 // One-sided Hausdorff distance from the points to the mesh's surface.
-double distance_to_surface(const std::vector<Vec3>& points, const povgen::SceneMesh& mesh) {
+double distance_to_surface(const std::vector<Vec3>& points, const SceneMesh& mesh) {
   double worst = 0;
   for (const Vec3& p : points) {
     double best = std::numeric_limits<double>::infinity();
@@ -56,7 +55,7 @@ double distance_to_surface(const std::vector<Vec3>& points, const povgen::SceneM
 }
 
 // Points of the mesh's faces: corners, edge midpoints and centroids.
-std::vector<Vec3> surface_samples(const povgen::SceneMesh& mesh) {
+std::vector<Vec3> surface_samples(const SceneMesh& mesh) {
   std::vector<Vec3> s;
   for (const Triangle& t : mesh.triangles) {
     const Vec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
@@ -66,22 +65,21 @@ std::vector<Vec3> surface_samples(const povgen::SceneMesh& mesh) {
 }
 
 PreparedSurface prepared(TriangleMesh mesh) {
-  return povgen::prepare_surface(std::move(mesh), Axis::y, nullptr, nullptr);
+  return prepare_surface(std::move(mesh), Axis::y, nullptr, nullptr);
 }
 
-povgen::SimplifyStats simplify(PreparedSurface& s, double tolerance) {
-  povgen::SceneConfig config;
-  std::vector<povgen::TextureCoordinate> uv =
-      povgen::texture_coordinates(s, povgen::light_geometry(config.light, Axis::y));
-  return povgen::simplify_surface(
+SimplifyStats simplify(PreparedSurface& s, double tolerance) {
+  SceneConfig config;
+  std::vector<TextureCoordinate> uv = texture_coordinates(s, light_geometry(config.light, Axis::y));
+  return simplify_surface(
       s, uv,
-      povgen::simplify_options(config.water, {config.water.t_bright, config.water.t_medium},
-                               nullptr, tolerance));
+      simplify_options(config.water, {config.water.t_bright, config.water.t_medium}, nullptr,
+                       tolerance));
 }
 
 TEST(Simplify, FlatPlaneSimplifiesToAHandfulOfFacesWithItsOutline) {
   PreparedSurface s = prepared(make_height_grid(41, 1.0, [](double, double) { return 0.0; }));
-  const povgen::SimplifyStats stats = simplify(s, 1e-3);
+  const SimplifyStats stats = simplify(s, 1e-3);
   EXPECT_TRUE(stats.simplified);
   EXPECT_EQ(stats.faces_before, 3200u);
   EXPECT_LE(stats.faces_after, 8u);
@@ -107,7 +105,7 @@ TEST(Simplify, AVertexInNoFaceIsLeftOut) {
   plane.positions.push_back(Vec3(5, 0, 5));
   PreparedSurface s = prepared(plane);
   ASSERT_EQ(s.mesh.positions.size(), 122u);
-  const povgen::SimplifyStats stats = simplify(s, 1e-3);
+  const SimplifyStats stats = simplify(s, 1e-3);
   EXPECT_TRUE(stats.simplified);
   EXPECT_LE(stats.faces_after, 8u);
   for (const Vec3& p : s.mesh.positions) EXPECT_LE(p.norm(), std::sqrt(2.0) + 1e-12);
@@ -118,23 +116,22 @@ TEST(Simplify, AVertexInNoFaceIsLeftOut) {
 TEST(Simplify, RippleKeepsItsCrestsWithinThePixelBound) {
   const TriangleMesh input = make_height_grid(61, 1.0, ripple);
   PreparedSurface s = prepared(input);
-  const povgen::SceneMesh full = s.mesh;
-  povgen::SceneConfig config;
+  const SceneMesh full = s.mesh;
+  SceneConfig config;
   config.camera.location = Vec3(0, 2.5, -2.5);
   config.water.simplify = 0.5;
   config.render.width = 320;
   config.render.height = 180;
-  povgen::SceneLayout layout;
+  SceneLayout layout;
   layout.config = &config;
-  layout.camera = povgen::frame_camera(config, Axis::y, full.min, full.max);
-  const povgen::CameraReach reach = povgen::camera_reach(layout, full.min, full.max);
+  layout.camera = frame_camera(config, Axis::y, full.min, full.max);
+  const CameraReach reach = camera_reach(layout, full.min, full.max);
   const double tolerance =
-      povgen::screen_tolerance(0.5, reach.nearest_distance, config.camera.angle, 320, 180);
+      screen_tolerance(0.5, reach.nearest_distance, config.camera.angle, 320, 180);
   ASSERT_GT(tolerance, 0.0);
   ASSERT_LT(tolerance, 0.01);
-  std::vector<povgen::TextureCoordinate> uv =
-      povgen::texture_coordinates(s, povgen::light_geometry(config.light, Axis::y));
-  const povgen::SimplifyStats stats = povgen::simplify_water(s, uv, layout, nullptr);
+  std::vector<TextureCoordinate> uv = texture_coordinates(s, light_geometry(config.light, Axis::y));
+  const SimplifyStats stats = simplify_water(s, uv, layout, nullptr);
   ASSERT_TRUE(stats.simplified);
   EXPECT_LT(stats.faces_after, stats.faces_before / 2);
   EXPECT_GT(stats.faces_after, 200u);  // the ripple needs its triangles
@@ -172,9 +169,9 @@ TEST(Simplify, EmptyDegenerateAndNonManifoldFramesPassThroughUnchanged) {
 TEST(Simplify, ScreenToleranceIsThePixelBoundAtTheNearestPoint) {
   // 1 pixel at 10 units with a 90° field on a square 100-pixel image: f = 50 pixels, so the
   // centre's pixel spans 0.2; the corners' rays are sqrt(3) times longer at the same depth.
-  EXPECT_NEAR(povgen::screen_tolerance(1.0, 10.0, 90.0, 100, 100), 0.2 / 3.0, 1e-12);
-  EXPECT_EQ(povgen::screen_tolerance(0.0, 10.0, 90.0, 100, 100), 0.0);
-  EXPECT_EQ(povgen::screen_tolerance(1.0, 0.0, 90.0, 100, 100), 0.0);
+  EXPECT_NEAR(screen_tolerance(1.0, 10.0, 90.0, 100, 100), 0.2 / 3.0, 1e-12);
+  EXPECT_EQ(screen_tolerance(0.0, 10.0, 90.0, 100, 100), 0.0);
+  EXPECT_EQ(screen_tolerance(1.0, 0.0, 90.0, 100, 100), 0.0);
 }
 
 // The picture of a simplified frame against the full one, with the default scene (refraction,

@@ -10,10 +10,6 @@
 namespace toonwater::test {
 namespace {
 
-using povgen::IslandLimits;
-using povgen::TextureCoordinate;
-using povgen::ToonLimits;
-
 // The faces of an n × n grid of vertices, vertex (i, j) at index i·n + j.
 std::vector<Triangle> grid_triangles(int n) {
   std::vector<Triangle> t;
@@ -38,8 +34,8 @@ TEST(ToonIslands, AnIslandBelowTheAreaIsMergedAndALargerOneStays) {
   label[2 * n + 2] = 1;      // one vertex
   fill(label, n, 8, 14, 1);  // 36 vertices
   const std::vector<double> area(n * n, 1.0), pixels(n * n, 100.0);
-  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels,
-                                        std::vector<double>{10.0, 10.0}, 0.0, label),
+  EXPECT_EQ(merge_small_islands(grid_triangles(n), area, pixels, std::vector<double>{10.0, 10.0},
+                                0.0, label),
             1u);
   EXPECT_EQ(label[2 * n + 2], 0);
   EXPECT_EQ(label[10 * n + 10], 1);
@@ -54,13 +50,13 @@ TEST(ToonIslands, AnIslandTooSmallOnScreenIsMergedWhateverItsArea) {
   fill(label, n, 8, 11, 1);  // 9 vertices
   std::vector<double> area(n * n, 1.0), pixels(n * n, 1.0);
   std::vector<int> near = label;
-  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels,
-                                        std::vector<double>{5.0, 5.0}, 12.0, near),
+  EXPECT_EQ(merge_small_islands(grid_triangles(n), area, pixels, std::vector<double>{5.0, 5.0},
+                                12.0, near),
             1u);
   EXPECT_EQ(near[9 * n + 9], 0) << "9 px < 12 px";
   for (double& p : pixels) p = 2.0;
-  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels,
-                                        std::vector<double>{5.0, 5.0}, 12.0, label),
+  EXPECT_EQ(merge_small_islands(grid_triangles(n), area, pixels, std::vector<double>{5.0, 5.0},
+                                12.0, label),
             0u);
   EXPECT_EQ(label[9 * n + 9], 1) << "18 px";
 }
@@ -74,13 +70,13 @@ TEST(ToonIslands, AnIslandGrownByAMergeIsJudgedAtItsNewSize) {
   label[9 * n + 9] = 2;  // the ring of 1 holds 8 vertices, with its centre 9
   const std::vector<double> area(n * n, 1.0), pixels(n * n, 100.0);
   std::vector<int> kept = label;
-  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels,
-                                        std::vector<double>{9.0, 9.0, 9.0}, 0.0, kept),
+  EXPECT_EQ(merge_small_islands(grid_triangles(n), area, pixels, std::vector<double>{9.0, 9.0, 9.0},
+                                0.0, kept),
             1u);
   EXPECT_EQ(kept[9 * n + 9], 1) << "the centre takes the ring's class, and the ring of 9 stays";
   EXPECT_EQ(kept[8 * n + 8], 1);
-  EXPECT_EQ(povgen::merge_small_islands(grid_triangles(n), area, pixels,
-                                        std::vector<double>{10.0, 10.0, 10.0}, 0.0, label),
+  EXPECT_EQ(merge_small_islands(grid_triangles(n), area, pixels,
+                                std::vector<double>{10.0, 10.0, 10.0}, 0.0, label),
             2u);
   for (int l : label) EXPECT_EQ(l, 0) << "ring and centre are both too small for 10";
 }
@@ -91,9 +87,9 @@ TEST(ToonIslands, AWholePartOfTheMeshInOneClassStays) {
   std::vector<int> label(12, 0);
   label[9] = label[10] = label[11] = 1;
   const std::vector<double> area(12, 1.0), pixels(12, 1.0);
-  EXPECT_EQ(povgen::merge_small_islands(triangles, area, pixels, std::vector<double>{100.0, 100.0},
-                                        100.0, label),
-            0u);
+  EXPECT_EQ(
+      merge_small_islands(triangles, area, pixels, std::vector<double>{100.0, 100.0}, 100.0, label),
+      0u);
   EXPECT_EQ(label[10], 1);
 }
 
@@ -103,7 +99,7 @@ TEST(ToonIslands, AWholePartOfTheMeshInOneClassStays) {
 // own least size): at a tenth of the pixel's size it is merged too.
 TEST(ToonIslands, MergedVerticesMoveJustInsideTheirNewClass) {
   constexpr int n = 21;
-  povgen::SceneMesh mesh;
+  SceneMesh mesh;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       mesh.positions.emplace_back(i, 0.0, j);
@@ -121,7 +117,7 @@ TEST(ToonIslands, MergedVerticesMoveJustInsideTheirNewClass) {
   const std::vector<TextureCoordinate> before = uv;
   const Vec3 eye(10, 10, 10);
   const std::vector<double> pixel_width(n * n, 0.1);  // 100 px² a cell
-  EXPECT_EQ(povgen::merge_toon_islands(mesh, eye, pixel_width, limits, IslandLimits{}, uv), 1u);
+  EXPECT_EQ(merge_toon_islands(mesh, eye, pixel_width, limits, IslandLimits{}, uv), 1u);
   EXPECT_LE(uv[3 * n + 3][0], 0.6f);
   EXPECT_GT(uv[3 * n + 3][0], 0.599f);
   EXPECT_EQ(uv[3 * n + 3][1], 0.5f);
@@ -130,7 +126,7 @@ TEST(ToonIslands, MergedVerticesMoveJustInsideTheirNewClass) {
     for (int j = 10; j < 18; ++j) EXPECT_EQ(uv[i * n + j], before[i * n + j]);
 
   const std::vector<double> far_pixel_width(n * n, 1.0);  // 1 px² a cell
-  EXPECT_EQ(povgen::merge_toon_islands(mesh, eye, far_pixel_width, limits, IslandLimits{}, uv), 1u);
+  EXPECT_EQ(merge_toon_islands(mesh, eye, far_pixel_width, limits, IslandLimits{}, uv), 1u);
   EXPECT_LT(uv[3 * n + 15][1], 0.62f);
   EXPECT_GT(uv[3 * n + 15][1], 0.619f);
   EXPECT_EQ(uv[3 * n + 15][0], 0.5f);
@@ -141,7 +137,7 @@ TEST(ToonIslands, MergedVerticesMoveJustInsideTheirNewClass) {
 // it, where nothing is interpolated out to the water, u stays.
 TEST(ToonIslands, ARegionsBorderTakesTheBandAroundIt) {
   constexpr int n = 21;
-  povgen::SceneMesh mesh;
+  SceneMesh mesh;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       mesh.positions.emplace_back(i, 0.0, j);
@@ -153,7 +149,7 @@ TEST(ToonIslands, ARegionsBorderTakesTheBandAroundIt) {
   for (int i = 6; i < 15; ++i)
     for (int j = 6; j < 15; ++j) uv[i * n + j] = TextureCoordinate{0.7f, 0.8f};
   const std::vector<double> pixel_width(n * n, 0.1);
-  povgen::merge_toon_islands(mesh, Vec3(10, 10, 10), pixel_width, limits, IslandLimits{}, uv);
+  merge_toon_islands(mesh, Vec3(10, 10, 10), pixel_width, limits, IslandLimits{}, uv);
   for (int i = 6; i < 15; ++i)
     for (int j = 6; j < 15; ++j) {
       const bool border = i == 6 || i == 14 || j == 6 || j == 14;

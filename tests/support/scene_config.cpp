@@ -4,19 +4,19 @@
 
 namespace toonwater::test {
 
-povgen::SceneConfig config_from(const std::string& toml, std::vector<std::string> overrides) {
+SceneConfig config_from(const std::string& toml, std::vector<std::string> overrides) {
   ScratchDir dir;
   write_text(dir / "scene.toml", toml);
-  povgen::ConfigSources sources;
+  ConfigSources sources;
   sources.file = dir / "scene.toml";
   sources.overrides = std::move(overrides);
-  return povgen::load_config(sources);
+  return load_config(sources);
 }
 
 std::string config_error(const std::string& toml, std::vector<std::string> overrides) {
   try {
     config_from(toml, std::move(overrides));
-  } catch (const povgen::ConfigError& e) {
+  } catch (const ConfigError& e) {
     return e.what();
   }
   return "accepted";

@@ -9,7 +9,7 @@
 
 namespace toonwater::test {
 
-povgen::SceneConfig config_from(const std::string& toml, std::vector<std::string> overrides = {});
+SceneConfig config_from(const std::string& toml, std::vector<std::string> overrides = {});
 
 // The ConfigError message config_from throws, or "accepted".
 std::string config_error(const std::string& toml, std::vector<std::string> overrides = {});
