@@ -108,5 +108,6 @@ InputMesh read_ply(const SourceFile& file);
 InputMesh read_stl(const SourceFile& file);
 InputMesh read_bobj(const SourceFile& file);       // Mantaflow .bobj.gz
 InputMesh read_flip_bobj(const SourceFile& file);  // FLIP Fluids .bobj
+InputMesh read_vtk(const SourceFile& file);        // legacy VTK, as splashsurf writes it
 
 }  // namespace toonwater::readers
