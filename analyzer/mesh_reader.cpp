@@ -251,13 +251,17 @@ InputMesh read_mesh(const std::filesystem::path& path, const LevelSetOptions& le
     read = readers::read_stl;
   else if (extension == ".gz" && lowercase_extension(path.stem()) == ".bobj")
     read = readers::read_bobj;
+  else if (extension == ".bobj")
+    read = readers::read_flip_bobj;
+  else if (extension == ".vtk")
+    read = readers::read_vtk;
   else if (extension.empty())
     readers::fail(file,
                   "has no extension to tell its format "
-                  "(expected .obj, .off, .ply, .stl, .bobj.gz or .vdb)");
+                  "(expected .obj, .off, .ply, .stl, .vtk, .bobj.gz, .bobj or .vdb)");
   else
     readers::fail(file, "unknown mesh format " + readers::quote(extension) +
-                            " (expected .obj, .off, .ply, .stl, .bobj.gz or .vdb)");
+                            " (expected .obj, .off, .ply, .stl, .vtk, .bobj.gz, .bobj or .vdb)");
 
   std::size_t size = 0;
   const std::unique_ptr<char[]> bytes = load_file(file, size);

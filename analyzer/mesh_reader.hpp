@@ -41,10 +41,10 @@ struct LevelSetOptions {
   double adaptivity = 0.0;  // OpenVDB's volumeToMesh, in [0, 1]
 };
 
-// Reads OBJ/OFF/PLY/STL, Mantaflow's .bobj.gz or an OpenVDB level set (.vdb, meshed as
-// `level_set` says), chosen by the file's extension (case-insensitive).
-// Throws InputError for a missing, unreadable, malformed or truncated file, an index out of
-// range, a face with fewer than three corners, or a coordinate that is NaN or infinite.
+// Reads OBJ/OFF/PLY/STL, legacy VTK, Mantaflow's .bobj.gz, FLIP Fluids' .bobj or an OpenVDB level
+// set (.vdb, meshed as `level_set` says), chosen by the file's extension (case-insensitive). Throws
+// InputError for a missing, unreadable, malformed or truncated file, an index out of range, a face
+// with fewer than three corners, or a coordinate that is NaN or infinite.
 InputMesh read_mesh(const std::filesystem::path& path, const LevelSetOptions& level_set = {});
 
 }  // namespace toonwater

@@ -160,9 +160,9 @@ void add_analyze_command(CLI::App& app) {
   auto args = std::make_shared<AnalyzeArgs>();
   CLI::App* cmd = app.add_subcommand(
       "analyze", "Compute per-vertex curvature and water-flow regions of a surface mesh");
-  cmd->add_option(
-         "mesh", args->mesh,
-         "Surface mesh: OBJ, OFF, PLY, STL, Mantaflow .bobj.gz or an OpenVDB level set (.vdb)")
+  cmd->add_option("mesh", args->mesh,
+                  "Surface mesh: OBJ, OFF, PLY, STL, legacy VTK, Mantaflow .bobj.gz, FLIP Fluids "
+                  ".bobj or an OpenVDB level set (.vdb)")
       ->required()
       ->check(NonEmptyPath);
   add_transform_options(*cmd, args->transform);

@@ -36,14 +36,6 @@ constexpr std::uint64_t max_expansion = 64;
 constexpr std::size_t chunk_bytes = std::size_t{1} << 16;
 constexpr std::size_t record_bytes = 12;  // three float32 or three int32
 
-template <class T>
-T little_endian(const char* bytes) {
-  std::array<char, sizeof(T)> raw;
-  std::memcpy(raw.data(), bytes, sizeof(T));
-  if constexpr (std::endian::native == std::endian::big) std::reverse(raw.begin(), raw.end());
-  return std::bit_cast<T>(raw);
-}
-
 bool starts_with_gzip_magic(std::string_view bytes) {
   return bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0x1f &&
          static_cast<unsigned char>(bytes[1]) == 0x8b;

@@ -5,8 +5,12 @@
 
 #include "analyzer/mesh_reader.hpp"
 
+#include <algorithm>
+#include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <span>
 #include <string>
@@ -83,6 +87,15 @@ Vec3 read_point(const SourceFile& file, std::size_t line, Fields& fields);
 std::size_t capped_reserve(std::uint64_t declared, std::size_t remaining_bytes,
                            std::size_t min_record_bytes);
 
+// A value of type T stored little-endian at `bytes` (which need not be aligned).
+template <class T>
+T little_endian(const char* bytes) {
+  std::array<char, sizeof(T)> raw;
+  std::memcpy(raw.data(), bytes, sizeof(T));
+  if constexpr (std::endian::native == std::endian::big) std::reverse(raw.begin(), raw.end());
+  return std::bit_cast<T>(raw);
+}
+
 // The largest vertex count a TriangleMesh can index.
 inline constexpr std::uint64_t max_vertex_count = 2147483647;
 
@@ -93,6 +106,8 @@ InputMesh read_obj(const SourceFile& file);
 InputMesh read_off(const SourceFile& file);
 InputMesh read_ply(const SourceFile& file);
 InputMesh read_stl(const SourceFile& file);
-InputMesh read_bobj(const SourceFile& file);  // Mantaflow .bobj.gz
+InputMesh read_bobj(const SourceFile& file);       // Mantaflow .bobj.gz
+InputMesh read_flip_bobj(const SourceFile& file);  // FLIP Fluids .bobj
+InputMesh read_vtk(const SourceFile& file);        // legacy VTK, as splashsurf writes it
 
 }  // namespace toonwater::readers

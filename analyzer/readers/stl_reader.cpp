@@ -20,16 +20,8 @@ namespace {
 constexpr std::size_t binary_header_bytes = 84;
 constexpr std::size_t binary_facet_bytes = 50;
 
-template <class T>
-T read_little_endian(const char* bytes) {
-  std::array<char, sizeof(T)> raw;
-  std::memcpy(raw.data(), bytes, sizeof(T));
-  if constexpr (std::endian::native == std::endian::big) std::reverse(raw.begin(), raw.end());
-  return std::bit_cast<T>(raw);
-}
-
 std::uint32_t binary_facet_count(const SourceFile& file) {
-  return read_little_endian<std::uint32_t>(file.bytes.data() + 80);
+  return little_endian<std::uint32_t>(file.bytes.data() + 80);
 }
 
 bool is_binary(const SourceFile& file) {
@@ -60,8 +52,8 @@ InputMesh read_binary(const SourceFile& file) {
     const char* corner = facet + 12;  // after the normal
     const auto first = static_cast<std::int32_t>(mesh.positions.size());
     for (int c = 0; c < 3; ++c, corner += 12) {
-      const Vec3 position(read_little_endian<float>(corner), read_little_endian<float>(corner + 4),
-                          read_little_endian<float>(corner + 8));
+      const Vec3 position(little_endian<float>(corner), little_endian<float>(corner + 4),
+                          little_endian<float>(corner + 8));
       if (!position.allFinite())
         fail(file, "coordinate is NaN or infinite (facet " + std::to_string(f) + ")");
       mesh.positions.push_back(position);

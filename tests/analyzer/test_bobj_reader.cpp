@@ -2,6 +2,7 @@
 // writes them, read back exactly; every kind of damage (not gzip, a cut or corrupt stream, data
 // shorter than its counts, bad indices, NaN) is one line naming the file and where; hostile
 // counts and gzip bombs allocate nothing large; and analyze and povgen take numbered sequences.
+// FLIP Fluids' uncompressed .bobj likewise, and a bake's folder of attribute files beside it.
 #include "corpus/analytic_surfaces.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "analyzer/obj_writer.hpp"
@@ -101,10 +102,11 @@ class BobjReader : public ::testing::Test {
     return path;
   }
 
-  // Checks that reading `bytes` as NAME.bobj.gz fails with one line that starts with the path and
-  // contains every fragment.
-  void expect_error(const std::string& bytes, std::initializer_list<std::string> fragments) {
-    const fs::path path = write("broken.bobj.gz", bytes);
+  // Checks that reading `bytes` as NAME (default broken.bobj.gz) fails with one line that starts
+  // with the path and contains every fragment.
+  void expect_error(const std::string& bytes, std::initializer_list<std::string> fragments,
+                    const std::string& name = "broken.bobj.gz") {
+    const fs::path path = write(name, bytes);
     try {
       read_mesh(path);
       ADD_FAILURE() << "no error; expected " << *fragments.begin();
@@ -257,6 +259,69 @@ TEST_F(BobjReader, GzipBombIsRefusedEarly) {
   EXPECT_LT(largest_allocation(), 128 * bomb.size());
 }
 
+// ---- FLIP Fluids' .bobj: uncompressed, no normals -------------------------------------------
+
+// A FLIP Fluids .bobj as TriangleMesh::getMeshFileDataBOBJ writes it: counts, positions,
+// triangles, nothing else.
+std::string flip_bobj_data(const std::vector<Float3>& positions,
+                           const std::vector<Triangle>& triangles) {
+  Data d;
+  d.put(static_cast<std::int32_t>(positions.size()));
+  for (const Float3& p : positions) d.put(p);
+  d.put(static_cast<std::int32_t>(triangles.size()));
+  for (const Triangle& t : triangles) d.put(t);
+  return d.bytes();
+}
+
+TEST_F(BobjReader, FlipFluidsTetrahedronRoundTrip) {
+  expect_tetrahedron(
+      read_mesh(write("000001.bobj", flip_bobj_data(tetra_positions, tetra_triangles))));
+  expect_tetrahedron(
+      read_mesh(write("000002.BOBJ", flip_bobj_data(tetra_positions, tetra_triangles))));
+}
+
+TEST_F(BobjReader, FlipFluidsEveryTruncationIsAnError) {
+  const std::string file = flip_bobj_data(tetra_positions, tetra_triangles);
+  for (std::size_t size = 0; size < file.size(); ++size)
+    expect_error(file.substr(0, size), {"truncated", "byte offset"}, "cut.bobj");
+}
+
+TEST_F(BobjReader, FlipFluidsBadCountsIndicesCoordinatesAndTrailingBytes) {
+  Data negative;
+  negative.put(std::int32_t{-4});
+  expect_error(negative.bytes(), {"negative vertex count -4 (byte offset 0)"}, "bad.bobj");
+
+  std::vector<Triangle> bad_index = tetra_triangles;
+  bad_index[2][1] = 4;
+  // The index is the second corner of the third triangle: 4 + 48 + 4 + 2 * 12 + 4 bytes in.
+  expect_error(flip_bobj_data(tetra_positions, bad_index),
+               {"triangle 2 refers to vertex 4, but there are 4 vertices (byte offset 84)"},
+               "bad.bobj");
+  bad_index[2][1] = -1;
+  expect_error(flip_bobj_data(tetra_positions, bad_index), {"triangle 2 refers to vertex -1"},
+               "bad.bobj");
+
+  std::vector<Float3> nan_positions = tetra_positions;
+  nan_positions[3][1] = std::numeric_limits<float>::quiet_NaN();
+  expect_error(flip_bobj_data(nan_positions, tetra_triangles),
+               {"coordinate is NaN or infinite (vertex 3)"}, "bad.bobj");
+
+  expect_error(flip_bobj_data(tetra_positions, tetra_triangles) + "x",
+               {"1 unexpected bytes after the triangles (byte offset 104)"}, "bad.bobj");
+  // Mantaflow's layout, decompressed and named .bobj: its normals are taken for the triangle
+  // count, which its data cannot hold, or leave bytes over; either way it is refused.
+  expect_error(bobj_data(tetra_positions, tetra_triangles), {"bad.bobj: "}, "bad.bobj");
+}
+
+TEST_F(BobjReader, FlipFluidsHostileCountsAllocateNothingLarge) {
+  Data vertices;  // claims 2^31 - 1 vertices, holds 3
+  vertices.put(std::numeric_limits<std::int32_t>::max());
+  for (int v = 0; v < 3; ++v) vertices.put(tetra_positions[v]);
+  reset_largest_allocation();
+  expect_error(vertices.bytes(), {"truncated: 2147483647 vertex records need"}, "huge.bobj");
+  EXPECT_LT(largest_allocation(), std::size_t{1} << 20);
+}
+
 // ---- Sequences through the command line ---------------------------------------------------
 
 // A wavy square sheet of n × n vertices in Mantaflow's normalised coordinates (z up), frame f.
@@ -321,6 +386,43 @@ TEST_F(BobjReader, PovgenTakesNumberedAndGlobbedCacheSequences) {
     EXPECT_FALSE(fs::exists(out / "water_0003.inc")) << pattern;
     EXPECT_NE(read_text(out / "water_0001.inc"), read_text(out / "water_0002.inc")) << pattern;
   }
+}
+
+TEST_F(BobjReader, PovgenTakesAFlipFluidsBakeAndLeavesItsAttributeFilesOut) {
+  // bakefiles/ as the add-on writes it: the surface NNNNNN.bobj beside attribute files with the
+  // same suffix.
+  const fs::path bakefiles = dir_ / "cache" / "bakefiles";
+  fs::create_directories(bakefiles);
+  TriangleMesh surface;
+  for (int frame = 1; frame <= 2; ++frame) {
+    const InputMesh sheet = read_mesh(write("frame.bobj.gz", wave_frame(15, frame)));
+    std::vector<Float3> positions;
+    for (const Vec3& p : sheet.mesh.positions)
+      positions.push_back(
+          {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
+    const std::string stem = "00000" + std::to_string(frame);
+    write_text(bakefiles / (stem + ".bobj"), flip_bobj_data(positions, sheet.mesh.triangles));
+    write_text(bakefiles / ("velocity" + stem + ".bobj"), "not a surface");
+    write_text(bakefiles / ("blur" + stem + ".bobj"), "not a surface");
+    if (frame == 2) surface = sheet.mesh;
+  }
+  const fs::path out = dir_ / "scene";
+  const test::CommandResult r =
+      run_toonwater({"povgen", "--up", "z", "--water", (bakefiles / "######.bobj").string(),
+                     "--out", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "water_0001.inc") && fs::exists(out / "water_0002.inc"));
+  EXPECT_NE(read_text(out / "water_0001.inc"), read_text(out / "water_0002.inc"));
+
+  // analyze reads a frame as the same surface an OBJ of it gives.
+  write_obj(dir_ / "frame2.obj", surface);
+  const auto csv_of = [&](const fs::path& input, const std::string& csv) {
+    const test::CommandResult a =
+        run_toonwater({"analyze", input.string(), "--up", "z", "--csv", (dir_ / csv).string()});
+    EXPECT_EQ(a.exit_code, 0) << a.output;
+    return read_text(dir_ / csv);
+  };
+  EXPECT_EQ(csv_of(bakefiles / "000002.bobj", "flip.csv"), csv_of(dir_ / "frame2.obj", "obj.csv"));
 }
 
 }  // namespace

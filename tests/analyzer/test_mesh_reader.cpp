@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <new>
 #include <string>
 #include <vector>
@@ -606,6 +607,156 @@ TEST_F(MeshReader, StlErrors) {
   expect_line_error("f.stl",
                     facet_start + "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n",
                     8, "ends before endsolid");
+}
+
+// ---- Legacy VTK -------------------------------------------------------------------------------
+
+// A unit square of two triangles and a quad beside it, as POLYDATA in ASCII.
+const std::string square_vtk =
+    "# vtk DataFile Version 3.0\n"
+    "two triangles and a quad\n"
+    "ASCII\n"
+    "DATASET POLYDATA\n"
+    "POINTS 6 double\n"
+    "0 0 0  1 0 0  1 1 0\n"
+    "0 1 0  2 0 0.5\n"
+    "2 1 0.25\n"
+    "POLYGONS 3 13\n"
+    "3 0 1 2\n"
+    "3 0 2 3\n"
+    "4 1 4 5 2\n"
+    "POINT_DATA 6\n"
+    "SCALARS pressure float 1\n"
+    "LOOKUP_TABLE default\n"
+    "0 1 2 3 4 5\n";
+
+const std::vector<Vec3> square_positions =
+    positions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0.5}, {2, 1, 0.25}});
+const std::vector<Triangle> square_triangles{{0, 1, 2}, {0, 2, 3}, {1, 4, 5}, {1, 5, 2}};
+
+// The same surface as splashsurf writes it through vtkio: version 4.2, BINARY, big-endian
+// float points, an UNSTRUCTURED_GRID whose cells are int32 lists and int32 types (5 triangle,
+// 9 quad), then a point attribute. `cut` leaves the file at that many bytes.
+std::string square_vtk_binary(std::int32_t quad_type = 9, float nan_at = 0) {
+  Bytes b(/*big_endian=*/true);
+  b.text("# vtk DataFile Version 4.2\nmesh\nBINARY\n\nDATASET UNSTRUCTURED_GRID\nPOINTS 6 float\n");
+  for (const Vec3& p : square_positions)
+    for (int axis = 0; axis < 3; ++axis) b.put(static_cast<float>(p[axis]) + nan_at);
+  b.text("\n\nCELLS 3 13\n");
+  for (const std::int32_t v : {3, 0, 1, 2, 3, 0, 2, 3, 4, 1, 4, 5, 2}) b.put(v);
+  b.text("\n\nCELL_TYPES 3\n");
+  for (const std::int32_t t : {5, 5, quad_type}) b.put(t);
+  b.text("\n\nPOINT_DATA 6\nSCALARS id int 1\nLOOKUP_TABLE default\n");
+  for (std::int32_t v = 0; v < 6; ++v) b.put(v);
+  b.text("\n");
+  return b.data();
+}
+
+void expect_square(const InputMesh& input) {
+  EXPECT_EQ(input.mesh.positions, square_positions);
+  EXPECT_EQ(input.mesh.triangles, square_triangles);
+  EXPECT_EQ(input.polygon_count, 3u);
+}
+
+TEST_F(MeshReader, VtkAsciiPolydataAndBinaryGridAsSplashsurfWritesIt) {
+  expect_square(read_mesh(write("square.vtk", square_vtk)));
+  expect_square(read_mesh(write("fluid_surface.VTK", square_vtk_binary())));
+  // The same cells as CELLS and CELL_TYPES of a grid, in ASCII.
+  std::string grid = square_vtk;
+  grid.replace(grid.find("POLYDATA"), 8, "UNSTRUCTURED_GRID");
+  grid.replace(grid.find("POLYGONS"), 8, "CELLS");
+  grid.insert(grid.find("POINT_DATA"), "CELL_TYPES 3\n5\n5\n9\n");
+  expect_square(read_mesh(write("grid.vtk", grid)));
+}
+
+TEST_F(MeshReader, VtkVersion5OffsetsAndConnectivity) {
+  const std::string ascii =
+      "# vtk DataFile Version 5.1\nvtk output\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+      "POINTS 6 float\n0 0 0 1 0 0 1 1 0 0 1 0 2 0 0.5 2 1 0.25\n"
+      "CELLS 4 10\nOFFSETS vtktypeint64\n0 3 6 10\nCONNECTIVITY vtktypeint64\n"
+      "0 1 2 0 2 3 1 4 5 2\nCELL_TYPES 3\n5\n5\n9\n";
+  expect_square(read_mesh(write("v5.vtk", ascii)));
+
+  Bytes b(true);
+  b.text(
+      "# vtk DataFile Version 5.1\nvtk output\nBINARY\nDATASET UNSTRUCTURED_GRID\n"
+      "POINTS 6 double\n");
+  for (const Vec3& p : square_positions)
+    for (int axis = 0; axis < 3; ++axis) b.put(p[axis]);
+  b.text("\nCELLS 4 10\nOFFSETS vtktypeint64\n");
+  for (const std::int64_t o : {0, 3, 6, 10}) b.put(o);
+  b.text("\nCONNECTIVITY vtktypeint32\n");
+  for (const std::int32_t v : {0, 1, 2, 0, 2, 3, 1, 4, 5, 2}) b.put(v);
+  b.text("\nMETADATA\nINFORMATION 0\n\nCELL_TYPES 3\n");
+  for (const std::int32_t t : {5, 5, 9}) b.put(t);
+  b.text("\n");
+  expect_square(read_mesh(write("v5.vtk", b.data())));
+}
+
+TEST_F(MeshReader, VtkTriangleStripsKeepOneWinding) {
+  // A strip along a row of a flat grid: every triangle must face -z, as the first does.
+  const InputMesh strip =
+      read_mesh(write("strip.vtk",
+                      "# vtk DataFile Version 2.0\nstrip\nASCII\nDATASET POLYDATA\nPOINTS 6 float\n"
+                      "0 0 0 0 1 0 1 0 0 1 1 0 2 0 0 2 1 0\nTRIANGLE_STRIPS 1 7\n6 0 1 2 3 4 5\n"));
+  ASSERT_EQ(strip.mesh.triangles.size(), 4u);
+  for (const Triangle& t : strip.mesh.triangles) {
+    const Vec3& a = strip.mesh.positions[t[0]];
+    const Vec3 normal = (strip.mesh.positions[t[1]] - a).cross(strip.mesh.positions[t[2]] - a);
+    EXPECT_LT(normal.z(), 0.0) << t[0] << " " << t[1] << " " << t[2];
+  }
+}
+
+TEST_F(MeshReader, VtkEveryTruncationOfTheGeometryIsAnError) {
+  const std::string whole = square_vtk_binary();
+  const std::size_t geometry_end = whole.find("\n\nPOINT_DATA");  // after the cell types
+  for (std::size_t size = 0; size < geometry_end; ++size) {
+    const fs::path path = write("cut.vtk", whole.substr(0, size));
+    try {
+      read_mesh(path);
+      ADD_FAILURE() << "no error for a cut at byte " << size << " of " << geometry_end;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(path.string() + ":", 0), 0u) << e.what();
+    }
+  }
+}
+
+TEST_F(MeshReader, VtkErrorsNameTheFileAndWhere) {
+  expect_error("tetra.vtk", square_vtk_binary(10),
+               {"cell 2 is of VTK cell type 10, not a surface face"});
+  expect_error("nan.vtk", square_vtk_binary(9, std::numeric_limits<float>::quiet_NaN()),
+               {"coordinate is NaN or infinite (point 0) (byte offset 81)"});
+  std::string bad_index = square_vtk;
+  bad_index.replace(bad_index.find("4 1 4 5 2"), 9, "4 1 4 6 2");
+  expect_line_error("index.vtk", bad_index, 12, "cell 2 refers to point 6, but there are 6");
+  std::string lines = square_vtk;
+  lines.replace(lines.find("POLYGONS 3 13"), 13, "LINES 3 13");
+  expect_line_error("lines.vtk", lines, 9, "LINES cells are not a surface");
+  expect_line_error("image.vtk",
+                    "# vtk DataFile Version 3.0\nt\nASCII\nDATASET STRUCTURED_POINTS\n", 4,
+                    "dataset 'STRUCTURED_POINTS' is not a surface");
+  expect_line_error("xml.vtk", "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\">\n", 1,
+                    "not a legacy VTK file");
+  std::string short_list = square_vtk;
+  short_list.replace(short_list.find("POLYGONS 3 13"), 13, "POLYGONS 3 12");
+  expect_line_error("short.vtk", short_list, 12, "does not hold its 3 cells");
+  std::string ints = square_vtk;
+  ints.replace(ints.find("POINTS 6 double"), 15, "POINTS 6 int");
+  expect_line_error("ints.vtk", ints, 5, "values of type 'int' are not read here");
+}
+
+TEST_F(MeshReader, VtkHostileCountsAllocateNothingLarge) {
+  Bytes b(true);
+  b.text("# vtk DataFile Version 4.2\nmesh\nBINARY\nDATASET POLYDATA\nPOINTS 2000000000 float\n");
+  for (int i = 0; i < 9; ++i) b.put(0.0f);
+  reset_largest_allocation();
+  expect_error("huge.vtk", b.data(), {"truncated: 6000000000 point values need"});
+  const std::string ascii =
+      "# vtk DataFile Version 4.2\nmesh\nASCII\nDATASET POLYDATA\n"
+      "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 1000000000 4000000000\n"
+      "3 0 1 2\n";
+  expect_line_error("huge_cells.vtk", ascii, 8, "truncated: the file ends in cell value 4");
+  EXPECT_LT(largest_allocation(), std::size_t{1} << 20);
 }
 
 }  // namespace

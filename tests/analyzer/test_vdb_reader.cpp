@@ -85,7 +85,7 @@ TEST(VdbReader, AGridNamedIsMeshedAndAdaptivityMergesFlatCells) {
   EXPECT_LT(coarse.mesh.triangles.size(), fine.mesh.triangles.size());
   // Merged cells cut the sphere's corners, but the faces still turn outward.
   EXPECT_GT(signed_volume(coarse.mesh), 0.8 * 4.0 / 3.0 * std::numbers::pi);
-  for (const std::string& wrong : {"c", "density"}) {
+  for (const std::string wrong : {"c", "density"}) {
     try {
       read_mesh(dir / "two.vdb", {wrong, 0.0});
       FAIL() << wrong << " was meshed";

@@ -1,7 +1,8 @@
 // libFuzzer target for one strict mesh reader (readers/readers.hpp), chosen at build time by
-// TOONWATER_FUZZ_READER (read_obj, read_off, read_ply, read_stl or read_bobj). Any input must
-// either give a mesh whose triangles index its vertices and whose coordinates are finite, or throw
-// InputError; a crash, a sanitizer report, a leak, another exception or a broken mesh is a finding.
+// TOONWATER_FUZZ_READER (read_obj, read_off, read_ply, read_stl, read_vtk, read_bobj or
+// read_flip_bobj). Any input must either give a mesh whose triangles index its vertices and whose
+// coordinates are finite, or throw InputError; a crash, a sanitizer report, a leak, another
+// exception or a broken mesh is a finding.
 #include "analyzer/readers/readers.hpp"
 
 #include <cstddef>
