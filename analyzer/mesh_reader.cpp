@@ -3,7 +3,7 @@
 #include "analyzer/mesh_reader.hpp"
 
 #include "analyzer/readers/readers.hpp"
-#include "analyzer/readers/vdb/level_set_module.hpp"
+#include "analyzer/readers/vdb/vdb_module.hpp"
 #include "common/parallel.hpp"
 
 #include <fcntl.h>
@@ -138,12 +138,6 @@ void add_polygon(TriangleMesh& mesh, std::span<const std::int32_t> corners) {
     mesh.triangles.push_back({corners[0], corners[i], corners[i + 1]});
 }
 
-}  // namespace readers
-
-namespace {
-
-using readers::SourceFile;
-
 [[noreturn]] void fail_errno(const SourceFile& file, std::string_view what, int error) {
   readers::fail(file, std::string(what) + ": " + std::generic_category().message(error));
 }
@@ -208,12 +202,22 @@ std::string lowercase_extension(const std::filesystem::path& path) {
   return extension;
 }
 
-// An OpenVDB level set, meshed (readers/vdb/level_set_module.hpp): the module opens the file.
-InputMesh read_level_set(const SourceFile& file, const LevelSetOptions& options) {
+void check_regular_file(const SourceFile& file) {
   struct stat info {};
   if (::stat(file.name.c_str(), &info) != 0) fail_errno(file, "cannot open", errno);
-  if (!S_ISREG(info.st_mode)) readers::fail(file, "is not a regular file");
-  const LevelSetModule& module = level_set_module();
+  if (!S_ISREG(info.st_mode)) fail(file, "is not a regular file");
+}
+
+}  // namespace readers
+
+namespace {
+
+using readers::SourceFile;
+
+// An OpenVDB level set, meshed (readers/vdb/vdb_module.hpp): the module opens the file.
+InputMesh read_level_set(const SourceFile& file, const LevelSetOptions& options) {
+  readers::check_regular_file(file);
+  const VdbModule& module = vdb_module();
   MeshedLevelSet meshed;
   try {
     meshed = module.mesh_level_set(file.name, options.grid, options.adaptivity);
@@ -233,7 +237,7 @@ InputMesh read_level_set(const SourceFile& file, const LevelSetOptions& options)
 
 InputMesh read_mesh(const std::filesystem::path& path, const LevelSetOptions& level_set) {
   SourceFile file{path.string(), {}};
-  const std::string extension = lowercase_extension(path);
+  const std::string extension = readers::lowercase_extension(path);
   if (extension == ".vdb") {
     InputMesh result = read_level_set(file, level_set);
     if (result.mesh.triangles.empty())
@@ -249,7 +253,7 @@ InputMesh read_mesh(const std::filesystem::path& path, const LevelSetOptions& le
     read = readers::read_ply;
   else if (extension == ".stl")
     read = readers::read_stl;
-  else if (extension == ".gz" && lowercase_extension(path.stem()) == ".bobj")
+  else if (extension == ".gz" && readers::lowercase_extension(path.stem()) == ".bobj")
     read = readers::read_bobj;
   else if (extension == ".bobj")
     read = readers::read_flip_bobj;
@@ -264,7 +268,7 @@ InputMesh read_mesh(const std::filesystem::path& path, const LevelSetOptions& le
                             " (expected .obj, .off, .ply, .stl, .vtk, .bobj.gz, .bobj or .vdb)");
 
   std::size_t size = 0;
-  const std::unique_ptr<char[]> bytes = load_file(file, size);
+  const std::unique_ptr<char[]> bytes = readers::load_file(file, size);
   file.bytes = std::string_view(bytes.get(), size);
   InputMesh result = read(file);
   if (result.mesh.triangles.empty()) throw EmptyMeshError(file.name + ": contains no faces");

@@ -35,7 +35,7 @@ struct InputMesh {
   std::size_t polygon_count = 0;  // faces as the file lists them, before triangulation
 };
 
-// How an OpenVDB level set is meshed (readers/vdb/level_set_module.hpp).
+// How an OpenVDB level set is meshed (readers/vdb/vdb_module.hpp).
 struct LevelSetOptions {
   std::string grid;         // empty: surface, then phi, then the only level-set grid
   double adaptivity = 0.0;  // OpenVDB's volumeToMesh, in [0, 1]

@@ -6,7 +6,7 @@
 #include "common/atomic_file.hpp"
 #include "common/large_arrays.hpp"
 #include "analyzer/mesh_reader.hpp"
-#include "analyzer/readers/vdb/level_set_module.hpp"
+#include "analyzer/readers/vdb/vdb_module.hpp"
 #include "images/image_codec.hpp"
 #include "scene/config.hpp"
 #include "render/render.hpp"
@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
     return fail(e.what(), exit_code::output_failed);
   } catch (const toonwater::PovrayError& e) {
     return fail(e.what(), exit_code::povray_failed);
-  } catch (const toonwater::LevelSetModuleError& e) {
+  } catch (const toonwater::VdbModuleError& e) {
     return fail(e.what(), exit_code::incomplete_install);
   } catch (const toonwater::ImageModuleError& e) {
     return fail(e.what(), exit_code::incomplete_install);

@@ -11,11 +11,23 @@ namespace toonwater {
 
 namespace {
 
-// In the child, right after fork(); `parent` is getpid() of the parent before the fork.
-// Async-signal-safe. When the parent has already gone, the child ends at once (exit 128 + 15).
-void prepare_child_process(pid_t parent) {
+// The signals that stop toonwater: its handlers only note them (cli/stop_signals.cpp).
+constexpr int stop_signals[] = {SIGINT, SIGTERM, SIGHUP};
+
+// In the child, right after fork(), with the stop signals blocked; `parent` is getpid() of the
+// parent before the fork and `mask` its signal mask. Async-signal-safe. A stop signal that came
+// since the fork is pending: it ends the child once the handlers are back to their defaults and
+// the mask restored, instead of being taken by the parent's handler, which the child inherits
+// until exec, and lost. When the parent has already gone, the child ends at once (128 + 15).
+void prepare_child_process(pid_t parent, const sigset_t& mask) {
   ::signal(SIGPIPE, SIG_DFL);
+  for (const int s : stop_signals) {
+    struct sigaction current {};
+    ::sigaction(s, nullptr, &current);
+    if (current.sa_handler != SIG_IGN) ::signal(s, SIG_DFL);  // an ignored one stays ignored
+  }
   ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+  ::sigprocmask(SIG_SETMASK, &mask, nullptr);
   // The parent may have ended between fork() and prctl(): then no signal would come.
   if (::getppid() != parent) ::_exit(128 + SIGTERM);
 }
@@ -29,9 +41,16 @@ pid_t start_child_process(const std::vector<std::string>& argv, const ChildSetup
   for (auto& a : copies) args.push_back(a.data());
   args.push_back(nullptr);
   const pid_t parent = ::getpid();
+  sigset_t stops, mask;
+  ::sigemptyset(&stops);
+  for (const int s : stop_signals) ::sigaddset(&stops, s);
+  ::pthread_sigmask(SIG_BLOCK, &stops, &mask);
   const pid_t pid = ::fork();
-  if (pid != 0) return pid;
-  prepare_child_process(parent);
+  if (pid != 0) {
+    ::pthread_sigmask(SIG_SETMASK, &mask, nullptr);  // a stop meanwhile reaches the parent now
+    return pid;
+  }
+  prepare_child_process(parent, mask);
   // Opened close-on-exec: only the descriptors dup2 puts in place reach the program.
   const int null = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
   if (null >= 0) ::dup2(null, STDIN_FILENO);

@@ -8,6 +8,10 @@
 // - SIGPIPE back to its default: toonwater ignores it (main.cpp), so that a closed standard
 //   error or output is an error it reports rather than a death that strands its children, and
 //   an ignored signal would stay ignored across exec.
+// - SIGINT, SIGTERM and SIGHUP back to their defaults, blocked from before the fork until then:
+//   a stop that reaches the child before it becomes its program ends it, rather than being
+//   taken by toonwater's own handler, which the child holds until exec, and lost (the program
+//   would then run on, stopped by nobody).
 #pragma once
 
 #include <sys/types.h>

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "analyzer/mesh_reader.hpp"
+#include "analyzer/particles.hpp"
 
 #include <algorithm>
 #include <array>
@@ -11,6 +12,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -23,6 +26,16 @@ struct SourceFile {
   std::string name;
   std::string_view bytes;
 };
+
+// The whole file (one pread per core), its size in `size`; fails naming the file when it cannot
+// be opened or read, is not a regular file, or is larger than the machine's memory.
+std::unique_ptr<char[]> load_file(const SourceFile& file, std::size_t& size);
+// Fails naming the file unless it is a regular file (a reader that opens it itself: OpenVDB).
+void check_regular_file(const SourceFile& file);
+// The file's extension in lower case ("" when it has none).
+std::string lowercase_extension(const std::filesystem::path& path);
+// "NAME: cannot open: No such file or directory" and the like, from an errno value.
+[[noreturn]] void fail_errno(const SourceFile& file, std::string_view what, int error);
 
 // "NAME: message" (binary formats say where in the message: "(vertex 12)", "(byte offset 96)").
 [[noreturn]] void fail(const SourceFile& file, std::string_view message);
@@ -109,5 +122,8 @@ InputMesh read_stl(const SourceFile& file);
 InputMesh read_bobj(const SourceFile& file);       // Mantaflow .bobj.gz
 InputMesh read_flip_bobj(const SourceFile& file);  // FLIP Fluids .bobj
 InputMesh read_vtk(const SourceFile& file);        // legacy VTK, as splashsurf writes it
+
+// A FLIP Fluids whitewater file (.wwp) of particles of one kind.
+ParticleSet read_wwp(const SourceFile& file, ParticleKind kind);
 
 }  // namespace toonwater::readers

@@ -1,4 +1,4 @@
-// OpenVDB level sets read as meshes (analyzer/readers/vdb/level_set_module.hpp): which grid is
+// OpenVDB level sets read as meshes (analyzer/readers/vdb/vdb_module.hpp): which grid is
 // meshed, that the mesh is the level set's zero surface with its normals out of the liquid, and
 // the errors that name the grids a file holds.
 #include "analyzer/mesh_reader.hpp"

@@ -1,4 +1,4 @@
-// The toonwater program and its OpenVDB module (analyzer/readers/vdb/level_set_module.hpp): the
+// The toonwater program and its OpenVDB module (analyzer/readers/vdb/vdb_module.hpp): the
 // program links no OpenVDB; without toonwater-vdb.so beside it every other format reads, and a
 // .vdb file fails with one line naming the module and exit code 6 (incomplete installation).
 // With it, a level set is analysed and a sequence of them becomes a scene.

@@ -5,10 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -100,6 +103,31 @@ TEST_F(ChildProcess, ASignalEndingTheChildIs128PlusItsNumber) {
   const pid_t pid = start_child_process({"sh", "-c", "kill -9 $$"}, ChildSetup{});
   ASSERT_GT(pid, 0);
   EXPECT_EQ(wait_exit_status(pid), 128 + 9);
+}
+
+// toonwater stops on SIGTERM with a handler that only sets a flag, which a child inherits until
+// it becomes its program. A child stopped in that window (a render stopped just as it starts
+// POV-Ray) must still end: with the handler, the signal would be taken and lost, and the program
+// would run on. Each child here is stopped at once, most of them before their exec.
+volatile std::sig_atomic_t parent_stops = 0;
+void note_stop(int) { parent_stops = parent_stops + 1; }
+
+TEST_F(ChildProcess, AChildStoppedBeforeItBecomesItsProgramEndsAndTheParentKeepsItsHandler) {
+  struct sigaction handler {
+  }, previous{};
+  handler.sa_handler = note_stop;
+  ASSERT_EQ(::sigaction(SIGTERM, &handler, &previous), 0);
+  for (int round = 0; round < 30; ++round) {
+    const pid_t pid = start_child_process({"sleep", "5"}, ChildSetup{});
+    ASSERT_GT(pid, 0);
+    ::kill(pid, SIGTERM);
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_EQ(wait_exit_status(pid), 128 + SIGTERM) << "round " << round;
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(4)) << round;
+  }
+  ::raise(SIGTERM);  // the parent's own handler is still in place
+  EXPECT_EQ(parent_stops, 1);
+  ::sigaction(SIGTERM, &previous, nullptr);
 }
 
 }  // namespace

@@ -1,11 +1,10 @@
-// The OpenVDB side of level_set_module.hpp: choose a grid, mesh its zero level, orient it.
-#include "analyzer/readers/vdb/level_set_module.hpp"
+// The OpenVDB side of vdb_module.hpp: choose a grid, mesh its zero level, orient it.
+#include "analyzer/readers/vdb/vdb_parts.hpp"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
 #include <algorithm>
-#include <mutex>
 #include <optional>
 
 namespace toonwater {
@@ -20,7 +19,7 @@ std::string describe(const openvdb::GridBase& grid) {
          openvdb::GridBase::gridClassToString(grid.getGridClass()) + ")";
 }
 
-// The grid to mesh among the file's (metadata only), by the rule of level_set_module.hpp.
+// The grid to mesh among the file's (metadata only), by the rule of vdb_module.hpp.
 std::string choose_grid(const openvdb::GridPtrVec& grids, const std::string& wanted) {
   auto find = [&](const std::string& name) -> const openvdb::GridBase* {
     for (const auto& g : grids)
@@ -57,16 +56,6 @@ std::string choose_grid(const openvdb::GridPtrVec& grids, const std::string& wan
         "its grids: " +
         present);
   return only->getName();
-}
-
-// Mantaflow's base resolution (res) when the grid is Mantaflow's (its `file_base_resolution`
-// metadata, which Mantaflow writes on every grid), else nothing.
-std::optional<openvdb::Vec3i> mantaflow_resolution(const openvdb::GridBase& grid) {
-  const auto resolution = grid.getMetadata<openvdb::Vec3IMetadata>("file_base_resolution");
-  if (!resolution) return std::nullopt;
-  const openvdb::Vec3i res = resolution->value();
-  if (res.x() <= 0 || res.y() <= 0 || res.z() <= 0) return std::nullopt;
-  return res;
 }
 
 // A point of the grid's world in Mantaflow's normalised domain coordinates, those of its mesh
@@ -106,10 +95,11 @@ TriangleMesh mesh_zero_level(const Grid& grid, double adaptivity) {
   return mesh;
 }
 
+}  // namespace
+
 MeshedLevelSet mesh_level_set(const std::string& path, const std::string& wanted,
                               double adaptivity) {
-  static std::once_flag initialised;
-  std::call_once(initialised, [] { openvdb::initialize(); });
+  initialise_openvdb();
   try {
     openvdb::io::File file(path);
     file.open(false);
@@ -129,12 +119,4 @@ MeshedLevelSet mesh_level_set(const std::string& path, const std::string& wanted
   }
 }
 
-const LevelSetModule module{level_set_module_interface_version, mesh_level_set};
-
-}  // namespace
 }  // namespace toonwater
-
-extern "C" __attribute__((visibility("default"))) const toonwater::LevelSetModule*
-toonwater_level_set_module_entry() {
-  return &toonwater::module;
-}

@@ -1,4 +1,6 @@
-// OpenVDB level sets read as meshes: the surface of a Houdini FLIP `surface` grid, Mantaflow's
+// What toonwater reads through OpenVDB: level sets as meshes, and Mantaflow's particle caches.
+//
+// Level sets: the surface of a Houdini FLIP `surface` grid, Mantaflow's
 // liquid level set `phi`, or any signed-distance grid, meshed at its zero level with OpenVDB's
 // own mesher, tools::volumeToMesh (dual contouring on the grid's active voxels; `adaptivity` in
 // [0, 1] merges coplanar cells, 0 keeps every cell), its quads split into triangles and every
@@ -15,14 +17,24 @@
 // field may carry no class), else "surface", else "phi", else the only float or double grid
 // whose class is level set; otherwise an error that lists the grids the file holds.
 //
+// Particles: the point grid `particles_secondary` (Mantaflow's secondary particles), else the
+// only point grid; positions from OpenVDB's convention, index-space voxel + P, and, for a
+// Mantaflow grid, in its mesh cache's normalised coordinates without the half cell (points are
+// not cell centres): v = (voxel + P − res/2) / max(res). Mantaflow stores its point attributes
+// with OpenVDB's TruncateCodec (half floats, int16), whose types it registers before it reads;
+// so does this module. Kinds from the bits of `U`: 2 spray, 4 bubble, 8 foam (Mantaflow's
+// ParticleBase::PSPRAY, PBUBBLE, PFOAM); velocities from `particles_velocity_secondary` (or
+// `particles_velocity`) as stored, in Mantaflow's grid units.
+//
 // Why a module: OpenVDB pulls in Boost, Blosc and more, which every run of the toonwater
 // program would otherwise load. Its implementation (level_set_mesher.cpp) is built into
 // toonwater-vdb.so, which the program loads from beside its executable when it first reads a
-// .vdb file (level_set_loader.cpp); tests link the same implementation statically
-// (level_set_linked.cpp). A program links exactly one of the two.
+// .vdb file (vdb_module_loader.cpp); tests link the same implementation statically
+// (vdb_module_linked.cpp). A program links exactly one of the two.
 #pragma once
 
 #include "analyzer/mesh.hpp"
+#include "analyzer/particles.hpp"
 
 #include <stdexcept>
 #include <string>
@@ -37,23 +49,24 @@ struct MeshedLevelSet {
 };
 
 // Every function throws std::runtime_error with the reason (not naming the file) on failure.
-struct LevelSetModule {
-  int interface_version = 0;  // level_set_module_interface_version of the code that built it
+struct VdbModule {
+  int interface_version = 0;  // vdb_module_interface_version of the code that built it
   MeshedLevelSet (*mesh_level_set)(const std::string& path, const std::string& grid,
                                    double adaptivity) = nullptr;
+  ParticleSet (*read_point_grid)(const std::string& path) = nullptr;
 };
 
-inline constexpr int level_set_module_interface_version = 1;
+inline constexpr int vdb_module_interface_version = 2;
 
 // The module is missing or unusable: the installation is incomplete.
-class LevelSetModuleError : public std::runtime_error {
+class VdbModuleError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 
-// The module, loaded on first use. Throws LevelSetModuleError when it cannot be loaded.
-const LevelSetModule& level_set_module();
+// The module, loaded on first use. Throws VdbModuleError when it cannot be loaded.
+const VdbModule& vdb_module();
 
 }  // namespace toonwater
 
-extern "C" const toonwater::LevelSetModule* toonwater_level_set_module_entry();
+extern "C" const toonwater::VdbModule* toonwater_vdb_module_entry();
