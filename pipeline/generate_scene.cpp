@@ -456,28 +456,45 @@ WaterBodyFaces water_body_faces(const SceneRun& run, const SceneMesh& mesh) {
   return out;
 }
 
-// The water's per-face textures, declared in scene.pov: an opaque body's walls and floor have
-// the body's, faces where dark meets bright two bands (band_crossings.hpp), and the others the
+// The water's per-face textures, declared in scene.pov (band_crossings.hpp): an opaque body's
+// walls and floor have the body's (two bands where dark meets bright), the free surface two
+// bands where dark meets bright and one band across a region's edge, and the other faces the
 // water's own, given without an index; none when every face has the water's own.
 std::optional<FaceTextures> water_face_textures(const SceneRun& run, const SceneMesh& mesh,
                                                 std::span<const TextureCoordinate> uv,
                                                 const std::vector<bool>* body) {
   if (run.config.water.shading != WaterShading::toon) return std::nullopt;
   const auto [t_bright, t_medium] = water_thresholds(run.layout);
-  const std::vector<bool> two_bands =
-      dark_bright_faces(mesh.triangles, uv, band_coordinate(t_medium), band_coordinate(t_bright));
-  if (!body && std::find(two_bands.begin(), two_bands.end(), true) == two_bands.end())
+  const bool regions = draws_flow_regions(run.config);
+  const std::vector<FaceBands> bands =
+      face_bands(mesh.triangles, uv, band_coordinate(t_medium), band_coordinate(t_bright),
+                 regions ? std::optional(std::pair(flow_coordinate(-1.0), flow_coordinate(1.0)))
+                         : std::nullopt);
+  if (!body &&
+      std::all_of(bands.begin(), bands.end(), [](FaceBands b) { return b == FaceBands::three; }))
     return std::nullopt;
   FaceTextures textures;
   textures.names = {kWaterSurfaceTwoBandTexture};
+  const auto body_index = static_cast<std::uint8_t>(textures.names.size());
   if (body)
     textures.names.insert(textures.names.end(), {kWaterBodyTexture, kWaterBodyTwoBandTexture});
+  const auto one_band_index = static_cast<std::uint8_t>(textures.names.size());
+  if (regions)
+    textures.names.insert(textures.names.end(), kWaterOneBandTextures.begin(),
+                          kWaterOneBandTextures.end());
   textures.index.resize(mesh.triangles.size());
   for (std::size_t f = 0; f < textures.index.size(); ++f) {
-    if (body && (*body)[f])
-      textures.index[f] = two_bands[f] ? 2 : 1;
+    const FaceBands b = bands[f];
+    std::uint8_t& index = textures.index[f];
+    if (body && (*body)[f])  // the body draws no flow regions
+      index = static_cast<std::uint8_t>(body_index + (b == FaceBands::two ? 1 : 0));
+    else if (b == FaceBands::three)
+      index = FaceTextures::object_texture;
+    else if (b == FaceBands::two)
+      index = 0;
     else
-      textures.index[f] = two_bands[f] ? 0 : FaceTextures::object_texture;
+      index = static_cast<std::uint8_t>(one_band_index + static_cast<int>(b) -
+                                        static_cast<int>(FaceBands::only_dark));
   }
   return textures;
 }

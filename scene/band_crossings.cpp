@@ -1,30 +1,35 @@
-// Faces where dark meets bright; stated in band_crossings.hpp.
+// The texture each face of the water needs; stated in band_crossings.hpp.
 #include "scene/band_crossings.hpp"
 
 namespace toonwater {
 
-bool dark_meets_bright(const std::array<double, 3>& u, double key_medium, double key_bright) {
-  bool dark = false, medium = false, bright = false;
-  for (const double key : u) {
-    if (key <= key_medium)
-      dark = true;
-    else if (key <= key_bright)
-      medium = true;
-    else
-      bright = true;
-  }
-  return dark && bright && !medium;
-}
-
-std::vector<bool> dark_bright_faces(std::span<const Triangle> triangles,
-                                    std::span<const TextureCoordinate> uv, double key_medium,
-                                    double key_bright) {
-  std::vector<bool> marked(triangles.size(), false);
+std::vector<FaceBands> face_bands(std::span<const Triangle> triangles,
+                                  std::span<const TextureCoordinate> uv, double key_medium,
+                                  double key_bright,
+                                  std::optional<std::pair<double, double>> flow_keys) {
+  std::vector<FaceBands> bands(triangles.size(), FaceBands::three);
   for (std::size_t f = 0; f < triangles.size(); ++f) {
-    const Triangle& t = triangles[f];
-    marked[f] = dark_meets_bright({uv[t[0]][0], uv[t[1]][0], uv[t[2]][0]}, key_medium, key_bright);
+    bool region = false, dark = false, medium = false, bright = false;
+    for (const int corner : triangles[f]) {
+      const TextureCoordinate& c = uv[static_cast<std::size_t>(corner)];
+      if (flow_keys && (c[1] <= flow_keys->first || c[1] >= flow_keys->second))
+        region = true;
+      else if (c[0] <= key_medium)
+        dark = true;
+      else if (c[0] <= key_bright)
+        medium = true;
+      else
+        bright = true;
+    }
+    const int band_kinds = int{dark} + int{medium} + int{bright};
+    if (dark && bright && !medium)
+      bands[f] = FaceBands::two;
+    else if (region && band_kinds == 1)
+      bands[f] = dark     ? FaceBands::only_dark
+                 : medium ? FaceBands::only_medium
+                          : FaceBands::only_bright;
   }
-  return marked;
+  return bands;
 }
 
 }  // namespace toonwater

@@ -271,6 +271,11 @@ std::string frame_image_name(const SceneLayout& l, long frame) {
   return "frame_" + padded(frame, static_cast<int>(std::to_string(l.last_frame).size())) + ".png";
 }
 
+bool draws_flow_regions(const SceneConfig& c) {
+  return c.water.shading == WaterShading::toon && c.flow.enabled &&
+         c.flow.style != FlowStyle::lines;
+}
+
 std::string scene_pov(const SceneLayout& l) {
   const SceneConfig& c = *l.config;
   const WaterConfig& w = c.water;
@@ -288,7 +293,7 @@ std::string scene_pov(const SceneLayout& l) {
   s += secondary_rays ? "global_settings { assumed_gamma 1.0 max_trace_level 10 }\n\n"
                       : "global_settings { assumed_gamma 1.0 }\n\n";
   const FlowConfig& flow = c.flow;
-  const bool flow_regions = !curvature_view && flow.enabled && flow.style != FlowStyle::lines;
+  const bool flow_regions = draws_flow_regions(c);
   const bool flow_lines = !curvature_view && flow.enabled && flow.style != FlowStyle::regions;
   if (flow_lines) {
     // Read by Toon_stroke while the water include is parsed: strokes as wide on screen near
@@ -321,6 +326,15 @@ std::string scene_pov(const SceneLayout& l) {
     s += std::string("#declare ") + kWaterSurfaceTwoBandTexture + " = texture {\n  " +
          water_pigment("Toon_two_bands(" + two_bands + ", " + num(w.transmit) + ")") + "\n  " +
          surface_finish + "\n}\n";
+    if (flow_regions) {
+      s += "// Faces across a flow region's edge whose other corners lie in one band: that band\n";
+      const std::array<Color, 3> colours{w.dark, w.medium, w.bright};
+      for (std::size_t b = 0; b < colours.size(); ++b)
+        s += std::string("#declare ") + kWaterOneBandTextures[b] + " = texture {\n  " +
+             water_pigment("pigment { color " + rgb(colours[b]) + " transmit " + num(w.transmit) +
+                           " }") +
+             "\n  " + surface_finish + "\n}\n";
+    }
     if (closed_volume) {
       // A closed volume is a see-through free surface over an opaque body: its walls and floor
       // show flat bands, and nothing is seen through them, so objects leave no ghost images on

@@ -248,12 +248,16 @@ TEST(PovgenScene, FullSceneHasEveryFeature) {
                               "Water_surface_two_band_texture = texture {\n  "
                               "Toon_flow_over(Toon_two_bands(",
                               "Water_body_texture = texture {\n  Toon_bands(",
-                              "Water_body_two_band_texture = texture {\n  Toon_two_bands("})
+                              "Water_body_two_band_texture = texture {\n  Toon_two_bands(",
+                              "Water_only_dark_texture = texture {\n  Toon_flow_over(pigment {",
+                              "Water_only_bright_texture = texture {\n  Toon_flow_over(pigment {"})
     EXPECT_NE(g.pov.find(std::string("#declare ") + texture), std::string::npos) << texture;
   EXPECT_NE(g.pov.find("Water_mesh\n  texture {\n    Water_surface_texture\n"), std::string::npos);
-  EXPECT_NE(g.water_inc.find("texture_list { 3, texture { Water_surface_two_band_texture }, "
+  EXPECT_NE(g.water_inc.find("texture_list { 6, texture { Water_surface_two_band_texture }, "
                              "texture { Water_body_texture }, texture { "
-                             "Water_body_two_band_texture } }"),
+                             "Water_body_two_band_texture }, texture { Water_only_dark_texture }, "
+                             "texture { Water_only_medium_texture }, texture { "
+                             "Water_only_bright_texture } }"),
             std::string::npos);
   // Reflected rays that miss everything see a flat sky, which the camera does not see.
   EXPECT_NE(g.pov.find("hollow no_image no_shadow"), std::string::npos);

@@ -1,5 +1,5 @@
-// Faces where dark meets bright (scene/band_crossings.hpp), and how the mesh2 writer gives them
-// their texture.
+// The texture each face of the water needs (scene/band_crossings.hpp), and how the mesh2 writer
+// gives it.
 #include "scene/band_crossings.hpp"
 
 #include "scene/mesh2_writer.hpp"
@@ -16,7 +16,7 @@ constexpr double key_medium = 0.4, key_bright = 0.6;
 
 TextureCoordinate at(double u) { return {static_cast<float>(u), 0.5F}; }
 
-TEST(BandCrossings, AFaceIsMarkedWhenItsCornersAreDarkAndBrightAndNoneMedium) {
+TEST(BandCrossings, AFaceOfDarkAndBrightCornersNoneMediumHasTwoBands) {
   // 0, 1: dark; 2, 3: bright; 4: medium.
   const std::vector<TextureCoordinate> uv{at(0.1), at(0.39), at(0.9), at(0.61), at(0.59)};
   const std::vector<Triangle> faces{
@@ -28,8 +28,41 @@ TEST(BandCrossings, AFaceIsMarkedWhenItsCornersAreDarkAndBrightAndNoneMedium) {
       {0, 1, 1},  // dark only
       {2, 3, 3},  // bright only
   };
-  const std::vector<bool> marked = dark_bright_faces(faces, uv, key_medium, key_bright);
-  EXPECT_EQ(marked, (std::vector<bool>{true, true, false, false, false, false, false}));
+  using enum FaceBands;
+  EXPECT_EQ(face_bands(faces, uv, key_medium, key_bright, std::nullopt),
+            (std::vector<FaceBands>{two, two, three, three, three, three, three}));
+}
+
+// Region corners (v beyond the flow keys 0.38 and 0.62) hide their u: a face across a region's
+// edge whose band corners lie in one band is drawn in that band alone, whatever the region
+// corner's u; with dark and bright band corners, in two bands. Where regions are not drawn,
+// v means nothing.
+TEST(BandCrossings, AFaceAcrossARegionsEdgeIsDrawnInItsBandCornersBand) {
+  auto corner = [](double u, double v) {
+    return TextureCoordinate{static_cast<float>(u), static_cast<float>(v)};
+  };
+  const std::vector<TextureCoordinate> uv{
+      corner(0.1, 0.9),   // 0: ridge, dark u
+      corner(0.9, 0.1),   // 1: valley, bright u
+      corner(0.5, 0.5),   // 2: medium
+      corner(0.55, 0.5),  // 3: medium
+      corner(0.9, 0.5),   // 4: bright
+      corner(0.1, 0.5),   // 5: dark
+  };
+  const std::vector<Triangle> faces{
+      {0, 2, 3},  // ridge, medium, medium
+      {1, 4, 4},  // valley, bright
+      {0, 5, 2},  // ridge, dark, medium: two band corners' bands
+      {0, 5, 4},  // ridge, dark, bright
+      {0, 1, 2},  // ridge, valley, medium
+      {0, 0, 1},  // regions only
+  };
+  using enum FaceBands;
+  const std::pair<double, double> flow_keys{0.38, 0.62};
+  EXPECT_EQ(face_bands(faces, uv, key_medium, key_bright, flow_keys),
+            (std::vector<FaceBands>{only_medium, only_bright, three, two, only_medium, three}));
+  EXPECT_EQ(face_bands(faces, uv, key_medium, key_bright, std::nullopt),
+            (std::vector<FaceBands>{three, three, three, two, three, two}));
 }
 
 TEST(BandCrossings, FacesWithTheObjectsTextureAreWrittenWithoutAnIndex) {

@@ -145,7 +145,10 @@ bool known_pov_directive(std::string_view line) {
          line == "#declare Water_surface_texture = texture {" ||
          line == "#declare Water_surface_two_band_texture = texture {" ||
          line == "#declare Water_body_texture = texture {" ||
-         line == "#declare Water_body_two_band_texture = texture {";
+         line == "#declare Water_body_two_band_texture = texture {" ||
+         line == "#declare Water_only_dark_texture = texture {" ||
+         line == "#declare Water_only_medium_texture = texture {" ||
+         line == "#declare Water_only_bright_texture = texture {";
 }
 
 // The file names scene_writer quotes.
