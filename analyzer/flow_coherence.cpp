@@ -109,8 +109,9 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
             previous_.shading_normal[p].squaredNorm() > 0.5) {
           const Vec3& normal_before = previous_.shading_normal[p];
           const double change = (shading_normal[v] - normal_before).norm() / normal_change_limit;
-          const double b = normal_blend * std::max(0.0, 1.0 - change * change);
-          const Vec3 mixed = (1 - b) * shading_normal[v] + b * normal_before;
+          const double normal_weight = normal_blend * std::max(0.0, 1.0 - change * change);
+          const Vec3 mixed =
+              (1 - normal_weight) * shading_normal[v] + normal_weight * normal_before;
           if (mixed.squaredNorm() > 0.0) shading_normal[v] = mixed.normalized();
         }
       }

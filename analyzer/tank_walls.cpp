@@ -22,7 +22,6 @@ TankWalls find_tank_walls(const TriangleMesh& mesh, Axis up, double edge_length)
   walls.box = Box3::of_no_points();
   for (const Vec3& p : mesh.positions) walls.box.add(p);
   if (mesh.positions.empty() || !(edge_length > 0.0)) return walls;
-  const int u = static_cast<int>(up);
   const auto axes = horizontal_axes(up);
   const double tolerance = 0.5 * edge_length;
   // Per side, which stretches of one edge length along it hold a vertex lying on it.

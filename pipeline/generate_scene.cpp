@@ -10,6 +10,7 @@
 #include "analyzer/topology.hpp"
 #include "analyzer/weld.hpp"
 #include "scene/axes.hpp"
+#include "scene/band_crossings.hpp"
 #include "scene/frame_include.hpp"
 #include "pipeline/frame_cache.hpp"
 #include "pipeline/frame_record.hpp"
@@ -432,12 +433,12 @@ void add_to_layout(SceneRun& run, const PreparedSurface& s) {
   run.layout.water_max = run.layout.water_max.cwiseMax(s.mesh.max);
 }
 
-// A see-through closed volume (WaterBody): an opaque body gives free surface and body their
-// own textures (scene.pov); a clear one keeps the shell on the free surface only, as rays
+// A see-through closed volume (WaterBody): an opaque body gives its walls and floor their own
+// textures (scene.pov); a clear one keeps the shell on the free surface only, as rays
 // refracted through the volume leave it through the floor and walls and would meet the
 // inside of a closed shell there, painting the water in the line colour.
 struct WaterBodyFaces {
-  std::optional<FaceTextures> textures;          // an opaque body: surface and body
+  std::optional<std::vector<bool>> body;         // an opaque body: its walls and floor
   std::optional<std::vector<bool>> shell_limit;  // a clear body: the faces its shell keeps to
 };
 
@@ -446,14 +447,56 @@ WaterBodyFaces water_body_faces(const SceneRun& run, const SceneMesh& mesh) {
   if (!(mesh.closed && refracts(run))) return out;
   std::vector<bool> upward = upward_faces(mesh);
   if (run.config.water.body == WaterBody::opaque) {
-    FaceTextures& textures = out.textures.emplace();
-    textures.names = {kWaterSurfaceTexture, kWaterBodyTexture};
-    textures.index.resize(upward.size());
-    for (std::size_t f = 0; f < upward.size(); ++f) textures.index[f] = upward[f] ? 0 : 1;
+    std::vector<bool> walls_and_floor = std::move(upward);
+    walls_and_floor.flip();
+    out.body = std::move(walls_and_floor);
   } else {
     out.shell_limit = std::move(upward);
   }
   return out;
+}
+
+// The water's per-face textures, declared in scene.pov (band_crossings.hpp): an opaque body's
+// walls and floor have the body's (two bands where dark meets bright), the free surface two
+// bands where dark meets bright and one band across a region's edge, and the other faces the
+// water's own, given without an index; none when every face has the water's own.
+std::optional<FaceTextures> water_face_textures(const SceneRun& run, const SceneMesh& mesh,
+                                                std::span<const TextureCoordinate> uv,
+                                                const std::vector<bool>* body) {
+  if (run.config.water.shading != WaterShading::toon) return std::nullopt;
+  const auto [t_bright, t_medium] = water_thresholds(run.layout);
+  const bool regions = draws_flow_regions(run.config);
+  const std::vector<FaceBands> bands =
+      face_bands(mesh.triangles, uv, band_coordinate(t_medium), band_coordinate(t_bright),
+                 regions ? std::optional(std::pair(flow_coordinate(-1.0), flow_coordinate(1.0)))
+                         : std::nullopt);
+  if (!body &&
+      std::all_of(bands.begin(), bands.end(), [](FaceBands b) { return b == FaceBands::three; }))
+    return std::nullopt;
+  FaceTextures textures;
+  textures.names = {kWaterSurfaceTwoBandTexture};
+  const auto body_index = static_cast<std::uint8_t>(textures.names.size());
+  if (body)
+    textures.names.insert(textures.names.end(), {kWaterBodyTexture, kWaterBodyTwoBandTexture});
+  const auto one_band_index = static_cast<std::uint8_t>(textures.names.size());
+  if (regions)
+    textures.names.insert(textures.names.end(), kWaterOneBandTextures.begin(),
+                          kWaterOneBandTextures.end());
+  textures.index.resize(mesh.triangles.size());
+  for (std::size_t f = 0; f < textures.index.size(); ++f) {
+    const FaceBands b = bands[f];
+    std::uint8_t& index = textures.index[f];
+    if (body && (*body)[f])  // the body draws no flow regions
+      index = static_cast<std::uint8_t>(body_index + (b == FaceBands::two ? 1 : 0));
+    else if (b == FaceBands::three)
+      index = FaceTextures::object_texture;
+    else if (b == FaceBands::two)
+      index = 0;
+    else
+      index = static_cast<std::uint8_t>(one_band_index + static_cast<int>(b) -
+                                        static_cast<int>(FaceBands::only_dark));
+  }
+  return textures;
 }
 
 // The water's outline shell faces written (shell_culling.hpp): `kept` empty for all of them
@@ -509,12 +552,14 @@ WaterInclude water_include(SceneRun& run, const PreparedSurface& s,
           ? shell_offsets(config.outline, s.mesh, run.layout.camera, config.render.width)
           : std::vector<double>{};
   const WaterBodyFaces body = water_body_faces(run, s.mesh);
-  if (body.textures) run.layout.closed_water = true;
+  if (body.body) run.layout.closed_water = true;
+  const std::optional<FaceTextures> textures =
+      water_face_textures(run, s.mesh, uv, body.body ? &*body.body : nullptr);
   // Flow lines are strokes on the water, reaching up towards its shell.
   const WaterShell shell = water_shell(run, s.mesh, offsets, s.flow_lines.empty(),
                                        body.shell_limit ? &*body.shell_limit : nullptr);
   WaterInclude include;
-  include.text = mesh_include(s, "Water", uv, offsets, body.textures ? &*body.textures : nullptr,
+  include.text = mesh_include(s, "Water", uv, offsets, textures ? &*textures : nullptr,
                               shell.kept.empty() ? nullptr : &shell.kept) +
                  object_waters(run, &s.mesh);
   include.shell_faces = shell.faces;

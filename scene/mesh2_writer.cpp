@@ -152,6 +152,10 @@ void append(std::string& out, std::string_view identifier, const SceneMesh& mesh
     throw std::logic_error("mesh2 writer: one offset per vertex expected");
   if (textures && textures->index.size() != triangles.size())
     throw std::logic_error("mesh2 writer: one texture index per face expected");
+  if (textures && std::any_of(textures->index.begin(), textures->index.end(), [&](std::uint8_t t) {
+        return t != FaceTextures::object_texture && t >= textures->names.size();
+      }))
+    throw std::logic_error("mesh2 writer: a face's texture is not in the list");
   out.reserve(out.size() + 256 + n * (uv.empty() ? 60 : 78) + mesh.triangles.size() * 24);
   out += "#declare ";
   out += identifier;
@@ -188,7 +192,7 @@ void append(std::string& out, std::string_view identifier, const SceneMesh& mesh
     w.text(",");
     w.integer(t[2]);
     w.text(">");
-    if (textures) {
+    if (textures && textures->index[i] != FaceTextures::object_texture) {
       w.text(",");
       w.integer(textures->index[i]);
     }

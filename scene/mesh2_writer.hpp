@@ -5,7 +5,7 @@
 //     normal_vectors { N, <x,y,z>, ... }    // indexed like the vertices; not in shells
 //     uv_vectors     { N, <u,v>, ... }      // optional, indexed like the vertices
 //     texture_list   { T, texture { Name }, ... }   // optional: one texture per face
-//     face_indices   { F, <a,b,c>[, t], ... }
+//     face_indices   { F, <a,b,c>[, t], ... }   // no t: the object's texture
 //     inside_vector  <x,y,z>                // closed meshes only
 //   }
 //
@@ -34,8 +34,11 @@ constexpr double largest_scene_coordinate = 1e18;
 // Throws InputError naming `source` where `mesh` reaches beyond largest_scene_coordinate.
 void check_scene_extent(const SceneMesh& mesh, const std::filesystem::path& source);
 
-// Per-face textures: face f gets the declared texture `names[index[f]]`.
+// Per-face textures: face f gets the declared texture `names[index[f]]`, or, with
+// `object_texture`, none of its own: the texture the object is given (written without an
+// index, which saves the scene the bytes on most faces).
 struct FaceTextures {
+  static constexpr std::uint8_t object_texture = 255;
   std::vector<std::string> names;
   std::vector<std::uint8_t> index;  // one per face of the mesh
 };

@@ -271,6 +271,11 @@ std::string frame_image_name(const SceneLayout& l, long frame) {
   return "frame_" + padded(frame, static_cast<int>(std::to_string(l.last_frame).size())) + ".png";
 }
 
+bool draws_flow_regions(const SceneConfig& c) {
+  return c.water.shading == WaterShading::toon && c.flow.enabled &&
+         c.flow.style != FlowStyle::lines;
+}
+
 std::string scene_pov(const SceneLayout& l) {
   const SceneConfig& c = *l.config;
   const WaterConfig& w = c.water;
@@ -288,7 +293,7 @@ std::string scene_pov(const SceneLayout& l) {
   s += secondary_rays ? "global_settings { assumed_gamma 1.0 max_trace_level 10 }\n\n"
                       : "global_settings { assumed_gamma 1.0 }\n\n";
   const FlowConfig& flow = c.flow;
-  const bool flow_regions = !curvature_view && flow.enabled && flow.style != FlowStyle::lines;
+  const bool flow_regions = draws_flow_regions(c);
   const bool flow_lines = !curvature_view && flow.enabled && flow.style != FlowStyle::regions;
   if (flow_lines) {
     // Read by Toon_stroke while the water include is parsed: strokes as wide on screen near
@@ -303,25 +308,47 @@ std::string scene_pov(const SceneLayout& l) {
   const auto [t_bright, t_medium] = water_thresholds(l);
   const std::string bands = rgb(w.bright) + ", " + rgb(w.medium) + ", " + rgb(w.dark) + ", " +
                             num(t_bright) + ", " + num(t_medium);
-  std::string water_pigment;
-  if (curvature_view)
-    water_pigment = curvature_view_pigment();
-  else if (flow_regions)
-    water_pigment = "Toon_bands_with_flow(" + bands + ",\n      " + rgb(flow.valley_color) + ", " +
-                    rgb(flow.ridge_color) + ", " + num(w.transmit) + ")";
-  else
-    water_pigment = "Toon_bands(" + bands + ", " + num(w.transmit) + ")";
-  const std::string water_finish = curvature_view ? flat_finish() : finish(c, true);
-  if (closed_volume) {
-    // A closed volume is a see-through free surface over an opaque body: its walls and floor
-    // show flat bands, and nothing is seen through them, so objects leave no ghost images on
-    // the walls and no ray bounces around inside.
-    s += "// The water's faces: see-through free surface, opaque walls and floor\n";
-    s += std::string("#declare ") + kWaterSurfaceTexture + " = texture {\n  " + water_pigment +
-         "\n  " + water_finish + "\n}\n";
-    s += std::string("#declare ") + kWaterBodyTexture + " = texture {\n  Toon_bands(" + bands +
-         ", 0)\n  finish { Toon_flat_shading(" + num(w.ka) + ", <1, 1, 1>, " + num(w.kd) + ", " +
-         vec({c.light.color[0], c.light.color[1], c.light.color[2]}) + ") }\n}\n\n";
+  const std::string two_bands =
+      rgb(w.bright) + ", " + rgb(w.dark) + ", " + num(t_bright) + ", " + num(t_medium);
+  // The bands (of three, or of two where dark meets bright: band_crossings.hpp) under the flow
+  // regions, when they are drawn.
+  auto water_pigment = [&](const std::string& band_pigment) {
+    if (!flow_regions) return band_pigment;
+    return "Toon_flow_over(" + band_pigment + ",\n    " + rgb(flow.valley_color) + ", " +
+           rgb(flow.ridge_color) + ")";
+  };
+  if (!curvature_view) {
+    const std::string surface_finish = finish(c, true);
+    s += "// The water's textures: its own, and for faces where dark meets bright, two bands\n";
+    s += std::string("#declare ") + kWaterSurfaceTexture + " = texture {\n  " +
+         water_pigment("Toon_bands(" + bands + ", " + num(w.transmit) + ")") + "\n  " +
+         surface_finish + "\n}\n";
+    s += std::string("#declare ") + kWaterSurfaceTwoBandTexture + " = texture {\n  " +
+         water_pigment("Toon_two_bands(" + two_bands + ", " + num(w.transmit) + ")") + "\n  " +
+         surface_finish + "\n}\n";
+    if (flow_regions) {
+      s += "// Faces across a flow region's edge whose other corners lie in one band: that band\n";
+      const std::array<Color, 3> colours{w.dark, w.medium, w.bright};
+      for (std::size_t b = 0; b < colours.size(); ++b)
+        s += std::string("#declare ") + kWaterOneBandTextures[b] + " = texture {\n  " +
+             water_pigment("pigment { color " + rgb(colours[b]) + " transmit " + num(w.transmit) +
+                           " }") +
+             "\n  " + surface_finish + "\n}\n";
+    }
+    if (closed_volume) {
+      // A closed volume is a see-through free surface over an opaque body: its walls and floor
+      // show flat bands, and nothing is seen through them, so objects leave no ghost images on
+      // the walls and no ray bounces around inside.
+      const std::string body_finish =
+          "finish { Toon_flat_shading(" + num(w.ka) + ", <1, 1, 1>, " + num(w.kd) + ", " +
+          vec({c.light.color[0], c.light.color[1], c.light.color[2]}) + ") }";
+      s += "// The closed volume's walls and floor: opaque\n";
+      s += std::string("#declare ") + kWaterBodyTexture + " = texture {\n  Toon_bands(" + bands +
+           ", 0)\n  " + body_finish + "\n}\n";
+      s += std::string("#declare ") + kWaterBodyTwoBandTexture + " = texture {\n  Toon_two_bands(" +
+           two_bands + ", 0)\n  " + body_finish + "\n}\n";
+    }
+    s += "\n";
   }
   s += "// Meshes of the current frame\n";
   s += "#include concat(\"water_\", str(frame_number, -4, 0), \".inc\")\n";
@@ -368,7 +395,8 @@ std::string scene_pov(const SceneLayout& l) {
     s += "// Water: Cartoon Water Shader\n";
   }
   s += "object {\n  Water_mesh\n  texture {\n    ";
-  s += closed_volume ? std::string(kWaterSurfaceTexture) : water_pigment + "\n    " + water_finish;
+  s += curvature_view ? curvature_view_pigment() + "\n    " + flat_finish()
+                      : std::string(kWaterSurfaceTexture);
   s += "\n  }\n";
   if (refracts) s += "  interior { ior " + num(w.ior) + " }\n";
   s += "}\n";

@@ -12,6 +12,7 @@
 #include "scene/config.hpp"
 #include "scene/scene_mesh.hpp"
 
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -92,9 +93,19 @@ std::string object_contact_id(const std::string& object_name);
 std::string object_water_declaration(const std::string& object_name, const SceneMesh* closed_water,
                                      double line_height, double contact);
 
-// Texture identifiers of a closed volume's faces: free surface, walls and floor.
+// Texture identifiers of the water's faces (toon shading): the water's own, which a closed
+// volume's free surface has, the opaque walls and floor of a closed volume, each one's two
+// bands for faces where dark meets bright, and, where flow regions are drawn, one band alone
+// for faces across a region's edge (band_crossings.hpp).
 inline constexpr const char* kWaterSurfaceTexture = "Water_surface_texture";
+inline constexpr const char* kWaterSurfaceTwoBandTexture = "Water_surface_two_band_texture";
 inline constexpr const char* kWaterBodyTexture = "Water_body_texture";
+inline constexpr const char* kWaterBodyTwoBandTexture = "Water_body_two_band_texture";
+inline constexpr std::array<const char*, 3> kWaterOneBandTextures = {
+    "Water_only_dark_texture", "Water_only_medium_texture", "Water_only_bright_texture"};
+
+// Whether the water's flow regions are drawn (with toon shading, not as lines alone).
+bool draws_flow_regions(const SceneConfig& config);
 
 // The light in POV-Ray's frame: the configured one, or a sun from above, left and front.
 LightGeometry light_geometry(const LightConfig& light, Axis up);

@@ -221,7 +221,7 @@ TEST(PovgenScene, FullSceneHasEveryFeature) {
   ASSERT_EQ(g.result.exit_code, 0) << g.result.output;
   for (const char* present :
        {"light_source", "parallel", "reflection { 0.2 }", "interior { ior 1.33 }",
-        "Toon_outline_shell(Water_shell", "Toon_bands_with_flow", "#include \"obj_ball.inc\"",
+        "Toon_outline_shell(Water_shell", "Toon_flow_over(Toon_bands(", "#include \"obj_ball.inc\"",
         "Obj_ball_mesh", "Toon_outline_shell(Obj_ball_shell", "no_reflection",
         "Toon_silhouette(Obj_kite_mesh", "phong 0.5", "max_trace_level 10"})
     EXPECT_NE(g.pov.find(present), std::string::npos) << present;
@@ -242,16 +242,28 @@ TEST(PovgenScene, FullSceneHasEveryFeature) {
       g.water_inc.find("#declare Obj_ball_water = intersection { object { Water_mesh } box {"),
       std::string::npos);
   EXPECT_NE(g.water_inc.find("#declare Obj_ball_contact = "), std::string::npos);
-  // A see-through closed volume: free surface and body have their own textures.
-  EXPECT_NE(g.pov.find("#declare Water_surface_texture"), std::string::npos);
-  EXPECT_NE(g.water_inc.find("texture_list { 2, texture { Water_surface_texture }, texture { "
-                             "Water_body_texture } }"),
+  // A see-through closed volume: free surface and body have their own textures, and each its
+  // two bands where dark meets bright; the free surface's is the object's, given by no index.
+  for (const char* texture : {"Water_surface_texture = texture {\n  Toon_flow_over(Toon_bands(",
+                              "Water_surface_two_band_texture = texture {\n  "
+                              "Toon_flow_over(Toon_two_bands(",
+                              "Water_body_texture = texture {\n  Toon_bands(",
+                              "Water_body_two_band_texture = texture {\n  Toon_two_bands(",
+                              "Water_only_dark_texture = texture {\n  Toon_flow_over(pigment {",
+                              "Water_only_bright_texture = texture {\n  Toon_flow_over(pigment {"})
+    EXPECT_NE(g.pov.find(std::string("#declare ") + texture), std::string::npos) << texture;
+  EXPECT_NE(g.pov.find("Water_mesh\n  texture {\n    Water_surface_texture\n"), std::string::npos);
+  EXPECT_NE(g.water_inc.find("texture_list { 6, texture { Water_surface_two_band_texture }, "
+                             "texture { Water_body_texture }, texture { "
+                             "Water_body_two_band_texture }, texture { Water_only_dark_texture }, "
+                             "texture { Water_only_medium_texture }, texture { "
+                             "Water_only_bright_texture } }"),
             std::string::npos);
   // Reflected rays that miss everything see a flat sky, which the camera does not see.
   EXPECT_NE(g.pov.find("hollow no_image no_shadow"), std::string::npos);
   const std::string toon = read_text(dir / "scene" / "toon.inc");
-  for (const char* macro : {"Toon_bands(", "Toon_bands_with_flow(", "Toon_object_bands(",
-                            "Toon_outline_shell(", "Toon_silhouette("})
+  for (const char* macro : {"Toon_bands(", "Toon_two_bands(", "Toon_flow_over(",
+                            "Toon_object_bands(", "Toon_outline_shell(", "Toon_silhouette("})
     EXPECT_NE(toon.find(std::string("#macro ") + macro), std::string::npos) << macro;
   EXPECT_EQ(g.pov.find("Obj_kite_shell"), std::string::npos);
   EXPECT_NE(g.water_inc.find("Water_shell"), std::string::npos);

@@ -141,7 +141,14 @@ bool known_pov_directive(std::string_view line) {
          line == "#include concat(\"water_\", str(frame_number, -4, 0), \".inc\")" ||
          wraps_identifier(line, "#include concat(\"obj_",
                           "_\", str(frame_number, -4, 0), \".inc\")") ||
-         wraps_identifier(line, "#include \"obj_", ".inc\"");
+         wraps_identifier(line, "#include \"obj_", ".inc\"") ||
+         line == "#declare Water_surface_texture = texture {" ||
+         line == "#declare Water_surface_two_band_texture = texture {" ||
+         line == "#declare Water_body_texture = texture {" ||
+         line == "#declare Water_body_two_band_texture = texture {" ||
+         line == "#declare Water_only_dark_texture = texture {" ||
+         line == "#declare Water_only_medium_texture = texture {" ||
+         line == "#declare Water_only_bright_texture = texture {";
 }
 
 // The file names scene_writer quotes.

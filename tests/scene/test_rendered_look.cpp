@@ -133,6 +133,69 @@ TEST(PovgenRender, ThreeCrispBandsWhereTheThresholdsPutThemForAPointLight) {
 // band, the slope of a bump facing the light bright, the slope facing away dark. Absolute
 // thresholds (0.7 and 0.2 under the default sun, whose L·n on flat water is 0.815) put all of
 // the flat water in the bright band.
+// A coarse sphere (30° between rings) under a medium band narrower than the step of L·n from a
+// vertex to the next: its faces go from a dark corner straight to a bright one. Interpolated,
+// u would pass through the medium band and paint a sliver across each of them; they get two
+// bands instead (band_crossings.hpp), so the sphere is dark and bright, the edge between them
+// where it turns from the light, and not one pixel is medium.
+TEST(PovgenRender, WhereDarkMeetsBrightNoMediumSliverLiesBetween) {
+  ScratchDir dir;
+  write_obj(dir / "water.obj", make_sphere(Vec3::Zero(), 1.0, 6, 12));
+  const int W = 96, H = 72;
+  const double angle = 40, t_edge = 0.325;  // halfway between the thresholds
+  const Image img =
+      render_scene(dir, "coarse",
+                   std::vector<std::string>{"--water", (dir / "water.obj").string(),
+                                            "--set",   "outline.enabled=false",
+                                            "--set",   "water.bright=" + color(kBright),
+                                            "--set",   "water.medium=" + color(kMedium),
+                                            "--set",   "water.dark=" + color(kDark),
+                                            "--set",   "water.t_bright=0.35",
+                                            "--set",   "water.t_medium=0.3",
+                                            "--set",   "light.direction=[1, 0, 1]",
+                                            "--set",   "camera.location=[0, 0, 5]",
+                                            "--set",   "camera.look_at=[0, 0, 0]",
+                                            "--set",   "camera.angle=40",
+                                            "--set",   "render.width=96",
+                                            "--set",   "render.height=72"} +
+                       opaque_flat_water());
+  ASSERT_EQ(img.width, W);
+  const Rgb8 bright = to_rgb8(kBright[0], kBright[1], kBright[2]);
+  const Rgb8 medium = to_rgb8(kMedium[0], kMedium[1], kMedium[2]);
+  const Rgb8 dark = to_rgb8(kDark[0], kDark[1], kDark[2]);
+  const Rgb8 background = to_rgb8(1, 1, 1);
+  // POV-Ray's frame, as in expect_three_crisp_bands; the light's direction (1, 0, 1) becomes
+  // (1, 0, −1).
+  const Vec3 eye(0, 0, -5), to_light = Vec3(1, 0, -1).normalized();
+  const double aspect = double(W) / H;
+  const double focal = 0.5 * aspect / std::tan(angle / 2 * std::numbers::pi / 180);
+  int counts[3] = {0, 0, 0}, checked = 0;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const Rgb8 c = img.at(x, y);
+      ASSERT_TRUE(near(c, bright) || near(c, medium) || near(c, dark) || near(c, background))
+          << "pixel " << x << "," << y << " has a colour outside the bands";
+      counts[0] += near(c, bright), counts[1] += near(c, medium), counts[2] += near(c, dark);
+      const Vec3 ray =
+          Vec3(aspect * ((x + 0.5) / W - 0.5), 0.5 - (y + 0.5) / H, focal).normalized();
+      const double b = eye.dot(ray);
+      const double closest = std::sqrt(std::max(0.0, eye.squaredNorm() - b * b));
+      if (closest > 0.9) continue;  // the coarse sphere's polygonal silhouette
+      const Vec3 n = (eye + (-b - std::sqrt(b * b - eye.squaredNorm() + 1.0)) * ray).normalized();
+      // A face spans 30°: its corners' L·n differ by up to half, so the edge between the bands
+      // lies within a quarter of it from where the ideal sphere has it.
+      const double l_dot_n = to_light.dot(n);
+      if (std::abs(l_dot_n - t_edge) < 0.25) continue;
+      EXPECT_TRUE(near(c, l_dot_n > t_edge ? bright : dark))
+          << "pixel " << x << "," << y << " L.n " << l_dot_n;
+      ++checked;
+    }
+  EXPECT_EQ(counts[1], 0) << "medium pixels";
+  EXPECT_GT(counts[0], 300) << "bright pixels";
+  EXPECT_GT(counts[2], 300) << "dark pixels";
+  EXPECT_GT(checked, 600);
+}
+
 TEST(PovgenRender, RelativeBandsPutCalmWaterInTheMiddleBand) {
   ScratchDir dir;
   write_obj(dir / "bump.obj", make_height_grid(81, 1.0, [](double x, double z) {
