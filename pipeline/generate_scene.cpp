@@ -464,12 +464,9 @@ std::optional<FaceTextures> water_face_textures(const SceneRun& run, const Scene
                                                 std::span<const TextureCoordinate> uv,
                                                 const std::vector<bool>* body) {
   if (run.config.water.shading != WaterShading::toon) return std::nullopt;
-  const auto [t_bright, t_medium] = water_thresholds(run.layout);
-  const bool regions = draws_flow_regions(run.config);
-  const std::vector<FaceBands> bands =
-      face_bands(mesh.triangles, uv, band_coordinate(t_medium), band_coordinate(t_bright),
-                 regions ? std::optional(std::pair(flow_coordinate(-1.0), flow_coordinate(1.0)))
-                         : std::nullopt);
+  const ToonLimits limits = water_toon_limits(run.layout);
+  const bool regions = limits.flow.has_value();
+  const std::vector<FaceBands> bands = face_bands(mesh.triangles, uv, limits);
   if (!body &&
       std::all_of(bands.begin(), bands.end(), [](FaceBands b) { return b == FaceBands::three; }))
     return std::nullopt;

@@ -1,26 +1,26 @@
 // The texture each face of the water needs; stated in band_crossings.hpp.
 #include "scene/band_crossings.hpp"
 
+#include <array>
+#include <stdexcept>
+
 namespace toonwater {
 
 std::vector<FaceBands> face_bands(std::span<const Triangle> triangles,
-                                  std::span<const TextureCoordinate> uv, double key_medium,
-                                  double key_bright,
-                                  std::optional<std::pair<double, double>> flow_keys) {
+                                  std::span<const TextureCoordinate> uv, const ToonLimits& limits) {
+  if (limits.bands.size() != 2) throw std::invalid_argument("face_bands: three bands expected");
   std::vector<FaceBands> bands(triangles.size(), FaceBands::three);
   for (std::size_t f = 0; f < triangles.size(); ++f) {
-    bool region = false, dark = false, medium = false, bright = false;
+    std::array<bool, 3> seen{};  // dark, medium, bright
+    bool region = false;
     for (const int corner : triangles[f]) {
-      const TextureCoordinate& c = uv[static_cast<std::size_t>(corner)];
-      if (flow_keys && (c[1] <= flow_keys->first || c[1] >= flow_keys->second))
-        region = true;
-      else if (c[0] <= key_medium)
-        dark = true;
-      else if (c[0] <= key_bright)
-        medium = true;
+      const int c = toon_class(limits, uv[static_cast<std::size_t>(corner)]);
+      if (c < 3)
+        seen[static_cast<std::size_t>(c)] = true;
       else
-        bright = true;
+        region = true;
     }
+    const auto [dark, medium, bright] = seen;
     const int band_kinds = int{dark} + int{medium} + int{bright};
     if (dark && bright && !medium)
       bands[f] = FaceBands::two;

@@ -1,9 +1,7 @@
 // The texture each face of the water needs so that no sliver of a band is drawn where none is.
 //
-// A corner's band is that of its band key u (scene_mesh.hpp, toon.inc): dark where
-// u <= key_medium, medium where key_medium < u <= key_bright, bright where u > key_bright; where
-// flow regions are drawn, a corner whose flow key v marks a region (v <= the valley's key or
-// v >= the ridge's) is a region corner, whose u is hidden under the region. POV-Ray
+// A corner's class is its toon_class (scene_mesh.hpp): a band, dark, medium or bright, by its
+// band key u, or, where flow regions are drawn, a region by its flow key v, which hides u. POV-Ray
 // interpolates u and v linearly inside a face, so:
 //
 // - a face whose band corners are dark and bright, none medium, passes through the medium band
@@ -23,11 +21,8 @@
 #include "analyzer/mesh.hpp"
 #include "scene/scene_mesh.hpp"
 
-#include <array>
 #include <cstdint>
-#include <optional>
 #include <span>
-#include <utility>
 #include <vector>
 
 namespace toonwater {
@@ -40,11 +35,8 @@ enum class FaceBands : std::uint8_t {
   only_bright,  // ... all bright
 };
 
-// Per face of `triangles`, as above. `flow_keys`: the valley's and the ridge's limits on v where
-// flow regions are drawn, else none.
+// Per face of `triangles`, as above, for the limits of three bands (two on u).
 std::vector<FaceBands> face_bands(std::span<const Triangle> triangles,
-                                  std::span<const TextureCoordinate> uv, double key_medium,
-                                  double key_bright,
-                                  std::optional<std::pair<double, double>> flow_keys);
+                                  std::span<const TextureCoordinate> uv, const ToonLimits& limits);
 
 }  // namespace toonwater

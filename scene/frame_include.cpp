@@ -51,15 +51,11 @@ std::vector<TextureCoordinate> water_coordinates(const PreparedSurface& surface,
   const SceneConfig& config = *layout.config;
   // A curvature view shows the values as they are; min_patch = 0 keeps every patch.
   if (!surface.view_values.empty() || !(config.water.min_patch > 0.0)) return uv;
-  const auto [t_bright, t_medium] = water_thresholds(layout);
-  ToonLimits limits{{band_coordinate(t_medium), band_coordinate(t_bright)}, std::nullopt};
-  if (!surface.flow_field.empty() && config.flow.style != FlowStyle::lines)
-    limits.flow = {flow_coordinate(-1.0), flow_coordinate(1.0)};
   IslandLimits island;
   island.radius_pixels = config.water.min_patch;
   merge_toon_islands(surface.mesh, layout.camera.location,
-                     pixel_widths(surface.mesh, layout.camera, config.render.width), limits, island,
-                     uv);
+                     pixel_widths(surface.mesh, layout.camera, config.render.width),
+                     water_toon_limits(layout), island, uv);
   return uv;
 }
 

@@ -71,6 +71,13 @@ double flow_coordinate(double field) {
   return 0.5 + scale * std::clamp(std::isfinite(field) ? field : 0.0, -field_limit, field_limit);
 }
 
+int toon_class(const ToonLimits& limits, const TextureCoordinate& c) {
+  if (limits.flow && c[1] <= limits.flow->first) return limits.valley();
+  if (limits.flow && c[1] >= limits.flow->second) return limits.ridge();
+  return static_cast<int>(std::lower_bound(limits.bands.begin(), limits.bands.end(), c[0]) -
+                          limits.bands.begin());
+}
+
 std::vector<TextureCoordinate> toon_coordinates(const SceneMesh& mesh, const LightGeometry& light,
                                                 std::span<const double> flow_field) {
   const std::size_t n = mesh.positions.size();

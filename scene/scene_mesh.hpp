@@ -16,7 +16,9 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace toonwater {
@@ -51,6 +53,21 @@ using TextureCoordinate = std::array<float, 2>;
 // Toon_flow_key).
 double band_coordinate(double l_dot_n);
 double flow_coordinate(double field);
+
+// The toon classes' limits on the coordinates: the bands' on u, ascending (band b where
+// bands[b − 1] < u <= bands[b]), and, where flow regions are drawn, the valley's and the
+// ridge's on v (valley where v <= flow->first, ridge where v >= flow->second).
+struct ToonLimits {
+  std::vector<double> bands;
+  std::optional<std::pair<double, double>> flow;
+
+  int valley() const { return static_cast<int>(bands.size()) + 1; }
+  int ridge() const { return valley() + 1; }
+};
+
+// The class a vertex is painted in: its band, 0 to bands.size(), or valley() or ridge(). A
+// region hides the band under it.
+int toon_class(const ToonLimits& limits, const TextureCoordinate& c);
 
 // (u, v) per vertex as above; `flow_field` may be empty (no flow regions: v = 0.5).
 std::vector<TextureCoordinate> toon_coordinates(const SceneMesh& mesh, const LightGeometry& light,

@@ -276,6 +276,18 @@ bool draws_flow_regions(const SceneConfig& c) {
          c.flow.style != FlowStyle::lines;
 }
 
+bool draws_flow_lines(const SceneConfig& c) {
+  return c.water.shading == WaterShading::toon && c.flow.enabled &&
+         c.flow.style != FlowStyle::regions;
+}
+
+ToonLimits water_toon_limits(const SceneLayout& l) {
+  const auto [t_bright, t_medium] = water_thresholds(l);
+  ToonLimits limits{{band_coordinate(t_medium), band_coordinate(t_bright)}, std::nullopt};
+  if (draws_flow_regions(*l.config)) limits.flow = {flow_coordinate(-1.0), flow_coordinate(1.0)};
+  return limits;
+}
+
 std::string scene_pov(const SceneLayout& l) {
   const SceneConfig& c = *l.config;
   const WaterConfig& w = c.water;
@@ -294,7 +306,7 @@ std::string scene_pov(const SceneLayout& l) {
                       : "global_settings { assumed_gamma 1.0 }\n\n";
   const FlowConfig& flow = c.flow;
   const bool flow_regions = draws_flow_regions(c);
-  const bool flow_lines = !curvature_view && flow.enabled && flow.style != FlowStyle::regions;
+  const bool flow_lines = draws_flow_lines(c);
   if (flow_lines) {
     // Read by Toon_stroke while the water include is parsed: strokes as wide on screen near
     // and far.
@@ -472,9 +484,8 @@ std::string scene_toon_inc(const SceneLayout& l) {
   const SceneConfig& c = *l.config;
   const bool reflects = c.water.shading == WaterShading::toon && c.water.reflection > 0;
   std::vector<std::string> parts{"bands"};
-  const bool flow = c.flow.enabled && c.water.shading == WaterShading::toon;
-  if (flow && c.flow.style != FlowStyle::lines) parts.push_back("flow");
-  if (flow && c.flow.style != FlowStyle::regions) parts.push_back("strokes");
+  if (draws_flow_regions(c)) parts.push_back("flow");
+  if (draws_flow_lines(c)) parts.push_back("strokes");
   if (!l.objects.empty()) parts.push_back("objects");
   if (c.outline.enabled) parts.push_back("outline");
   for (const ObjectPlacement& o : l.objects)

@@ -104,8 +104,14 @@ inline constexpr const char* kWaterBodyTwoBandTexture = "Water_body_two_band_tex
 inline constexpr std::array<const char*, 3> kWaterOneBandTextures = {
     "Water_only_dark_texture", "Water_only_medium_texture", "Water_only_bright_texture"};
 
-// Whether the water's flow regions are drawn (with toon shading, not as lines alone).
+// Whether the water's flow regions are drawn (with toon shading, not as lines alone), and
+// whether its flow lines are (with toon shading, not as regions alone).
 bool draws_flow_regions(const SceneConfig& config);
+bool draws_flow_lines(const SceneConfig& config);
+
+// The limits of the water's toon classes on its coordinates, as scene.pov paints them: the
+// bands' at water_thresholds, and the regions' where they are drawn.
+ToonLimits water_toon_limits(const SceneLayout& layout);
 
 // The light in POV-Ray's frame: the configured one, or a sun from above, left and front.
 LightGeometry light_geometry(const LightConfig& light, Axis up);

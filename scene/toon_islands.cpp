@@ -133,15 +133,9 @@ std::size_t merge_toon_islands(const SceneMesh& mesh, const Vec3& eye,
                                const IslandLimits& island, std::vector<TextureCoordinate>& uv) {
   const std::size_t n = uv.size();
   const auto bands = static_cast<int>(limits.bands.size()) + 1;
-  const int valley = bands, ridge = bands + 1;
-  auto class_of = [&](const TextureCoordinate& c) {
-    if (limits.flow && c[1] <= limits.flow->first) return valley;
-    if (limits.flow && c[1] >= limits.flow->second) return ridge;
-    return static_cast<int>(std::lower_bound(limits.bands.begin(), limits.bands.end(), c[0]) -
-                            limits.bands.begin());
-  };
+  const int valley = limits.valley(), ridge = limits.ridge();
   std::vector<int> label(n);
-  for (std::size_t v = 0; v < n; ++v) label[v] = class_of(uv[v]);
+  for (std::size_t v = 0; v < n; ++v) label[v] = toon_class(limits, uv[v]);
 
   // Each vertex's third of its faces' area, and in pixels that area as the camera sees it (none
   // where it faces away: the back of a sheet or a drop is hidden by its front).

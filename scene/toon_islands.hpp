@@ -35,9 +35,7 @@
 #include "scene/scene_mesh.hpp"
 
 #include <cstddef>
-#include <optional>
 #include <span>
-#include <utility>
 #include <vector>
 
 namespace toonwater {
@@ -45,13 +43,6 @@ namespace toonwater {
 struct IslandLimits {
   double radius_edges = 1.5;   // median edge lengths of the mesh
   double radius_pixels = 2.0;  // pixels on screen
-};
-
-// The toon classes' limits: the bands' on u, ascending, and, where flow regions are drawn, the
-// valley's and the ridge's on v.
-struct ToonLimits {
-  std::vector<double> bands;
-  std::optional<std::pair<double, double>> flow;
 };
 
 // Merges the islands of `label` (one class per vertex, 0 to min_area.size() − 1; vertices in no

@@ -12,7 +12,8 @@
 namespace toonwater::test {
 namespace {
 
-constexpr double key_medium = 0.4, key_bright = 0.6;
+const ToonLimits three_bands{{0.4, 0.6}, std::nullopt};
+const ToonLimits three_bands_and_regions{{0.4, 0.6}, std::pair(0.38, 0.62)};
 
 TextureCoordinate at(double u) { return {static_cast<float>(u), 0.5F}; }
 
@@ -29,7 +30,7 @@ TEST(BandCrossings, AFaceOfDarkAndBrightCornersNoneMediumHasTwoBands) {
       {2, 3, 3},  // bright only
   };
   using enum FaceBands;
-  EXPECT_EQ(face_bands(faces, uv, key_medium, key_bright, std::nullopt),
+  EXPECT_EQ(face_bands(faces, uv, three_bands),
             (std::vector<FaceBands>{two, two, three, three, three, three, three}));
 }
 
@@ -58,10 +59,9 @@ TEST(BandCrossings, AFaceAcrossARegionsEdgeIsDrawnInItsBandCornersBand) {
       {0, 0, 1},  // regions only
   };
   using enum FaceBands;
-  const std::pair<double, double> flow_keys{0.38, 0.62};
-  EXPECT_EQ(face_bands(faces, uv, key_medium, key_bright, flow_keys),
+  EXPECT_EQ(face_bands(faces, uv, three_bands_and_regions),
             (std::vector<FaceBands>{only_medium, only_bright, three, two, only_medium, three}));
-  EXPECT_EQ(face_bands(faces, uv, key_medium, key_bright, std::nullopt),
+  EXPECT_EQ(face_bands(faces, uv, three_bands),
             (std::vector<FaceBands>{three, three, three, two, three, two}));
 }
 
