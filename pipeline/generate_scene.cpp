@@ -53,7 +53,10 @@ AnalyzeOptions analysis_options(const FlowConfig& flow, Axis up, WaterShading sh
 }
 
 const FlowConfig* scene_flow(const SceneConfig& config) {
-  return config.flow.enabled || config.water.shading != WaterShading::toon ? &config.flow : nullptr;
+  const WaterConfig& w = config.water;
+  const bool geometry_only =
+      w.shading == WaterShading::toon && !config.flow.enabled && w.normals == WaterNormals::mesh;
+  return geometry_only ? nullptr : &config.flow;
 }
 
 std::optional<AnalyzeOptions> water_analysis(const SceneConfig& config, Axis up, bool maps) {
@@ -63,7 +66,8 @@ std::optional<AnalyzeOptions> water_analysis(const SceneConfig& config, Axis up,
 }
 
 PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,
-                                FlowCoherence* coherence, WaterShading shading) {
+                                FlowCoherence* coherence, WaterShading shading,
+                                WaterNormals normals) {
   const auto start = Clock::now();
   Analysis a;
   if (flow) {
@@ -73,7 +77,7 @@ PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* f
   } else {
     a = geometry_analysis(std::move(input));
   }
-  PreparedSurface out = prepare_surface(std::move(a), up, flow, shading);
+  PreparedSurface out = prepare_surface(std::move(a), up, flow, shading, normals);
   out.analysis_seconds = seconds_since(start);
   return out;
 }
@@ -163,6 +167,7 @@ std::vector<ObjectSource> find_objects(const SceneConfig& config, const Sequence
 struct WaterPlan {
   const FlowConfig* flow = nullptr;  // the scene's flow settings; null: geometry only
   WaterShading shading = WaterShading::toon;
+  WaterNormals normals = WaterNormals::smoothed;
   bool maps = false;
   bool camera_box = false;  // the camera is not configured
   FrameSourceOptions frames;
@@ -176,6 +181,7 @@ WaterPlan plan_water(const SceneConfig& config, const PovgenRequest& request, st
   WaterPlan plan;
   plan.flow = scene_flow(config);
   plan.shading = config.water.shading;
+  plan.normals = config.water.normals;
   plan.maps = !request.maps_dir.empty();
   plan.camera_box = !(config.camera.location && config.camera.look_at);
   plan.frames.transform = request.water_transform;
@@ -273,10 +279,10 @@ struct SceneRun {
   PreparedSurface prepare(SourceFrame& f) {
     Analysis a = f.analysis ? std::move(*f.analysis) : geometry_analysis(std::move(f.mesh));
     const auto start = Clock::now();
-    PreparedSurface s = f.analysis
-                            ? prepare_surface(std::move(a), request.up, plan.flow, plan.shading,
-                                              plan.frames.coherent ? &strokes : nullptr)
-                            : prepare_surface(std::move(a), request.up, nullptr);
+    PreparedSurface s =
+        f.analysis ? prepare_surface(std::move(a), request.up, plan.flow, plan.shading,
+                                     plan.normals, plan.frames.coherent ? &strokes : nullptr)
+                   : prepare_surface(std::move(a), request.up, nullptr);
     s.analysis_seconds = seconds_since(start);
     return s;
   }

@@ -34,12 +34,13 @@
 namespace toonwater {
 
 // The one mapping from the scene's configuration to the analysis of its water frames:
-// `scene_flow` is the flow settings the scene draws with (flow regions, or a curvature view,
-// which needs the curvature whether or not flow regions are drawn), null when it needs the
-// geometry only; `water_analysis` the options a water frame is analysed with, nothing for the
-// geometry only. Curvature maps (`maps`) need the flow regions (their labels and free surface)
-// whatever the scene draws. `analysis_options` is the part both share: the flow settings, with
-// flow regions for the toon shading only.
+// `scene_flow` is the flow settings the scene is drawn with, null when it needs the geometry
+// only (toon bands from the mesh's own normals, no flow regions or lines); `water_analysis` the
+// options a water frame is analysed with, nothing for the geometry only. The toon bands'
+// smoothed shading normals and their noise floor come from the flow stage whether or not flow
+// regions are drawn; a curvature view needs the curvature. Curvature maps (`maps`) need the flow
+// regions (their labels and free surface) whatever the scene draws. `analysis_options` is the
+// part both share: the flow settings, with flow regions for the toon shading only.
 const FlowConfig* scene_flow(const SceneConfig& config);
 std::optional<AnalyzeOptions> water_analysis(const SceneConfig& config, Axis up, bool maps);
 AnalyzeOptions analysis_options(const FlowConfig& flow, Axis up, WaterShading shading);
@@ -48,8 +49,8 @@ AnalyzeOptions analysis_options(const FlowConfig& flow, Axis up, WaterShading sh
 // with `coherence`, the field is made coherent with the frames it saw before (a sequence's
 // frames in order).
 PreparedSurface prepare_surface(TriangleMesh input, Axis up, const FlowConfig* flow,
-                                FlowCoherence* coherence,
-                                WaterShading shading = WaterShading::toon);
+                                FlowCoherence* coherence, WaterShading shading = WaterShading::toon,
+                                WaterNormals normals = WaterNormals::smoothed);
 
 struct PovgenRequest {
   std::string water_pattern;

@@ -67,6 +67,13 @@ enum class BandThresholds { relative, absolute };
 // a water creature), its outline shell kept on the free surface only.
 enum class WaterBody { opaque, clear };
 
+// The normals the water's bands are chosen from: smoothed, the flow stage's shading normals,
+// smoothed over the free surface at the scale of the cells and measured for their noise floor
+// (flow_regions.hpp), which the relative band limits keep above; mesh, the mesh's own
+// angle-weighted vertex normals, for a clean surface (synthetic, or smooth already) whose shape
+// is all signal.
+enum class WaterNormals { smoothed, mesh };
+
 struct WaterConfig {
   WaterShading shading = WaterShading::toon;
   Color bright{0.36, 0.64, 0.88};
@@ -74,6 +81,7 @@ struct WaterConfig {
   Color dark{0.08, 0.26, 0.56};
   // Default: relative, or absolute when t_bright or t_medium is given.
   BandThresholds bands = BandThresholds::relative;
+  WaterNormals normals = WaterNormals::smoothed;
   double dt_bright = 0.05;   // relative: bright where L·n > calm + dt_bright
   double dt_medium = -0.05;  // relative: dark where L·n <= calm + dt_medium
   // Relative limits widen past the water's normal noise (scene_writer.hpp) unless dt_bright or

@@ -293,6 +293,11 @@ const Section<WaterConfig>& water_section() {
                {{"relative", BandThresholds::relative}, {"absolute", BandThresholds::absolute}}},
            "band thresholds around the calm water's L·n, or absolute",
            "(\"absolute\" when `t_bright` or `t_medium` is given)"),
+       key("normals", &C::normals,
+           Keyword<WaterNormals>{
+               {{"smoothed", WaterNormals::smoothed}, {"mesh", WaterNormals::mesh}}},
+           "the normals the bands are chosen from: smoothed at the cells' scale and kept above "
+           "their noise, or the mesh's own"),
        key("dt_bright", &C::dt_bright, l_dot_n,
            "relative: bright where L·n > calm + dt_bright (unset: at least 3 noise floors)"),
        key("dt_medium", &C::dt_medium, l_dot_n,

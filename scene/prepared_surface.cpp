@@ -16,19 +16,23 @@ bool is_closed(const MeshTopology& t) { return t.boundary_edges == 0 && t.nonman
 }  // namespace
 
 PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow, WaterShading shading,
-                                StrokePersistence* persistence) {
+                                WaterNormals normals, StrokePersistence* persistence) {
   PreparedSurface out;
-  if (!flow) {
-    const std::vector<Vec3> normals = angle_weighted_normals(a.surface, a.topology.vertex_faces);
-    out.mesh = make_scene_mesh(a.surface, normals, is_closed(a.topology), up);
-    return out;
+  const bool smoothed = flow && !(shading == WaterShading::toon && normals == WaterNormals::mesh);
+  if (smoothed) {
+    // The flow stage's shading normals where it ran (flow_regions.hpp), smoothed over the free
+    // surface at the scale of the cells; a curvature view's curvature normals.
+    const std::vector<Vec3>& n =
+        a.flow.shading_normal.empty() ? a.curvature.normal : a.flow.shading_normal;
+    out.mesh = make_scene_mesh(a.surface, n, is_closed(a.topology), up);
+    out.normal_noise = a.flow.normal_noise;
+  } else {
+    const std::vector<Vec3> n = angle_weighted_normals(a.surface, a.topology.vertex_faces);
+    out.mesh = make_scene_mesh(a.surface, n, is_closed(a.topology), up);
   }
-  // The toon bands are chosen from the flow stage's shading normals where it ran
-  // (flow_regions.hpp), smoothed over the free surface at the scale of the cells.
-  const std::vector<Vec3>& normals =
-      a.flow.shading_normal.empty() ? a.curvature.normal : a.flow.shading_normal;
-  out.mesh = make_scene_mesh(a.surface, normals, is_closed(a.topology), up);
+  if (!flow) return out;
   if (shading == WaterShading::toon) {
+    if (!flow->enabled) return out;  // the bands alone
     if (flow->style != FlowStyle::regions) {
       // Strokes taper over 3 % of the scene's size: resolution-free, like the field.
       const double taper_length = 0.03 * a.flow.scale_length;
@@ -40,7 +44,6 @@ PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow, Wat
         for (Vec3& p : line.points) p = to_povray(p, up);
     }
     out.flow_field = std::move(a.flow.field);
-    out.normal_noise = a.flow.normal_noise;
     out.ridge_vertices = a.flow.ridge_vertices;
     out.valley_vertices = a.flow.valley_vertices;
   } else {

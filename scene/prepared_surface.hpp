@@ -22,17 +22,20 @@ struct PreparedSurface {
   std::vector<double> view_values;   // per vertex K or H for a curvature view; else empty
   double view_range = 0;             // the sequence's colour range of view_values
   std::size_t ridge_vertices = 0, valley_vertices = 0;
-  double normal_noise = 0;      // of the shading normals (flow_regions.hpp); 0 without flow
+  double normal_noise = 0;      // of the shading normals (flow_regions.hpp); 0: not measured
   double analysis_seconds = 0;  // its analysis and preparation, as the pipeline timed them
 };
 
-// The scene's surface from an analysis: with `flow`, its curvature normals and, as `shading`
-// asks, the flow field (and lines) or the per-vertex K or H of a curvature view; without,
-// angle-weighted normals of the welded, oriented surface (the analysis then needs no more
-// than weld, topology and orientation). With `persistence` (a sequence's frames in order), the
+// The scene's surface from an analysis. Its normals: with `flow` (the analysis ran), the
+// shading normals and their noise floor for toon shading with `normals` smoothed, the curvature
+// normals for a curvature view; else angle-weighted normals of the welded, oriented surface
+// (which need no more of the analysis than weld, topology and orientation) and no noise floor.
+// With `flow`, as `shading` asks, the flow field and lines where flow is enabled, or the
+// per-vertex K or H of a curvature view. With `persistence` (a sequence's frames in order), the
 // flow strokes persist from frame to frame (stroke_persistence.hpp).
 PreparedSurface prepare_surface(Analysis analysis, Axis up, const FlowConfig* flow,
                                 WaterShading shading = WaterShading::toon,
+                                WaterNormals normals = WaterNormals::smoothed,
                                 StrokePersistence* persistence = nullptr);
 
 // Every field of a PreparedSurface (and of the meshes and lines in it), in one list: whatever

@@ -59,13 +59,13 @@ for side in "${sides[@]}"; do
   mesh=$scratch/height_$side.ply
   make_mesh "$side" "$mesh"
   file_mb=$(($(stat -c %s "$mesh") / 1000000))
-  for run in "analyze" "analyze --csv" "povgen" "povgen, flow off"; do
+  for run in "analyze" "analyze --csv" "povgen" "povgen, geometry only"; do
     rm -rf "$scratch/out" "$scratch/out.csv"
     case $run in
       "analyze") cmd=("$toonwater" analyze "$mesh") ;;
       "analyze --csv") cmd=("$toonwater" analyze "$mesh" --csv "$scratch/out.csv") ;;
       "povgen") cmd=("$toonwater" povgen --water "$mesh" --out "$scratch/out") ;;
-      "povgen, flow off") cmd=("$toonwater" povgen --water "$mesh" --out "$scratch/out" --set flow.enabled=false) ;;
+      "povgen, geometry only") cmd=("$toonwater" povgen --water "$mesh" --out "$scratch/out" --set flow.enabled=false --set 'water.normals="mesh"') ;;
     esac
     kb=$(peak_kb "${cmd[@]}")
     printf '%-10s %-34s %10d %14d\n' "$vertices" "$run (file ${file_mb} MB)" $((kb / 1000)) $(((kb - base_kb) * 1000 / vertices))

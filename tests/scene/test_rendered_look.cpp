@@ -137,7 +137,8 @@ TEST(PovgenRender, ThreeCrispBandsWhereTheThresholdsPutThemForAPointLight) {
 // vertex to the next: its faces go from a dark corner straight to a bright one. Interpolated,
 // u would pass through the medium band and paint a sliver across each of them; they get two
 // bands instead (band_crossings.hpp), so the sphere is dark and bright, the edge between them
-// where it turns from the light, and not one pixel is medium.
+// where it turns from the light, and not one pixel is medium. The mesh's own normals: smoothed
+// ones (the default) would round a sphere this coarse off.
 TEST(PovgenRender, WhereDarkMeetsBrightNoMediumSliverLiesBetween) {
   ScratchDir dir;
   write_obj(dir / "water.obj", make_sphere(Vec3::Zero(), 1.0, 6, 12));
@@ -152,6 +153,7 @@ TEST(PovgenRender, WhereDarkMeetsBrightNoMediumSliverLiesBetween) {
                                             "--set",   "water.dark=" + color(kDark),
                                             "--set",   "water.t_bright=0.35",
                                             "--set",   "water.t_medium=0.3",
+                                            "--set",   "water.normals=\"mesh\"",
                                             "--set",   "light.direction=[1, 0, 1]",
                                             "--set",   "camera.location=[0, 0, 5]",
                                             "--set",   "camera.look_at=[0, 0, 0]",
@@ -241,7 +243,7 @@ TEST(PovgenRender, CalmNoisyWaterIsOneBandWithoutFlow) {
   ScratchDir dir;
   constexpr int n = 81;
   constexpr double cell = 2.0 / (n - 1);
-  auto jitter = [](double x, double z) {
+  auto jitter = [](double x, double z) {  // 0.15 cells
     return 0.15 * cell * std::sin(12.9898 * std::round(x / cell) + 78.233 * std::round(z / cell)) *
            std::cos(43758.5453 * std::round(x / cell) - 9.1 * std::round(z / cell));
   };
@@ -250,7 +252,8 @@ TEST(PovgenRender, CalmNoisyWaterIsOneBandWithoutFlow) {
               return jitter(x, z) + 0.2 * std::exp(-(x * x + z * z) / 0.04);
             }));
   const std::array<double, 3> ridge{1, 0, 0}, valley{0, 1, 0};
-  auto args = [&](const std::string& mesh) {
+  auto args = [&](const std::string& mesh, bool flow = true,
+                  const std::string& normals = "smoothed") {
     return std::vector<std::string>{"--water", (dir / mesh).string(),
                                     "--set",   "outline.enabled=false",
                                     "--set",   "water.bright=" + color(kBright),
@@ -261,7 +264,8 @@ TEST(PovgenRender, CalmNoisyWaterIsOneBandWithoutFlow) {
                                     "--set",   "render.width=96",
                                     "--set",   "render.height=72"} +
            opaque_flat_water() +
-           std::vector<std::string>{"--set", "flow.enabled=true",
+           std::vector<std::string>{"--set", flow ? "flow.enabled=true" : "flow.enabled=false",
+                                    "--set", "water.normals=\"" + normals + "\"",
                                     "--set", "flow.ridge_color=" + color(ridge),
                                     "--set", "flow.valley_color=" + color(valley)};
   };
@@ -281,13 +285,23 @@ TEST(PovgenRender, CalmNoisyWaterIsOneBandWithoutFlow) {
   EXPECT_GT(count(wave, kBright), 20) << "the wave's slope facing the light";
   EXPECT_GT(count(wave, kDark), 20) << "the slope facing away";
   EXPECT_GT(count(wave, ridge), 20) << "its crest";
+  // Flow regions turned off: the bands still come from the smoothed shading normals, kept above
+  // their noise floor, so calm water under jitter of a whole cell stays one band; from the
+  // mesh's own normals (water.normals = "mesh"), with no noise floor, the jitter shows.
+  write_obj(dir / "rough.obj",
+            make_height_grid(n, 1.0, [&](double x, double z) { return jitter(x, z) / 0.15; }));
+  const Image rough = render_scene(dir, "rough", args("rough.obj", false));
+  EXPECT_GT(count(rough, kMedium), 3000);
+  EXPECT_EQ(count(rough, kBright) + count(rough, kDark), 0) << "flow off: one band";
+  const Image facets = render_scene(dir, "facets", args("rough.obj", false, "mesh"));
+  EXPECT_GT(count(facets, kBright) + count(facets, kDark), 150) << "the mesh's own normals";
 }
 
-// Band limits inside the noise (explicit, so not raised above it) on raw normals (no flow stage)
-// of a surface jittered by up to a cell: the noise paints specks of every band over calm water.
-// Patches smaller than the shading's scale or 2 px on screen take the colour around them
-// (water.min_patch, scene/toon_islands.hpp): the specks go, while a wave's slopes, larger than
-// both, keep their bands.
+// Band limits inside the noise (explicit, so not raised above it) on the mesh's own normals
+// (water.normals = "mesh") of a surface jittered by up to a cell: the noise paints specks of every
+// band over calm water. Patches smaller than the shading's scale or 2 px on screen take the colour
+// around them (water.min_patch, scene/toon_islands.hpp): the specks go, while a wave's slopes,
+// larger than both, keep their bands.
 TEST(PovgenRender, SpecksOfTheBandsTakeTheColourAroundThem) {
   ScratchDir dir;
   constexpr int n = 81;
@@ -306,6 +320,7 @@ TEST(PovgenRender, SpecksOfTheBandsTakeTheColourAroundThem) {
                                     "--set",   "water.dark=" + color(kDark),
                                     "--set",   "water.dt_bright=0.1",
                                     "--set",   "water.dt_medium=-0.1",
+                                    "--set",   "water.normals=\"mesh\"",
                                     "--set",   "camera.location=[0, 2.5, 2.5]",
                                     "--set",   "camera.look_at=[0, 0, 0]",
                                     "--set",   "render.width=160",
