@@ -4,8 +4,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include <cctype>
-
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,18 +22,17 @@ extern const CLI::Validator PositiveNumber;
 // variable in `--csv "$OUT"`), where it would otherwise read as the option left out.
 extern const CLI::Validator NonEmptyPath;
 
-// One of the given words (any case), turned into the enum's value for CLI11 to store. Its
-// description and errors list the words, never the enum's raw values.
+// One of the given words, spelt exactly as the scene's keys take them (scene/config_schema.hpp),
+// turned into the enum's value for CLI11 to store. Its description and errors list the words,
+// never the enum's raw values.
 template <class Enum>
 CLI::Validator one_of(std::vector<std::pair<std::string, Enum>> choices) {
   std::string names;
   for (const auto& choice : choices) names += (names.empty() ? "" : ", ") + choice.first;
   return CLI::Validator(
       [choices, names](std::string& value) -> std::string {
-        std::string lower = value;
-        for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         for (const auto& [name, v] : choices)
-          if (name == lower) {
+          if (name == value) {
             value = std::to_string(static_cast<int>(v));
             return {};
           }

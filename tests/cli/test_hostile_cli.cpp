@@ -547,6 +547,10 @@ TEST_F(HostileCli, HelpIsPrintableAndUnknownWordsAreNamed) {
   EXPECT_TRUE(printable_lines(r.err)) << r.err;
   r = toonwater({"analyze", "w.obj", "--estimator", "cubic"});
   EXPECT_TRUE(has(r.err, "'cubic' is not one of one-ring, jet")) << r.err;
+  // Words are spelt as scene.toml takes them: exactly.
+  r = toonwater({"analyze", "w.obj", "--estimator", "JET"});
+  EXPECT_EQ(r.exit_code, exit_code::bad_input);
+  EXPECT_TRUE(has(r.err, "'JET' is not one of one-ring, jet")) << r.err;
 }
 
 // ---- 8. include names never collide ----
