@@ -541,10 +541,10 @@ void write_empty_frame(SceneRun& run, long frame, long written_frame, const std:
 }
 
 // A water frame's include: its text (the render mesh with its textures, outline shell and flow
-// strokes, then each object's water) and its outline shell's faces, all and written.
+// strokes, then each object's water) and its outline shell.
 struct WaterInclude {
   std::string text;
-  std::size_t shell_faces = 0, shell_faces_kept = 0;
+  WaterShell shell;
 };
 
 WaterInclude water_include(SceneRun& run, const PreparedSurface& s,
@@ -559,14 +559,13 @@ WaterInclude water_include(SceneRun& run, const PreparedSurface& s,
   const std::optional<FaceTextures> textures =
       water_face_textures(run, s.mesh, uv, body.body ? &*body.body : nullptr);
   // Flow lines are strokes on the water, reaching up towards its shell.
-  const WaterShell shell = water_shell(run, s.mesh, offsets, s.flow_lines.empty(),
-                                       body.shell_limit ? &*body.shell_limit : nullptr);
   WaterInclude include;
+  include.shell = water_shell(run, s.mesh, offsets, s.flow_lines.empty(),
+                              body.shell_limit ? &*body.shell_limit : nullptr);
+  const std::vector<bool>& kept = include.shell.kept;
   include.text = mesh_include(s, "Water", uv, offsets, textures ? &*textures : nullptr,
-                              shell.kept.empty() ? nullptr : &shell.kept) +
+                              kept.empty() ? nullptr : &kept) +
                  object_waters(run, &s.mesh);
-  include.shell_faces = shell.faces;
-  include.shell_faces_kept = shell.faces_kept;
   return include;
 }
 
@@ -587,11 +586,10 @@ void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long writt
   result.simplify_seconds = seconds_of([&] { simplify_water(s, uv, run.layout, run.plan.flow); });
   result.faces_kept = s.mesh.triangles.size();
 
-  const auto start = Clock::now();
-  const WaterInclude include = water_include(run, s, uv);
-  result.shell_faces = include.shell_faces;
-  result.shell_faces_kept = include.shell_faces_kept;
-  result.write_seconds = seconds_since(start);
+  WaterInclude include;
+  result.write_seconds = seconds_of([&] { include = water_include(run, s, uv); });
+  result.shell_faces = include.shell.faces;
+  result.shell_faces_kept = include.shell.faces_kept;
   result.write_seconds += run.write(water_include_name(written_frame), include.text);
 }
 
