@@ -20,6 +20,7 @@
 #include <functional>
 #include <mutex>
 #include <sstream>
+#include <string_view>
 #include <thread>
 
 namespace toonwater {
@@ -234,6 +235,13 @@ struct RangeRun {
   std::string threads;  // +WTn
 };
 
+// POV-Ray's front end gives up when its worker thread has not started within three seconds, as
+// on a loaded machine (vfeSession::Initialize's vfeInitializeTimedOut): nothing was rendered,
+// and the same command run again works. Such a start is tried again, after a pause that grows,
+// this many times before its frame counts as failed.
+constexpr int kPovrayStartRetries = 3;
+constexpr std::string_view kPovrayStartTimedOut = "Timed out waiting for worker thread startup";
+
 // Called once per frame: when its image is in place (failure empty) or it failed.
 using FrameDoneFn = std::function<void(long frame, const std::string& failure)>;
 
@@ -245,11 +253,13 @@ using FrameDoneFn = std::function<void(long frame, const std::string& failure)>;
 // than waited for through its shut-down. When POV-Ray fails, the frame after the last complete
 // image failed (after a signal, or when every image is there but the last is not a whole PNG,
 // the last image is not trusted and that frame failed); its log is kept
-// as render_N.log and a new process takes the frames after it. Stops when the request's stop
-// flag is set: the running process is terminated and its unpublished images are removed.
+// as render_N.log and a new process takes the frames after it. A process whose threads did not
+// start is run again (kPovrayStartRetries). Stops when the request's stop flag is set: the
+// running process is terminated and its unpublished images are removed.
 void render_range(const RangeRun& run, const std::vector<long>& frames, const FrameDoneFn& done) {
   const RenderRequest& request = *run.request;
   std::size_t next = 0;
+  int start_retries = 0;
   while (next < frames.size() && !stop_requested(request.stop)) {
     const long first = frames[next], last = frames.back();
     const std::string work_name =
@@ -308,6 +318,14 @@ void render_range(const RangeRun& run, const std::vector<long>& frames, const Fr
     if (stop_requested(request.stop)) {
       fs::remove_all(work, ec);  // interrupted: nothing unpublished of this run stays
       return;
+    }
+    if (status > 0 && status < 128 && published == next && !has_image(next) &&
+        start_retries < kPovrayStartRetries &&
+        read_all(log).find(kPovrayStartTimedOut) != std::string::npos) {
+      ++start_retries;
+      fs::remove_all(work, ec);
+      std::this_thread::sleep_for(std::chrono::milliseconds(250 * start_retries));
+      continue;
     }
     publish_finished();
     std::size_t end = published;  // the first frame without an image

@@ -85,6 +85,57 @@ void write_logging_povray(const fs::path& bin, const fs::path& log) {
   fs::permissions(bin / "povray", fs::perms::owner_all);
 }
 
+// POV-Ray's front end gives up when its threads are slow to start on a loaded machine ("Timed
+// out waiting for worker thread startup", nothing rendered): the same process is started again,
+// a few times, before its frame counts as failed. Here POV-Ray's start times out twice for the
+// run from frame 1, then works; then always for it: frame 1 fails after four tries, with
+// POV-Ray's message, and a new process renders the rest.
+TEST_F(FarmScene, APovrayWhoseThreadsDidNotStartIsStartedAgain) {
+  const fs::path plain = copy_scene("plain");
+  ASSERT_EQ(run_povray(plain).exit_code, 0);
+  // POV-Ray's start from frame 1 times out as many times as bin/timeouts says; bin/tries
+  // counts those starts.
+  const fs::path bin = work_ / "bin", tries = bin / "tries";
+  fs::create_directories(bin);
+  write_text(bin / "povray",
+             "#!/bin/sh\n"
+             "here=$(dirname \"$0\")\n"
+             "case \" $* \" in *\" +SF1 \"*)\n"
+             "  n=$(($(cat \"$here/tries\" 2>/dev/null || echo 0) + 1))\n"
+             "  echo $n > \"$here/tries\"\n"
+             "  if [ $n -le $(cat \"$here/timeouts\") ]; then\n"
+             "    echo 'povray: Timed out waiting for worker thread startup' >&2; exit 1\n"
+             "  fi;;\n"
+             "esac\n"
+             "exec /usr/bin/povray \"$@\"\n");
+  fs::permissions(bin / "povray", fs::perms::owner_all);
+  auto time_out_starts = [&](int timeouts) {
+    write_text(bin / "timeouts", std::to_string(timeouts) + "\n");
+    fs::remove(tries);
+  };
+  prepend_to_path(bin);
+
+  time_out_starts(2);
+  const fs::path scene = copy_scene("slow_start");
+  CommandResult r = run_toonwater({"render", scene.string(), "--jobs", "1"});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read_text(tries), "3\n");
+  expect_frames_like(scene, plain);
+
+  time_out_starts(1000);
+  const fs::path stuck = copy_scene("never_starts");
+  r = run_toonwater({"render", stuck.string(), "--jobs", "1"});
+  EXPECT_EQ(r.exit_code, 5) << r.output;
+  EXPECT_NE(r.output.find("frame 1 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Timed out waiting for worker thread startup"), std::string::npos)
+      << r.output;
+  EXPECT_EQ(read_text(tries), "4\n") << "one start and three more";
+  EXPECT_FALSE(fs::exists(stuck / frame_name(1)));
+  for (int f = 2; f <= kFarmFrames; ++f)
+    EXPECT_EQ(read_image(stuck / frame_name(f)).pixels, read_image(plain / frame_name(f)).pixels)
+        << f;
+}
+
 // The local render: one POV-Ray process per range of frames, the images those of plain
 // `povray scene.ini`; a failed frame in a range is reported and a new process takes the rest.
 TEST_F(FarmScene, LocalRenderRunsOneProcessPerRangeWithPovraysOwnImages) {
