@@ -15,7 +15,7 @@ std::vector<FaceBands> face_bands(std::span<const Triangle> triangles,
     bool region = false;
     for (const int corner : triangles[f]) {
       const int c = toon_class(limits, uv[static_cast<std::size_t>(corner)]);
-      if (c < 3)
+      if (c < limits.valley())
         seen[static_cast<std::size_t>(c)] = true;
       else
         region = true;
