@@ -1,4 +1,5 @@
-// toonwater povgen --water PATTERN [--object PATTERN]... [--config scene.toml]
+// toonwater povgen --water PATTERN [--object PATTERN]... [--particles PATTERN]...
+//                  [--config scene.toml]
 //                  [--set key=value]... [--up x|y|z] --out DIR
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
@@ -28,6 +29,7 @@ namespace {
 struct PovgenArgs {
   std::string water;
   std::vector<std::string> objects;
+  std::vector<std::string> particles;
   std::string config;
   std::vector<std::string> overrides;
   std::string out;
@@ -51,6 +53,7 @@ void run_povgen(const PovgenArgs& args) {
   request.water_transform = transform_from(args.water_transform);
   check_level_set_options(args.water_level_set, args.water);
   request.water_level_set = args.water_level_set;
+  request.particle_patterns = args.particles;
   request.base_dir = std::filesystem::current_path();
   request.up = args.up;
   request.out_dir = args.out;
@@ -99,6 +102,9 @@ void run_povgen(const PovgenArgs& args) {
                r.empty_frames.empty() ? "" : "; frames without water listed above", r.faces_kept,
                r.faces, r.read_seconds, r.analysis_seconds, r.simplify_seconds, r.write_seconds,
                printable_shell_word(args.out).c_str(), printable_shell_word(args.out).c_str());
+  if (!args.particles.empty())
+    std::fprintf(stderr, "  spray: %zu particles -> %zu droplets over the frames (particles.*)\n",
+                 r.particles, r.droplets);
   if (!args.maps.empty()) {
     std::fprintf(
         stderr, "  maps: %zu frame(s) -> %s, shared colour ranges K \u00b1%.6g, H \u00b1%.6g\n",
@@ -118,6 +124,10 @@ void add_povgen_command(CLI::App& app) {
       ->check(NonEmptyPath);
   cmd->add_option("--object", args->objects,
                   "Object mesh (static file or per-frame sequence); repeatable")
+      ->check(NonEmptyPath);
+  cmd->add_option("--particles", args->particles,
+                  "Secondary particle cache (.vdb point grid, .wwp; file or per-frame sequence), "
+                  "placed like the water (--scale, --translate); repeatable")
       ->check(NonEmptyPath);
   cmd->add_option("--config", args->config, "Scene configuration (TOML)")->check(CLI::ExistingFile);
   cmd->add_option("--set", args->overrides, "Override a configuration key: section.key=value");

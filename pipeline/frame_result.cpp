@@ -34,6 +34,8 @@ PovgenReport summarise(std::vector<FrameResult> frames, const RunResult& run) {
     r.shell_faces += f.shell_faces;
     r.shell_faces_kept += f.shell_faces_kept;
     r.map_frames += f.maps ? 1 : 0;
+    r.particles += f.particles;
+    r.droplets += f.droplets;
     r.read_seconds += f.read_seconds;
     r.analysis_seconds += f.analysis_seconds;
     r.simplify_seconds += f.simplify_seconds;

@@ -6,11 +6,13 @@
 #include "analyzer/maps/map_writer.hpp"
 #include "analyzer/maps/top_down_map.hpp"
 #include "analyzer/mesh_reader.hpp"
+#include "analyzer/particles.hpp"
 #include "analyzer/stopwatch.hpp"
 #include "analyzer/topology.hpp"
 #include "analyzer/weld.hpp"
 #include "scene/axes.hpp"
 #include "scene/band_crossings.hpp"
+#include "scene/droplet_writer.hpp"
 #include "scene/frame_include.hpp"
 #include "pipeline/frame_cache.hpp"
 #include "pipeline/frame_record.hpp"
@@ -20,6 +22,7 @@
 #include "pipeline/sequence.hpp"
 #include "scene/shell_culling.hpp"
 #include "scene/simplify.hpp"
+#include "scene/spray_droplets.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -158,6 +161,22 @@ std::vector<ObjectSource> find_objects(const SceneConfig& config, const Sequence
   return objects;
 }
 
+// The particle caches: each a single file (the same every frame) or a sequence with a file for
+// every water frame.
+std::vector<Sequence> find_particles(const PovgenRequest& request, const Sequence& water) {
+  std::vector<Sequence> caches;
+  for (const std::string& pattern : request.particle_patterns) {
+    Sequence cache = find_sequence(pattern, request.base_dir);
+    if (!cache.single_file)
+      for (const auto& [frame, path] : water.frames)
+        if (!cache.frames.count(frame))
+          throw InputError(pattern + ": the particles have no file for frame " +
+                           std::to_string(frame));
+    caches.push_back(std::move(cache));
+  }
+  return caches;
+}
+
 // What the frames are read for. Each water frame is read and analysed once. What the whole
 // sequence shares (the box the default camera frames, the curvature view's colour range, the
 // curvature maps' view and ranges) is known only after the last frame: then one pass reads and
@@ -249,6 +268,8 @@ struct SceneRun {
   std::vector<Box> object_box;
   std::vector<KeepOutBox> keep_out;  // each object with its shell (shell_culling.hpp)
   StrokePersistence strokes;         // the flow strokes carried from frame to frame
+  std::vector<Sequence> particles;   // the particle caches (PovgenRequest::particle_patterns)
+  DropletTracks droplets;            // the spray's droplets carried from frame to frame
   std::vector<bool> submerged;
   std::vector<double> contact_depth;  // each object's, in scene units (Obj_NAME_contact)
   double view_range = 0;
@@ -530,6 +551,53 @@ WaterShell water_shell(const SceneRun& run, const SceneMesh& mesh, std::span<con
   return shell;
 }
 
+// The spray particles of a frame from every particle cache, in POV-Ray's frame.
+std::vector<Vec3> read_spray(const SceneRun& run, long frame) {
+  std::vector<Vec3> spray;
+  for (const Sequence& cache : run.particles) {
+    const fs::path& path =
+        cache.single_file ? cache.frames.begin()->second : cache.frames.at(frame);
+    const ParticleSet set = read_particles(path);
+    for (std::size_t i = 0; i < set.positions.size(); ++i) {
+      if (set.kinds[i] != ParticleKind::spray) continue;
+      Vec3 p = set.positions[i];
+      if (const std::optional<AffineTransform>& t = run.request.water_transform)
+        p = t->linear * p + t->translation;
+      if (!p.allFinite())
+        throw InputError(path.string() + ": particle " + std::to_string(i) +
+                         " lies beyond the range of numbers once placed (--scale, --translate)");
+      spray.push_back(to_povray(p, run.request.up));
+    }
+  }
+  return spray;
+}
+
+// A frame's spray include: its spray gathered into droplets in the air over `water` (none: a
+// frame without water), carried on from the last frame.
+void write_spray(SceneRun& run, const SceneMesh* water, long frame, long written_frame,
+                 FrameResult& result) {
+  std::vector<Vec3> spray;
+  result.read_seconds += seconds_of([&] { spray = read_spray(run, frame); });
+  const SceneConfig& c = run.config;
+  const ScreenProjection screen =
+      screen_projection(run.layout.camera, c.render.width, c.render.height);
+  DropletOptions options;
+  options.size_pixels = c.particles.droplet_size;
+  options.max_droplets = static_cast<std::size_t>(c.particles.max_droplets);
+  std::vector<Droplet> droplets =
+      run.droplets.update(spray_droplets(spray, screen, options, water), screen, options);
+  result.particles = spray.size();
+  result.droplets = droplets.size();
+  // Droplets are outlined as wide as the water in pixels; an outline given in scene units has
+  // no size on a droplet made on screen, so it takes the default width in pixels.
+  const double line_pixels =
+      !c.outline.enabled ? 0.0
+      : c.outline.units == WidthUnits::pixels ? c.outline.width.value_or(2.0)
+                                              : 2.0;
+  result.write_seconds += run.write(spray_include_name(written_frame),
+                                    spray_include(droplets, screen, run.light, line_pixels));
+}
+
 // A frame with no liquid: the scene still needs its include, with nothing in it.
 void write_empty_frame(SceneRun& run, long frame, long written_frame, const std::string& why,
                        FrameResult& result) {
@@ -538,6 +606,7 @@ void write_empty_frame(SceneRun& run, long frame, long written_frame, const std:
   result.objects += write_animated_objects(run, frame, written_frame);
   result.write_seconds += run.write(water_include_name(written_frame),
                                     empty_water_include() + object_waters(run, nullptr));
+  if (run.layout.spray) write_spray(run, nullptr, frame, written_frame, result);
 }
 
 // A water frame's include: its text (the render mesh with its textures, outline shell and flow
@@ -591,6 +660,7 @@ void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long writt
   result.shell_faces = include.shell.faces;
   result.shell_faces_kept = include.shell.faces_kept;
   result.write_seconds += run.write(water_include_name(written_frame), include.text);
+  if (run.layout.spray) write_spray(run, &s.mesh, frame, written_frame, result);
 }
 
 // A water frame as the frame loop takes it: why it has no water ("" when it has), its maps'
@@ -688,12 +758,15 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   const Sequence water = select_frames(config, request);
   SceneRun run(config, request, water);
   run.objects = find_objects(config, water);
+  run.particles = find_particles(request, water);
   run.plan = plan_water(config, request, water.frames.size());
   run.layout.config = &config;
   run.layout.up = request.up;
   run.layout.animation = water.frames.size() > 1;
   run.layout.first_frame = run.layout.animation ? water.frames.begin()->first : 0;
   run.layout.last_frame = run.layout.animation ? water.frames.rbegin()->first : 0;
+  run.layout.spray =
+      !run.particles.empty() && config.particles.spray && config.particles.max_droplets > 0;
   run.light = light_geometry(config.light, request.up);
   RunResult totals;
   totals.first_frame = run.layout.first_frame;

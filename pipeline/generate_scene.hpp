@@ -5,6 +5,7 @@
 //   DIR/toon.inc             the parts of the shading template it uses (templates/toon.inc)
 //   DIR/water_NNNN.inc       per frame: Water_mesh (+ Water_shell) as mesh2
 //   DIR/obj_NAME[.NNNN].inc  per object (per frame if animated): Obj_NAME_mesh (+ _shell)
+//   DIR/spray_NNNN.inc       per frame, with particles: Spray_droplets (droplet_writer.hpp)
 //
 // All references inside are relative, so DIR can be moved. The directory is replaced whole, or
 // not at all (scene_directory.hpp).
@@ -56,6 +57,9 @@ struct PovgenRequest {
   std::string water_pattern;
   std::optional<AffineTransform> water_transform;  // file to world coordinates of the water
   LevelSetOptions water_level_set;                 // .vdb water: the grid and the adaptivity
+  // Secondary particle caches (analyzer/particles.hpp), each a file or a sequence with a file
+  // for every water frame, placed by water_transform like the water.
+  std::vector<std::string> particle_patterns;
   std::filesystem::path base_dir;  // patterns on the command line are relative to it
   Axis up = Axis::y;
   std::filesystem::path out_dir;

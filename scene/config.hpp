@@ -151,6 +151,14 @@ struct ObjectConfig {
   ReflectionTarget reflection = ReflectionTarget::concrete;
 };
 
+// Secondary particles (povgen --particles): the spray drawn as a few outlined droplets
+// (scene/spray_droplets.hpp).
+struct ParticlesConfig {
+  bool spray = true;
+  double droplet_size = 8.0;  // pixels across, at the frame's median droplet
+  int max_droplets = 40;      // a frame's most salient droplets
+};
+
 struct RenderConfig {
   int width = 640;
   int height = 480;
@@ -167,6 +175,7 @@ struct SceneConfig {
   OutlineConfig outline;
   FlowConfig flow;
   std::vector<ObjectConfig> objects;
+  ParticlesConfig particles;
   RenderConfig render;
 };
 

@@ -420,6 +420,19 @@ const Section<ObjectConfig>& object_section() {
   return section;
 }
 
+const Section<ParticlesConfig>& particles_section() {
+  using C = ParticlesConfig;
+  static const Section<C> section{
+      "particles",
+      {key("spray", &C::spray, Boolean{}, "draw the spray particles as outlined droplets"),
+       key("droplet_size", &C::droplet_size, Number{1.0, 200.0},
+           "a droplet's size across in pixels (the frame's median; denser clusters up to twice)"),
+       key("max_droplets", &C::max_droplets, Integer{0, 10000},
+           "most droplets a frame shows, the ones with most particles")},
+      nullptr};
+  return section;
+}
+
 const Section<RenderConfig>& render_section() {
   using C = RenderConfig;
   const Integer size{1, 16384};
@@ -449,6 +462,7 @@ void for_each_section(Fn&& fn) {
   fn(outline_section(), &SceneConfig::outline);
   fn(flow_section(), &SceneConfig::flow);
   fn(object_section(), nullptr);
+  fn(particles_section(), &SceneConfig::particles);
   fn(render_section(), &SceneConfig::render);
 }
 

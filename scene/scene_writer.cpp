@@ -259,6 +259,7 @@ CameraReach camera_reach(const SceneLayout& l, const Vec3& min, const Vec3& max)
 }
 
 std::string water_include_name(long frame) { return "water_" + padded(frame, 4) + ".inc"; }
+std::string spray_include_name(long frame) { return "spray_" + padded(frame, 4) + ".inc"; }
 
 std::string object_include_name(const std::string& name, bool animated, long frame) {
   std::string s = std::string("obj_").append(name);
@@ -362,6 +363,16 @@ std::string scene_pov(const SceneLayout& l) {
     }
     s += "\n";
   }
+  if (l.spray) {
+    // Read by Toon_droplet while the spray include is parsed.
+    s += "// Spray droplets: the water's bands at the objects' thresholds, outlined\n";
+    s += "#declare Toon_droplet_colors = array[3] { " + rgb(w.bright) + ", " + rgb(w.medium) +
+         ", " + rgb(w.dark) + " }\n";
+    s += "#declare Toon_droplet_thresholds = <" + num(w.t_bright) + ", " + num(w.t_medium) +
+         ">;\n";
+    s += "#declare Toon_droplet_finish = " + finish(c, false) + "\n";
+    s += "#declare Toon_droplet_line_color = " + rgb(c.outline.color) + ";\n\n";
+  }
   s += "// Meshes of the current frame\n";
   s += "#include concat(\"water_\", str(frame_number, -4, 0), \".inc\")\n";
   for (const ObjectPlacement& o : l.objects) {
@@ -371,6 +382,7 @@ std::string scene_pov(const SceneLayout& l) {
     else
       s += "#include " + quoted(object_include_name(o.config->name, false, 0)) + "\n";
   }
+  if (l.spray) s += "#include concat(\"spray_\", str(frame_number, -4, 0), \".inc\")\n";
   s += "\n";
   camera(s, l);
 
@@ -427,6 +439,8 @@ std::string scene_pov(const SceneLayout& l) {
   if (c.outline.enabled)
     s += "object { Toon_outline_shell(Water_shell, " + rgb(c.outline.color) + ")" +
          (reflects ? " no_reflection }\n" : " }\n");
+
+  if (l.spray) s += "object { Spray_droplets }\n";
 
   // Under the water: colours that show through its surface as a cartoon draws them.
   const WaterSurfaceLook look = water_surface_look(c);
@@ -487,7 +501,8 @@ std::string scene_toon_inc(const SceneLayout& l) {
   if (draws_flow_regions(c)) parts.push_back("flow");
   if (draws_flow_lines(c)) parts.push_back("strokes");
   if (!l.objects.empty()) parts.push_back("objects");
-  if (c.outline.enabled) parts.push_back("outline");
+  if (c.outline.enabled || l.spray) parts.push_back("outline");  // droplets' shells too
+  if (l.spray) parts.push_back("droplets");
   for (const ObjectPlacement& o : l.objects)
     if (reflects && !(c.outline.enabled && o.config->outline) &&
         o.config->reflection == ReflectionTarget::abstract) {

@@ -1,5 +1,7 @@
 #include "scene/stroke_writer.hpp"
 
+#include "scene/pov_numbers.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -7,23 +9,6 @@
 
 namespace toonwater {
 namespace {
-
-void put_number(std::string& out, double v) {
-  if (!std::isfinite(v)) throw std::logic_error("stroke writer: non-finite number");
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 7);
-  out.append(buf, r.ptr);
-}
-
-void put_vector(std::string& out, const Vec3& p) {
-  out += '<';
-  put_number(out, p.x());
-  out += ',';
-  put_number(out, p.y());
-  out += ',';
-  put_number(out, p.z());
-  out += '>';
-}
 
 // The points worth writing: consecutive repeats (a contour through a vertex) dropped.
 FlowLine cleaned(const FlowLine& line) {
@@ -45,12 +30,12 @@ void append_stroke(std::string& out, const FlowLine& line) {
   out += "  Toon_stroke(array[" + std::to_string(n) + "] {";
   for (std::size_t i = 0; i < n; ++i) {
     if (i) out += ',';
-    put_vector(out, line.points[i]);
+    append_pov_vector(out, line.points[i]);
   }
   out += "},\n    array[" + std::to_string(n) + "] {";
   for (std::size_t i = 0; i < n; ++i) {
     if (i) out += ',';
-    put_number(out, std::clamp(line.taper[i], 0.0, 1.0));
+    append_pov_number(out, std::clamp(line.taper[i], 0.0, 1.0));
   }
   out += line.closed ? "}, 1)\n" : "}, 0)\n";
 }

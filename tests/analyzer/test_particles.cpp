@@ -26,28 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A whitewater file as FLIP Fluids writes it: the id table (through-counts minus one), then
-// the positions sorted by id.
-std::string wwp(const std::vector<std::pair<int, Vec3>>& particles) {
-  std::vector<std::uint32_t> through(256, 0);
-  for (const auto& [id, p] : particles)
-    for (int b = id; b < 256; ++b) ++through[static_cast<std::size_t>(b)];
-  std::string bytes;
-  for (const std::uint32_t t : through) {
-    const std::uint32_t stored = t - 1;  // 0xFFFFFFFF while none
-    bytes.append(reinterpret_cast<const char*>(&stored), 4);
-  }
-  std::vector<std::pair<int, Vec3>> sorted = particles;
-  std::stable_sort(sorted.begin(), sorted.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (const auto& [id, p] : sorted)
-    for (int axis = 0; axis < 3; ++axis) {
-      const float f = static_cast<float>(p[axis]);
-      bytes.append(reinterpret_cast<const char*>(&f), 4);
-    }
-  return bytes;
-}
-
 std::string error_of(const fs::path& path) {
   try {
     read_particles(path);
@@ -65,7 +43,7 @@ TEST(Particles, WhitewaterFilesReadBackWithTheirKindFromTheName) {
   ScratchDir dir;
   const std::vector<std::pair<int, Vec3>> foam{
       {200, {0.5, 0.25, -1}}, {3, {1, 2, 3}}, {3, {-0.125, 0, 4}}, {0, {7, 8, 9}}};
-  write_text(dir / "foam000012.wwp", wwp(foam));
+  write_text(dir / "foam000012.wwp", wwp_bytes(foam));
   const ParticleSet set = read_particles(dir / "foam000012.wwp");
   ASSERT_EQ(set.positions.size(), 4u);
   EXPECT_EQ(set.positions[0], Vec3(7, 8, 9));  // sorted by id, as the file holds them
@@ -79,7 +57,7 @@ TEST(Particles, WhitewaterFilesReadBackWithTheirKindFromTheName) {
        std::vector<std::pair<std::string, ParticleKind>>{{"bubble000001.wwp", ParticleKind::bubble},
                                                          {"SPRAY000002.WWP", ParticleKind::spray},
                                                          {"dust000003.wwp", ParticleKind::dust}}) {
-    write_text(dir / name, wwp({{1, {0, 0, 0}}}));
+    write_text(dir / name, wwp_bytes({{1, {0, 0, 0}}}));
     EXPECT_EQ(count_of(read_particles(dir / name), kind), 1u) << name;
   }
   write_text(dir / "spray000004.wwp", "");  // the engine writes nothing for no particles
@@ -88,7 +66,7 @@ TEST(Particles, WhitewaterFilesReadBackWithTheirKindFromTheName) {
 
 TEST(Particles, DamagedWhitewaterFilesAreOneLineErrors) {
   ScratchDir dir;
-  const std::string whole = wwp({{0, {1, 2, 3}}, {9, {4, 5, 6}}});
+  const std::string whole = wwp_bytes({{0, {1, 2, 3}}, {9, {4, 5, 6}}});
   for (std::size_t size = 1; size < whole.size(); ++size) {
     write_text(dir / "foam000001.wwp", whole.substr(0, size));
     error_of(dir / "foam000001.wwp");
@@ -102,7 +80,7 @@ TEST(Particles, DamagedWhitewaterFilesAreOneLineErrors) {
   write_text(dir / "foam000003.wwp", decreasing);
   EXPECT_NE(error_of(dir / "foam000003.wwp").find("not a whitewater file"), std::string::npos);
 
-  write_text(dir / "foam000004.wwp", wwp({{0, {1, std::numeric_limits<double>::quiet_NaN(), 3}}}));
+  write_text(dir / "foam000004.wwp", wwp_bytes({{0, {1, std::numeric_limits<double>::quiet_NaN(), 3}}}));
   EXPECT_NE(error_of(dir / "foam000004.wwp").find("NaN or infinite (particle 0)"),
             std::string::npos);
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -75,6 +76,26 @@ std::string temporary_name_of_a_gone_process(const std::string& name) {
   ::waitpid(child, &status, 0);
   if (made.empty()) throw std::runtime_error("the child made no name");
   return made;
+}
+
+std::string wwp_bytes(const std::vector<std::pair<int, Vec3>>& particles) {
+  std::vector<std::uint32_t> through(256, 0);
+  for (const auto& [id, p] : particles)
+    for (int b = id; b < 256; ++b) ++through[static_cast<std::size_t>(b)];
+  std::string bytes;
+  for (const std::uint32_t t : through) {
+    const std::uint32_t stored = t - 1;  // 0xFFFFFFFF while none
+    bytes.append(reinterpret_cast<const char*>(&stored), 4);
+  }
+  std::vector<std::pair<int, Vec3>> sorted = particles;
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [id, p] : sorted)
+    for (int axis = 0; axis < 3; ++axis) {
+      const float f = static_cast<float>(p[axis]);
+      bytes.append(reinterpret_cast<const char*>(&f), 4);
+    }
+  return bytes;
 }
 
 }  // namespace toonwater::test

@@ -2,8 +2,11 @@
 // program: run_toonwater.hpp.
 #pragma once
 
+#include "analyzer/mesh.hpp"
+
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace toonwater::test {
@@ -27,6 +30,10 @@ std::string read_text(const std::filesystem::path& path);
 // The names of the entries of `directory` (hidden ones included), sorted.
 std::vector<std::string> entries(const std::filesystem::path& directory);
 void write_text(const std::filesystem::path& path, const std::string& text);
+
+// A whitewater file as FLIP Fluids writes it (analyzer/particles.hpp): the id table
+// (through-counts minus one), then the positions sorted by id; `particles` are {id, position}.
+std::string wwp_bytes(const std::vector<std::pair<int, Vec3>>& particles);
 
 // ../shared beside the project root, or an empty path when it is absent.
 std::filesystem::path shared_dir();

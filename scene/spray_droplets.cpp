@@ -1,0 +1,210 @@
+// Spray droplets on screen and in time; stated in spray_droplets.hpp.
+#include "scene/spray_droplets.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <tuple>
+
+namespace toonwater {
+namespace {
+
+// A cell of the clustering grid: its particles' count and the sum of their positions.
+struct Cell {
+  std::size_t count = 0;
+  Vec3 sum = Vec3::Zero();
+  bool taken = false;
+};
+
+// The growth of a droplet of `age` frames (0: its first), as a share of its size.
+double growth(int age) {
+  return std::min(1.0, 0.5 + 0.5 * age / static_cast<double>(kDropletGrowth - 1));
+}
+
+// How far (in spacings) a droplet seen once may have moved by the next frame.
+constexpr double kFirstReach = 3.0;
+
+// A droplet drawn shrunk for the frame after it was last found.
+constexpr double kFadingSize = 0.5;
+// A teardrop's tail is at most this many radii long.
+constexpr double kMaxTailRadii = 3.0;
+// A droplet grows with the square root of its count up to this many times its size.
+constexpr double kMaxDropletGrowth = 2.0;
+
+// Whether p lies under the water: a ray from p straight up crosses its surface an odd number of
+// times. That is inside for a closed volume and below the surface for an open one (a height
+// field, a tank without its walls) alike. A crossing through an edge or a vertex shared by two
+// faces would count twice; a nudge off the lattice of the simulation's cells keeps it
+// improbable.
+bool under_water(const SceneMesh& water, const Vec3& p) {
+  const double nudge = 1e-7 * std::max(water.diagonal(), 1e-12);
+  const double x = p.x() + nudge, z = p.z() + 0.61803 * nudge;
+  bool inside = false;
+  for (const Triangle& t : water.triangles) {
+    const Vec3 &a = water.positions[t[0]], &b = water.positions[t[1]], &c = water.positions[t[2]];
+    if (std::max({a.y(), b.y(), c.y()}) < p.y()) continue;
+    if (std::min({a.x(), b.x(), c.x()}) > x || std::max({a.x(), b.x(), c.x()}) < x ||
+        std::min({a.z(), b.z(), c.z()}) > z || std::max({a.z(), b.z(), c.z()}) < z)
+      continue;
+    // Barycentric coordinates of (x, z) in the face's projection on the xz plane.
+    const double d = (b.x() - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (b.z() - a.z());
+    if (d == 0.0) continue;  // seen edge-on from below
+    const double u = ((x - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (z - a.z())) / d;
+    const double v = ((b.x() - a.x()) * (z - a.z()) - (x - a.x()) * (b.z() - a.z())) / d;
+    if (u < 0.0 || v < 0.0 || u + v > 1.0) continue;
+    const double height = a.y() + u * (b.y() - a.y()) + v * (c.y() - a.y());
+    if (height > p.y()) inside = !inside;
+  }
+  return inside;
+}
+
+}  // namespace
+
+std::optional<Eigen::Vector2d> ScreenProjection::pixel(const Vec3& p) const {
+  const Vec3 d = p - location;
+  const double depth = d.dot(forward);
+  if (!(depth > 0.0)) return std::nullopt;
+  return Eigen::Vector2d(0.5 * width + focal_pixels * d.dot(right) / depth,
+                         0.5 * height - focal_pixels * d.dot(up) / depth);
+}
+
+double ScreenProjection::pixel_size(const Vec3& p) const {
+  return (p - location).norm() / focal_pixels;
+}
+
+ScreenProjection screen_projection(const CameraPlacement& camera, int width, int height) {
+  ScreenProjection s;
+  s.location = camera.location;
+  s.forward = (camera.look_at - camera.location).normalized();
+  // POV-Ray's look_at: right is sky × direction with sky = +y (left-handed), up completes it.
+  s.right = Vec3::UnitY().cross(s.forward).normalized();
+  s.up = s.forward.cross(s.right);
+  s.width = std::max(1, width);
+  s.height = std::max(1, height);
+  s.focal_pixels = 0.5 * s.width / std::tan(0.5 * camera.angle * std::numbers::pi / 180.0);
+  return s;
+}
+
+std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenProjection& screen,
+                                    const DropletOptions& options, const SceneMesh* water) {
+  if (!(options.size_pixels > 0.0) || options.max_droplets == 0) return {};
+  const double spacing = 2.0 * options.size_pixels;
+  // The image and a margin of one cell, so droplets at its edge are whole.
+  const int columns = static_cast<int>(std::ceil(screen.width / spacing)) + 2;
+  const int rows = static_cast<int>(std::ceil(screen.height / spacing)) + 2;
+  std::vector<Cell> cells(static_cast<std::size_t>(columns) * rows);
+  for (const Vec3& p : spray) {
+    const std::optional<Eigen::Vector2d> px = screen.pixel(p);
+    if (!px) continue;
+    const double cx = std::floor(px->x() / spacing) + 1, cy = std::floor(px->y() / spacing) + 1;
+    if (!(cx >= 0 && cx < columns && cy >= 0 && cy < rows)) continue;
+    Cell& c = cells[static_cast<std::size_t>(cy) * columns + static_cast<std::size_t>(cx)];
+    ++c.count;
+    c.sum += p;
+  }
+  std::vector<std::size_t> seeds;
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    if (cells[i].count >= 2) seeds.push_back(i);
+  std::stable_sort(seeds.begin(), seeds.end(),
+                   [&](std::size_t a, std::size_t b) { return cells[a].count > cells[b].count; });
+
+  std::vector<Droplet> droplets;
+  for (const std::size_t seed : seeds) {
+    if (cells[seed].taken) continue;
+    const int sx = static_cast<int>(seed % columns), sy = static_cast<int>(seed / columns);
+    Droplet d;
+    Vec3 sum = Vec3::Zero();
+    for (int y = std::max(0, sy - 1); y <= std::min(rows - 1, sy + 1); ++y)
+      for (int x = std::max(0, sx - 1); x <= std::min(columns - 1, sx + 1); ++x) {
+        Cell& c = cells[static_cast<std::size_t>(y) * columns + static_cast<std::size_t>(x)];
+        if (c.taken || c.count == 0) continue;
+        c.taken = true;
+        d.particles += c.count;
+        sum += c.sum;
+      }
+    d.centre = sum / static_cast<double>(d.particles);
+    d.tail = d.centre;
+    droplets.push_back(d);
+  }
+  if (water)
+    std::erase_if(droplets, [&](const Droplet& d) { return under_water(*water, d.centre); });
+  std::stable_sort(droplets.begin(), droplets.end(),
+                   [](const Droplet& a, const Droplet& b) { return a.particles > b.particles; });
+  if (droplets.size() > options.max_droplets) droplets.resize(options.max_droplets);
+  if (droplets.empty()) return droplets;
+
+  const double median_count =
+      static_cast<double>(droplets[droplets.size() / 2].particles);  // sorted, descending
+  for (Droplet& d : droplets) {
+    const double scale = std::clamp(std::sqrt(static_cast<double>(d.particles) / median_count), 1.0, kMaxDropletGrowth);
+    d.radius = 0.5 * options.size_pixels * scale * screen.pixel_size(d.centre);
+  }
+  return droplets;
+}
+
+std::vector<Droplet> DropletTracks::update(std::vector<Droplet> droplets,
+                                           const ScreenProjection& screen,
+                                           const DropletOptions& options) {
+  const double spacing = 2.0 * options.size_pixels;  // the clustering's
+  // Every pair of a new droplet and a last one within reach of its predicted place: a
+  // spacing, or kFirstReach spacings for a droplet whose motion is not known yet.
+  std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
+  for (std::size_t t = 0; t < last_.size(); ++t) {
+    const bool moving = last_[t].age > 0 && last_[t].motion != Vec3::Zero();
+    const double reach = moving ? spacing : kFirstReach * spacing;
+    const std::optional<Eigen::Vector2d> predicted =
+        screen.pixel(last_[t].droplet.centre + last_[t].motion);
+    if (!predicted) continue;
+    for (std::size_t d = 0; d < droplets.size(); ++d) {
+      const std::optional<Eigen::Vector2d> px = screen.pixel(droplets[d].centre);
+      if (!px) continue;
+      const double distance = (*px - *predicted).norm();
+      if (distance <= reach) pairs.emplace_back(distance, d, t);
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<int> match(droplets.size(), -1);
+  std::vector<bool> matched(last_.size(), false);
+  for (const auto& [distance, d, t] : pairs)
+    if (match[d] < 0 && !matched[t]) {
+      match[d] = static_cast<int>(t);
+      matched[t] = true;
+    }
+
+  std::vector<Track> tracks;
+  std::vector<Droplet> drawn;
+  for (std::size_t d = 0; d < droplets.size(); ++d) {
+    Track track;
+    track.droplet = droplets[d];
+    if (match[d] >= 0) {
+      const Track& before = last_[static_cast<std::size_t>(match[d])];
+      track.motion = droplets[d].centre - before.droplet.centre;
+      track.age = before.age + 1;
+    } else if (!started_) {
+      track.age = kDropletGrowth;  // the first frame shows its droplets as they are
+    }
+    Droplet shown = track.droplet;
+    shown.age = track.age;
+    shown.radius *= growth(track.age);
+    const double moved = track.motion.norm();
+    if (moved > shown.radius)
+      shown.tail = shown.centre - std::min(moved, kMaxTailRadii * shown.radius) / moved * track.motion;
+    drawn.push_back(shown);
+    tracks.push_back(track);
+  }
+  for (std::size_t t = 0; t < last_.size(); ++t) {
+    if (matched[t]) continue;  // a fading droplet is not kept: it goes after one frame
+    Droplet fading = last_[t].droplet;
+    fading.centre += last_[t].motion;
+    fading.tail = fading.centre;
+    fading.fading = true;
+    fading.radius *= kFadingSize * growth(last_[t].age);
+    drawn.push_back(fading);
+  }
+  last_ = std::move(tracks);
+  started_ = true;
+  return drawn;
+}
+
+}  // namespace toonwater

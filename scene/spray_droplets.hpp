@@ -1,0 +1,100 @@
+// Spray as a cartoon draws it: a frame's spray particles gathered on screen into a few
+// "larger than life" droplets, and each droplet carried from frame to frame.
+//
+// Clustering (`spray_droplets`): every particle in front of the camera falls into a square cell
+// of the image `spacing = 2 · size` pixels wide. The fullest cell seeds a droplet, which takes
+// the particles of its own cell and of the occupied cells around it (its 3 × 3 block) not yet
+// taken; then the next fullest cell left, and so on. So droplets lie about a spacing apart on
+// screen whatever the number of particles, a droplet sits at the mean of its particles (it
+// moves smoothly as they do, not by cells), and a cell with a lone particle makes none. The
+// `max_droplets` with most particles are kept: a salience order, and a bound on what a frame
+// shows. A droplet is `size` pixels across at the median count of the frame's droplets,
+// growing with the square root of its count up to twice that: a dense cloud reads as a big
+// drop.
+//
+// Time (`DropletTracks`): each droplet is matched to the last frame's droplet whose predicted
+// place (where it was, moved on by its last motion) projects nearest, within a spacing (three
+// for a droplet whose motion is not known yet: spray flies tens of pixels a frame); greedily,
+// nearest pairs first. A matched droplet that moved more than its own radius is
+// drawn as a teardrop, its tail pointing back along the motion, at most three radii long. A
+// droplet without a match is born at half its size and grows over kDropletGrowth frames; a droplet that
+// finds no match is drawn once more at its predicted place, shrunk, then dropped: droplets
+// come and go over a few frames instead of popping. The first frame shows its droplets grown.
+#pragma once
+
+#include "analyzer/mesh.hpp"
+#include "scene/scene_mesh.hpp"
+#include "scene/scene_writer.hpp"
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace toonwater {
+
+// A droplet in POV-Ray's frame: a sphere, and, for a teardrop, a tip behind it (tail ==
+// centre: round).
+struct Droplet {
+  Vec3 centre = Vec3::Zero();
+  double radius = 0.0;
+  Vec3 tail = Vec3::Zero();
+  std::size_t particles = 0;
+  // From DropletTracks: the frames it was found in before this one (a first frame's droplets
+  // count as grown), and whether it is a last frame's droplet drawn once more as it fades.
+  int age = 0;
+  bool fading = false;
+};
+
+struct DropletOptions {
+  double size_pixels = 8.0;
+  std::size_t max_droplets = 40;
+};
+
+// The camera as a pinhole on an image `width` × `height` pixels with square pixels (what
+// scene.pov's camera block makes of a CameraPlacement): pixel (0, 0) at the top left.
+struct ScreenProjection {
+  Vec3 location = Vec3::Zero(), right = Vec3::UnitX(), up = Vec3::UnitY(),
+       forward = Vec3::UnitZ();
+  double focal_pixels = 1.0;  // the image's half-width over tan(angle / 2)
+  int width = 1, height = 1;
+
+  // The pixel `p` projects to; none behind the camera.
+  std::optional<Eigen::Vector2d> pixel(const Vec3& p) const;
+  // The width of a pixel at p's distance from the camera, in world units.
+  double pixel_size(const Vec3& p) const;
+};
+
+ScreenProjection screen_projection(const CameraPlacement& camera, int width, int height);
+
+// Round droplets of one frame, in decreasing order of their particle counts. With `water`,
+// droplets whose centre lies under it (an upward ray crosses its surface an odd number of
+// times: inside a closed volume, below an open surface) are left out before the most salient
+// are chosen: spray is drawn in the air, where the water's own shapes do not hide it.
+std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenProjection& screen,
+                                    const DropletOptions& options,
+                                    const SceneMesh* water = nullptr);
+
+// The frames over which a new droplet grows to its size.
+inline constexpr int kDropletGrowth = 3;
+
+class DropletTracks {
+ public:
+  // This frame's droplets (from spray_droplets) matched with the last frame's: their sizes and
+  // tails for drawing, and the fading ones from the last frame appended.
+  std::vector<Droplet> update(std::vector<Droplet> droplets, const ScreenProjection& screen,
+                              const DropletOptions& options);
+
+ private:
+  struct Track {
+    Droplet droplet;  // as found (full size, round)
+    Vec3 motion = Vec3::Zero();
+    int age = 0;
+  };
+  std::vector<Track> last_;
+  bool started_ = false;
+};
+
+}  // namespace toonwater
