@@ -3,6 +3,7 @@
 # Pure Python: no bpy, so the operator's modal loop and the tests drive the same code.
 import os
 import re
+import shlex
 import shutil
 import signal
 import subprocess
@@ -94,7 +95,7 @@ class ToonwaterJob:
                 self._errors = ["toonwater %s: %s (log: %s)" % (step.title, e, self.log_path)]
                 self._finish()
                 return
-        self._log.write(("$ " + " ".join(step.argv) + "\n").encode())
+        self._log.write(("$ " + shlex.join(step.argv) + "\n").encode())
         self._log.flush()
         try:
             # Its own session: a cancel can reach every process it started (POV-Ray included).

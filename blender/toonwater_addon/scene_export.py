@@ -107,9 +107,10 @@ def world_mesh_obj(obj, depsgraph):
     return "\n".join(lines) + "\n"
 
 
-def export_sequences(context, objects, frames, folder):
+def export_sequences(context, objects, frames, folder, static_when_still=True):
     """Writes each object's mesh for every frame; an object identical in every frame is kept
-    as one static file. Returns {object name: path relative to `folder`'s parent}."""
+    as one static file (with `static_when_still`). Returns {object name: path relative to
+    `folder`'s parent}."""
     scene = context.scene
     texts = {o.name: [] for o in objects}
     current = scene.frame_current
@@ -129,7 +130,7 @@ def export_sequences(context, objects, frames, folder):
         while stem in used:
             stem += "_"
         used.add(stem)
-        if all(t == texts[o.name][0] for t in texts[o.name]):
+        if static_when_still and all(t == texts[o.name][0] for t in texts[o.name]):
             write_text(os.path.join(folder, stem + ".obj"), texts[o.name][0])
             paths[o.name] = os.path.basename(folder) + "/" + stem + ".obj"
         else:
@@ -216,24 +217,11 @@ def output_folder(scene, settings):
     return os.path.normpath(bpy.path.abspath(path))
 
 
-def export_scene(context, toonwater):
-    """Writes inputs/ (scene.toml, meshes) under the output folder, whole or not at all."""
+def write_inputs(context, settings, toonwater, water, staging, frame_range, camera_keys, size):
+    """Writes scene.toml and the meshes into `staging`; returns povgen's command and the
+    frames."""
     scene = context.scene
-    settings = scene.toonwater
-    try:
-        camera_keys = camera.camera_keys(scene)
-        width, height = camera.resolution(scene)
-    except camera.CameraError as e:
-        raise ExportError(str(e)) from None
-    out_dir = output_folder(scene, settings)
-    water = water_object(scene, settings)
-    frame_range = list(range(scene.frame_start, scene.frame_end + 1))
     domain = liquid_domain_settings(water)
-
-    os.makedirs(out_dir, exist_ok=True)
-    inputs = os.path.join(out_dir, "inputs")
-    staging = os.path.join(out_dir, "inputs.partial")
-    new_staging(staging)
     povgen = [toonwater, "povgen", "--up", "z", "--config", "inputs/scene.toml", "--out", "scene"]
     if domain is not None:
         pattern, frames = cache_frames(domain, frame_range)
@@ -243,18 +231,10 @@ def export_scene(context, toonwater):
         if water.type != 'MESH':
             raise ExportError("the water object '%s' is not a mesh" % water.name)
         frames = frame_range
-        water_path = export_sequences(context, [water], frames,
-                                      os.path.join(staging, "water"))[water.name]
-        # Where the water does not move, a single file is written, which povgen renders as
-        # frame 0: a sequence is kept instead so that the frames keep Blender's numbers.
-        if "#" not in water_path:
-            os.rename(os.path.join(staging, water_path), os.path.join(staging, "water", "w.obj"))
-            digits = frame_digits(frames[-1])
-            for f in frames:
-                shutil.copyfile(os.path.join(staging, "water", "w.obj"),
-                                os.path.join(staging, "water", "water_%0*d.obj" % (digits, f)))
-            os.remove(os.path.join(staging, "water", "w.obj"))
-            water_path = "water/water_" + "#" * digits + ".obj"
+        # A sequence even where the water does not move: a single file would be rendered as
+        # frame 0, and the frames keep Blender's numbers.
+        water_path = export_sequences(context, [water], frames, os.path.join(staging, "water"),
+                                      static_when_still=False)[water.name]
         povgen += ["--water", "inputs/" + water_path]
 
     things = obstacles(scene, water)
@@ -272,14 +252,40 @@ def export_scene(context, toonwater):
     sections = look.look_sections(settings)
     sections["camera"] = camera_keys
     sections["light"] = camera.light_keys(scene)
-    sections["render"].update({"width": width, "height": height,
+    sections["render"].update({"width": size[0], "height": size[1],
                                "frames": "%d-%d" % (frames[0], frames[-1])})
     header = ("Written by the Toon water Blender add-on from %s, scene '%s'.\n"
               "Blender's world coordinates, Z up: povgen --up z." %
               (bpy.data.filepath or "an unsaved file", scene.name))
     write_text(os.path.join(staging, "scene.toml"),
                scene_toml.scene_toml(sections, objects, header))
-    replace_folder(staging, inputs)
+    return povgen, frames
+
+
+def export_scene(context, toonwater):
+    """Writes inputs/ (scene.toml, meshes) under the output folder, whole or not at all."""
+    scene = context.scene
+    settings = scene.toonwater
+    try:
+        camera_keys = camera.camera_keys(scene)
+        width, height = camera.resolution(scene)
+    except camera.CameraError as e:
+        raise ExportError(str(e)) from None
+    out_dir = output_folder(scene, settings)
+    water = water_object(scene, settings)
+    frame_range = list(range(scene.frame_start, scene.frame_end + 1))
+
+    os.makedirs(out_dir, exist_ok=True)
+    inputs = os.path.join(out_dir, "inputs")
+    staging = os.path.join(out_dir, "inputs.partial")
+    new_staging(staging)
+    try:
+        povgen, frames = write_inputs(context, settings, toonwater, water, staging, frame_range,
+                                      camera_keys, (width, height))
+        replace_folder(staging, inputs)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)  # a failed export leaves nothing behind
+        raise
 
     warnings = []
     if not camera.light_keys(scene):

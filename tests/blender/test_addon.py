@@ -6,9 +6,12 @@
 # Exits 1 when a check fails. BLENDER_USER_SCRIPTS should point into DIR: the zip is installed
 # there.
 import argparse
+import csv
 import math
 import os
+import shlex
 import shutil
+import subprocess
 import sys
 import time
 import tomllib
@@ -125,6 +128,60 @@ def check_configuration(scene, cam, sun, config_path):
     check("the sphere, and only it, is an object, exported per frame",
           [o["name"] for o in objects] == ["Ball"] and "####" in objects[0]["mesh"],
           str(objects))
+
+
+def check_water_placement(scene, domain, toonwater, out):
+    """The mesh cache read with the transform the add-on gave povgen lands where Blender shows
+    the liquid: toonwater analyze's vertices against the domain's evaluated mesh, frame 1."""
+    with open(os.path.join(out, "toonwater.log")) as f:
+        povgen = next(shlex.split(l[2:]) for l in f if l.startswith("$ ") and " povgen " in l)
+    transform = povgen[povgen.index("--transform") + 1]
+    cache = povgen[povgen.index("--water") + 1].replace("\\", "").replace("####", "%04d")
+    frame = addon_scene.FRAMES[0]
+    table = os.path.join(out, "water_check.csv")
+    subprocess.run([toonwater, "analyze", cache % frame, "--up", "z", "--transform", transform,
+                    "--csv", table], check=True, capture_output=True)
+    with open(table) as f:
+        ours = [Vector((float(r["x"]), float(r["y"]), float(r["z"]))) for r in csv.DictReader(f)]
+    scene.frame_set(frame)
+    evaluated = domain.evaluated_get(bpy.context.evaluated_depsgraph_get())
+    blenders = [evaluated.matrix_world @ v.co for v in evaluated.data.vertices]
+    same = len(ours) == len(blenders) > 0
+    error = max((a - b).length for a, b in zip(ours, blenders)) if same else math.inf
+    check("the mesh cache lands where Blender shows the liquid (uneven, moved domain)",
+          same and error < 1e-4, "%d vs %d vertices, largest distance %.3g"
+          % (len(ours), len(blenders), error))
+
+
+def check_mesh_water(scene, settings, work):
+    """Any mesh animated per frame as the water: exported frame by frame and rendered."""
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(0.1, 0.0, 0.3))
+    pond = bpy.context.active_object
+    pond.name = "Pond"
+    bpy.ops.object.modifier_add(type='SUBSURF')
+    pond.modifiers[-1].subdivision_type = 'SIMPLE'
+    pond.modifiers[-1].levels = 4
+    bpy.ops.object.modifier_add(type='WAVE')  # the modifier's own animation, frame by frame
+    pond.modifiers[-1].height = 0.05
+    settings.water_object = pond
+    settings.output_directory = os.path.join(work, "pond")
+    result, error = run_operator()
+    check("a mesh animated per frame renders as the water", result == {'FINISHED'}, error)
+    water = os.path.join(work, "pond", "inputs", "water")
+    names = sorted(os.listdir(water)) if os.path.isdir(water) else []
+    texts = []
+    for name in names:
+        with open(os.path.join(water, name)) as f:
+            texts.append(f.read())
+    first, last = addon_scene.FRAMES
+    check("the mesh water is exported for every frame, as it moves",
+          names == ["Pond_%04d.obj" % f for f in range(first, last + 1)]
+          and len(set(texts)) == len(texts), str(names))
+    frames = os.listdir(os.path.join(work, "pond", "scene"))
+    check("the mesh water's frames are rendered",
+          all("frame_%d.png" % f in frames for f in range(first, last + 1)), str(frames))
+    settings.water_object = None
+    bpy.data.objects.remove(pond)
 
 
 def red_centroid(path):
@@ -285,7 +342,10 @@ def main():
     check("the frames are loaded as an image sequence",
           image is not None and image.source == 'SEQUENCE', str(image and image.filepath))
     check_projected_centres(scene, cam, sphere, scene_dir)
+    check_water_placement(scene, domain, os.path.abspath(args.toonwater), out)
 
+    check_mesh_water(scene, settings, work)
+    settings.output_directory = out
     check_cancel(addon, scene, out, "povgen")
     # Larger, antialiased frames: the render lasts long enough to be cancelled while it runs.
     settings.quality = 'FINAL'
