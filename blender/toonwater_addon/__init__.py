@@ -16,6 +16,8 @@ if "bpy" in locals():  # a reload from Blender's add-on list
     for module in (scene_toml, job, camera, look, scene_export, operators, ui):
         importlib.reload(module)
 
+import atexit
+
 import bpy
 
 from . import look, operators, ui
@@ -28,9 +30,12 @@ def register():
     for cls in CLASSES:
         bpy.utils.register_class(cls)
     bpy.types.Scene.toonwater = bpy.props.PointerProperty(type=look.ToonwaterSettings)
+    atexit.register(operators.stop_running_job)
 
 
 def unregister():
+    atexit.unregister(operators.stop_running_job)
+    operators.stop_running_job()
     del bpy.types.Scene.toonwater
     for cls in reversed(CLASSES):
         bpy.utils.unregister_class(cls)

@@ -16,6 +16,12 @@ IMAGE_NAME = "Toon water"
 _running = {"job": None, "cancel": False}
 
 
+def stop_running_job():
+    """Ends a running job with Blender (registered with atexit): no render outlives it."""
+    if _running["job"] is not None:
+        _running["job"].cancel()
+
+
 def addon_preferences(context):
     addon = context.preferences.addons.get(__package__)
     return addon.preferences if addon else None

@@ -130,6 +130,43 @@ def check_configuration(scene, cam, sun, config_path):
           str(objects))
 
 
+def check_camera_conversion(addon, scene, cam):
+    """Sensor fits, and the cameras toonwater cannot show refused with a reason."""
+    w, h = addon_scene.RESOLUTION
+    cam.data.sensor_fit = 'VERTICAL'
+    vertical = 2 * math.atan(0.5 * cam.data.sensor_height / cam.data.lens)
+    expected = math.degrees(2 * math.atan(math.tan(vertical / 2) * w / h))
+    angle = addon.camera.camera_keys(scene)["angle"]
+    check("vertical sensor fit: the horizontal angle follows from the vertical one",
+          abs(angle - expected) < 1e-4, "%r vs %r" % (angle, expected))
+    cam.data.sensor_fit = 'AUTO'
+    # Portrait: Auto fits the sensor's width to the longer side, here the height.
+    scene.render.resolution_x, scene.render.resolution_y = h, w
+    longer = 2 * math.atan(0.5 * cam.data.sensor_width / cam.data.lens)
+    expected = math.degrees(2 * math.atan(math.tan(longer / 2) * h / w))
+    angle = addon.camera.camera_keys(scene)["angle"]
+    check("portrait with Auto fit: the sensor spans the height",
+          abs(angle - expected) < 1e-4, "%r vs %r" % (angle, expected))
+    scene.render.resolution_x, scene.render.resolution_y = w, h
+    refusals = [("rolled", lambda: cam.rotation_euler.rotate_axis('Z', math.radians(5)),
+                 lambda: cam.rotation_euler.rotate_axis('Z', math.radians(-5))),
+                ("shifted", lambda: setattr(cam.data, "shift_x", 0.1),
+                 lambda: setattr(cam.data, "shift_x", 0.0)),
+                ("not perspective", lambda: setattr(cam.data, "type", 'ORTHO'),
+                 lambda: setattr(cam.data, "type", 'PERSP'))]
+    for word, change, undo in refusals:
+        change()
+        bpy.context.view_layer.update()
+        try:
+            addon.camera.camera_keys(scene)
+            message = ""
+        except addon.camera.CameraError as e:
+            message = str(e)
+        undo()
+        bpy.context.view_layer.update()
+        check("a camera %s is refused with the reason" % word, word in message, message)
+
+
 def check_water_placement(scene, domain, toonwater, out):
     """The mesh cache read with the transform the add-on gave povgen lands where Blender shows
     the liquid: toonwater analyze's vertices against the domain's evaluated mesh, frame 1."""
@@ -342,6 +379,7 @@ def main():
     check("the frames are loaded as an image sequence",
           image is not None and image.source == 'SEQUENCE', str(image and image.filepath))
     check_projected_centres(scene, cam, sphere, scene_dir)
+    check_camera_conversion(addon, scene, cam)
     check_water_placement(scene, domain, os.path.abspath(args.toonwater), out)
 
     check_mesh_water(scene, settings, work)
