@@ -163,8 +163,9 @@ class ToonwaterJob:
         self._log.close()
 
     def cancel(self):
-        """Stops the running command as a terminal's Ctrl+C would and waits until it and every
-        process it started are gone; toonwater leaves its outputs as they were (exit 4)."""
+        """Stops the running command with SIGTERM, which toonwater handles as it does Ctrl+C,
+        and waits until it and every process it started are gone; toonwater leaves its outputs
+        as they were (exit 4)."""
         if self._finished:
             return
         self._cancelled = True
