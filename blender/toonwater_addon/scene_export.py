@@ -182,11 +182,10 @@ def new_staging(path):
 class Export:
     """What one run needs: the output folder, the frames and the two commands."""
 
-    def __init__(self, out_dir, frames, steps, config_path, warnings):
+    def __init__(self, out_dir, frames, steps, warnings):
         self.out_dir = out_dir
         self.frames = frames
         self.steps = steps
-        self.config_path = config_path
         self.warnings = warnings
         self.scene_dir = os.path.join(out_dir, "scene")
         self.log_path = os.path.join(out_dir, "toonwater.log")
@@ -209,7 +208,7 @@ def remove_frames(scene_dir):
         os.remove(path)
 
 
-def output_folder(scene, settings):
+def output_folder(settings):
     path = settings.output_directory
     if path.startswith("//") and not bpy.data.filepath:
         raise ExportError("save the .blend file first, or give the output folder as an "
@@ -271,7 +270,7 @@ def export_scene(context, toonwater):
         width, height = camera.resolution(scene)
     except camera.CameraError as e:
         raise ExportError(str(e)) from None
-    out_dir = output_folder(scene, settings)
+    out_dir = output_folder(settings)
     water = water_object(scene, settings)
     frame_range = list(range(scene.frame_start, scene.frame_end + 1))
 
@@ -295,4 +294,4 @@ def export_scene(context, toonwater):
     scene_dir = os.path.join(out_dir, "scene")
     return Export(out_dir, frames, [Step("povgen", povgen),
                                     Step("render", render, lambda: remove_frames(scene_dir))],
-                  os.path.join(inputs, "scene.toml"), warnings)
+                  warnings)
