@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Idempotent set-up: installs the Debian packages toonwater needs (only those missing),
 # then configures and builds the project into ./build (or $TOONWATER_BUILD_DIR).
+# --tests also installs what only the tests need (scripts/test.sh passes it).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${TOONWATER_BUILD_DIR:-$root/build}
@@ -17,6 +18,16 @@ packages=(
   clang-14 libclang-rt-14-dev  # fuzzing (scripts/fuzz.sh)
   slurm-wlm munge parallel     # render farms (render --on slurm|parallel) and their tests
 )
+# Only for the tests: the main job's set-up stays as fast as it is.
+test_packages=(
+  blender python3  # the add-on's tests (tests/blender), Blender headless
+)
+if [ "${1:-}" = "--tests" ]; then
+  packages+=("${test_packages[@]}")
+elif [ $# -gt 0 ]; then
+  echo "setup: unknown option '$1' (--tests)" >&2
+  exit 2
+fi
 
 missing=()
 for p in "${packages[@]}"; do
