@@ -563,9 +563,10 @@ std::vector<Vec3> read_spray(const SceneRun& run, long frame) {
       Vec3 p = set.positions[i];
       if (const std::optional<AffineTransform>& t = run.request.water_transform)
         p = t->linear * p + t->translation;
-      if (!p.allFinite())
+      if (!(p.cwiseAbs().maxCoeff() < largest_scene_coordinate))  // NaN too
         throw InputError(path.string() + ": particle " + std::to_string(i) +
-                         " lies beyond the range of numbers once placed (--scale, --translate)");
+                         " lies beyond what a POV-Ray scene takes once placed (--scale, "
+                         "--translate)");
       spray.push_back(to_povray(p, run.request.up));
     }
   }

@@ -146,6 +146,14 @@ TEST(SprayRender, AParticleCacheMissingAFrameIsRefusedNamingIt) {
             std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(dir / "scene"));
+  write_text(dir / "spray000002.wwp", wwp_bytes({{0, {0, 1e30, 0}}}));
+  const CommandResult far = run_toonwater(
+      {"povgen", "--water", (dir / "water_####.obj").string(), "--particles",
+       (dir / "spray######.wwp").string(), "--out", (dir / "scene").string()});
+  EXPECT_EQ(far.exit_code, 2) << far.output;
+  EXPECT_NE(far.output.find("spray000002.wwp: particle 0 lies beyond"), std::string::npos)
+      << far.output;
+  EXPECT_FALSE(fs::exists(dir / "scene"));
   const CommandResult missing = run_toonwater(
       {"povgen", "--water", (dir / "water_####.obj").string(), "--particles",
        (dir / "foam_####.vdb").string(), "--out", (dir / "scene").string()});
