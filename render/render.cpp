@@ -29,26 +29,37 @@ namespace fs = std::filesystem;
 // More frames than any sequence povgen writes (simulate makes at most 100,000).
 constexpr long largest_frame_count = 10'000'000;
 
+// povgen records the scene's frame rate in a comment of scene.ini, which POV-Ray ignores
+// (scene_writer.cpp); a scene.ini without it plays at default_frame_rate.
+constexpr std::string_view frame_rate_line = "; Frame_Rate=";
+
 SceneFrames read_ini_frames(const fs::path& ini) {
   std::ifstream in(ini);
   if (!in) throw InputError(ini.string() + ": no povgen scene here (scene.ini missing)");
   SceneFrames f;
   bool has_first = false, has_last = false;
-  const auto frame_number = [&](const std::string& text) {
+  const auto whole_number = [&](const std::string& text, const char* what) {
     long n = 0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), n);
     if (error != std::errc{} || end != text.data() + text.size())
-      throw InputError(ini.string() + ": malformed frame number '" + text.substr(0, 20) + "'");
+      throw InputError(ini.string() + ": malformed " + what + " '" + text.substr(0, 20) + "'");
     return n;
   };
   for (std::string line; std::getline(in, line);) {
     if (line.rfind("Initial_Frame=", 0) == 0) {
-      f.first = frame_number(line.substr(14));
+      f.first = whole_number(line.substr(14), "frame number");
       has_first = true;
     }
     if (line.rfind("Final_Frame=", 0) == 0) {
-      f.last = frame_number(line.substr(12));
+      f.last = whole_number(line.substr(12), "frame number");
       has_last = true;
+    }
+    if (line.rfind(frame_rate_line, 0) == 0) {
+      const long fps = whole_number(line.substr(frame_rate_line.size()), "frame rate");
+      if (fps < 1 || fps > max_frame_rate)
+        throw InputError(ini.string() + ": frame rate " + std::to_string(fps) +
+                         " is not from 1 to " + std::to_string(max_frame_rate));
+      f.frame_rate = static_cast<int>(fps);
     }
     if (line.rfind("Output_File_Name=\"", 0) == 0 && line.size() > 19 && line.back() == '"')
       f.output_name = line.substr(18, line.size() - 19);
