@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Idempotent set-up: installs the Debian packages toonwater needs (only those missing),
 # then configures and builds the project into ./build (or $TOONWATER_BUILD_DIR).
+# --tests (scripts/test.sh) also installs test_packages, which only some tests need, so that
+# the main job's set-up (scripts/demo.sh) stays as fast as it is.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${TOONWATER_BUILD_DIR:-$root/build}
@@ -17,6 +19,15 @@ packages=(
   clang-14 libclang-rt-14-dev  # fuzzing (scripts/fuzz.sh)
   slurm-wlm munge parallel     # render farms (render --on slurm|parallel) and their tests
 )
+test_packages=(
+  ffmpeg  # render --video and its tests (ffprobe)
+)
+
+case ${1:-} in
+  --tests) packages+=("${test_packages[@]}") ;;
+  "") ;;
+  *) echo "setup: unknown option '$1' (--tests)" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

@@ -43,7 +43,7 @@ step() {
   echo "test.sh: $1 passed in $((SECONDS - start)) s" >&2
 }
 
-"$root/scripts/setup.sh"
+"$root/scripts/setup.sh" --tests
 for check in $checks; do
   case $check in
     tests) step "tests" run_tests ;;
