@@ -5,7 +5,9 @@
 // (scripts/setup.sh --tests), and a test that cannot find them fails saying so.
 #include "tests/render/farm_test_util.hpp"
 
+#include "common/atomic_file.hpp"
 #include "common/child_process.hpp"
+#include "render/video.hpp"
 
 #include <gtest/gtest.h>
 
@@ -207,6 +209,38 @@ TEST_F(Video, AFailedFrameMakesNoVideo) {
   EXPECT_TRUE(has(r.output, "frame 3 failed")) << r.output;
   EXPECT_TRUE(fs::exists(scene / frame_name(4)));
   EXPECT_TRUE(video_files(scene).empty()) << r.output;
+}
+
+// make_videos on its own: a frame without its image, or with an image older than the scene (of
+// an earlier scene that povgen carried over), is an error naming it, and no video is made.
+TEST_F(Video, AMissingOrStaleFrameMakesNoVideo) {
+  const fs::path scene = copy_scene("scene");
+  const CommandResult r = run_toonwater({"render", scene.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  VideoRequest request;
+  request.scene_dir = scene;
+  request.formats = {VideoFormat::mp4, VideoFormat::gif};
+  const auto error_of = [&] {
+    try {
+      make_videos(request);
+    } catch (const OutputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  fs::rename(scene / frame_name(3), work_ / frame_name(3));
+  EXPECT_EQ(error_of(),
+            (scene / "video.mp4").string() +
+                ": frame 3 has no image of this scene (frame_3.png); no video was made");
+  EXPECT_TRUE(video_files(scene).empty());
+
+  fs::rename(work_ / frame_name(3), scene / frame_name(3));
+  request.frames = FrameRange{2, 4};
+  EXPECT_EQ(make_videos(request).size(), 2u);  // every frame there: both videos
+  fs::last_write_time(scene / "scene.ini",
+                      fs::last_write_time(scene / frame_name(2)) + std::chrono::seconds(1));
+  EXPECT_TRUE(has(error_of(), ": frame 2 has no image of this scene")) << error_of();
+  EXPECT_EQ(probe(scene / "video.mp4")["nb_read_frames"], "3");  // the earlier video stays
 }
 
 // An ffmpeg that writes part of its output, then fails on the GIF: neither video is put in
