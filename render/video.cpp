@@ -54,9 +54,14 @@ std::vector<std::string> ffmpeg_arguments(VideoFormat format, const SceneFrames&
   args.insert(args.end(), {"-framerate", fps, "-start_number", std::to_string(first), "-i",
                            frame_pattern(scene), "-frames:v", std::to_string(count)});
   if (format == VideoFormat::mp4) {
-    // yuv420p (what players take) halves the chroma resolution: odd sizes are padded by a pixel.
-    args.insert(args.end(), {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt",
-                             "yuv420p", "-r", fps, "-movflags", "+faststart", "-f", "mp4"});
+    // yuv420p (what players take) needs even sizes: an odd width or height gains a pixel row or
+    // column, a copy of the last (pad, fillborders' smear, then crop to even: an even size is
+    // cropped back to itself), where pad's black would draw a line along the edge.
+    args.insert(
+        args.end(),
+        {"-vf", "pad=iw+1:ih+1,fillborders=right=1:bottom=1,crop=trunc(iw/2)*2:trunc(ih/2)*2:0:0",
+         "-c:v", "libx264", "-pix_fmt", "yuv420p", "-r", fps, "-movflags", "+faststart", "-f",
+         "mp4"});
   } else {
     // One palette for the whole animation, made from its frames.
     const std::string scale = "scale='min(" + std::to_string(gif_max_width) + ",iw)':-1";

@@ -161,6 +161,16 @@ TEST_F(Video, Mp4AndGifOfEveryFrameAtTheScenesFrameRate) {
   // The frames in order: each frame of the video, decoded, is nearest the image of its frame.
   for (int i = 0; i < kFrames; ++i)
     EXPECT_EQ(nearest_frame(decoded_frame(scene / "video.mp4", i, work_.path()), scene), i + 1);
+  // The added column and row repeat the last ones (the background here), not a black line.
+  const Image decoded = decoded_frame(scene / "video.mp4", 0, work_.path());
+  double edge = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int c = 0; c < 3; ++c)
+      edge += std::abs(decoded.at(kWidth, y)[c] - decoded.at(kWidth - 1, y)[c]);
+  for (int x = 0; x < kWidth; ++x)
+    for (int c = 0; c < 3; ++c)
+      edge += std::abs(decoded.at(x, kHeight)[c] - decoded.at(x, kHeight - 1)[c]);
+  EXPECT_LT(edge / (3.0 * (kWidth + kHeight)), 4.0);
 
   auto gif = probe(scene / "video.gif");
   EXPECT_EQ(gif["codec_name"], "gif");
