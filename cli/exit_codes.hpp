@@ -10,7 +10,8 @@ inline constexpr int bad_input = 2;       // command line, configuration or inpu
 inline constexpr int output_failed = 3;   // an output could not be written; nothing was replaced
 inline constexpr int interrupted = 4;     // SIGINT, SIGTERM or SIGHUP stopped the run cleanly
 inline constexpr int povray_failed = 5;   // render: POV-Ray failed on at least one frame
-inline constexpr int incomplete_install =
-    6;  // toonwater-images.so or toonwater-vdb.so missing beside the program
+// toonwater-images.so or toonwater-vdb.so missing beside the program, or ffmpeg not on PATH
+// for `render --video`
+inline constexpr int incomplete_install = 6;
 
 }  // namespace toonwater::cli::exit_code

@@ -10,6 +10,7 @@
 #include "images/image_codec.hpp"
 #include "scene/config.hpp"
 #include "render/render.hpp"
+#include "render/video.hpp"
 
 #include <csignal>
 #include <cstdlib>
@@ -85,7 +86,7 @@ int main(int argc, char** argv) {
   app.footer(
       "Run `toonwater help SUBCOMMAND` or `toonwater SUBCOMMAND --help` for its options.\n"
       "Exit codes: 0 success, 2 bad input, 3 output failure, 4 interrupted, "
-      "5 POV-Ray failed, 6 image module missing, 1 internal error.\n"
+      "5 POV-Ray failed, 6 incomplete installation, 1 internal error.\n"
       "TOONWATER_THREADS=N uses at most N threads (1-1024; default: every core).");
   // Parse errors in one line, like every other error (CLI11 adds a second by default).
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
@@ -142,6 +143,8 @@ int main(int argc, char** argv) {
   } catch (const toonwater::VdbModuleError& e) {
     return fail(e.what(), exit_code::incomplete_install);
   } catch (const toonwater::ImageModuleError& e) {
+    return fail(e.what(), exit_code::incomplete_install);
+  } catch (const toonwater::MissingProgramError& e) {
     return fail(e.what(), exit_code::incomplete_install);
   } catch (const std::filesystem::filesystem_error& e) {
     // A file operation without its own message: name the file and the reason only.

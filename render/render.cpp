@@ -1,15 +1,13 @@
 #include "render/render.hpp"
 
 #include "common/atomic_file.hpp"
-#include "common/child_process.hpp"
 #include "common/temporary_name.hpp"
 #include "analyzer/mesh_reader.hpp"
 #include "pipeline/scene_directory.hpp"
 #include "render/frame_ranges.hpp"
+#include "render/supervised_process.hpp"
 
 #include <fcntl.h>
-#include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -31,26 +29,37 @@ namespace fs = std::filesystem;
 // More frames than any sequence povgen writes (simulate makes at most 100,000).
 constexpr long largest_frame_count = 10'000'000;
 
+// povgen records the scene's frame rate in a comment of scene.ini, which POV-Ray ignores
+// (scene_writer.cpp); a scene.ini without it plays at default_frame_rate.
+constexpr std::string_view frame_rate_line = "; Frame_Rate=";
+
 SceneFrames read_ini_frames(const fs::path& ini) {
   std::ifstream in(ini);
   if (!in) throw InputError(ini.string() + ": no povgen scene here (scene.ini missing)");
   SceneFrames f;
   bool has_first = false, has_last = false;
-  const auto frame_number = [&](const std::string& text) {
+  const auto whole_number = [&](const std::string& text, const char* what) {
     long n = 0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), n);
     if (error != std::errc{} || end != text.data() + text.size())
-      throw InputError(ini.string() + ": malformed frame number '" + text.substr(0, 20) + "'");
+      throw InputError(ini.string() + ": malformed " + what + " '" + text.substr(0, 20) + "'");
     return n;
   };
   for (std::string line; std::getline(in, line);) {
     if (line.rfind("Initial_Frame=", 0) == 0) {
-      f.first = frame_number(line.substr(14));
+      f.first = whole_number(line.substr(14), "frame number");
       has_first = true;
     }
     if (line.rfind("Final_Frame=", 0) == 0) {
-      f.last = frame_number(line.substr(12));
+      f.last = whole_number(line.substr(12), "frame number");
       has_last = true;
+    }
+    if (line.rfind(frame_rate_line, 0) == 0) {
+      const long fps = whole_number(line.substr(frame_rate_line.size()), "frame rate");
+      if (fps < 1 || fps > max_frame_rate)
+        throw InputError(ini.string() + ": frame rate " + std::to_string(fps) +
+                         " is not from 1 to " + std::to_string(max_frame_rate));
+      f.frame_rate = static_cast<int>(fps);
     }
     if (line.rfind("Output_File_Name=\"", 0) == 0 && line.size() > 19 && line.back() == '"')
       f.output_name = line.substr(18, line.size() - 19);
@@ -77,51 +86,17 @@ SceneFrames read_ini_frames(const fs::path& ini) {
 
 bool stop_requested(const std::atomic<bool>* stop) { return stop && stop->load(); }
 
-// Waits for `pid`, calling `tick` every 20 ms meanwhile; once `stop` is set, terminates it
-// (SIGTERM, then SIGKILL if it lingers). When `tick` returns true, the process has done all that
-// was asked of it: it is killed at once instead of waited for, and the status is 0.
-int wait_for(pid_t pid, const std::atomic<bool>* stop, const std::function<bool()>& tick) {
-  using namespace std::chrono_literals;
-  int status = 0;
-  bool finished = false;
-  auto deadline = std::chrono::steady_clock::time_point::max();
-  for (;;) {
-    const pid_t r = ::waitpid(pid, &status, finished ? 0 : WNOHANG);
-    if (r == pid) break;
-    if (r < 0 && errno != EINTR) return -1;
-    if (r == 0) {
-      const auto now = std::chrono::steady_clock::now();
-      if (stop_requested(stop) && deadline == std::chrono::steady_clock::time_point::max()) {
-        ::kill(pid, SIGTERM);
-        deadline = now + 10s;
-      } else if (now > deadline) {
-        ::kill(pid, SIGKILL);
-      }
-      if (!stop_requested(stop) && tick && tick()) {
-        ::kill(pid, SIGKILL);
-        finished = true;
-        continue;
-      }
-      std::this_thread::sleep_for(20ms);
-    }
-  }
-  if (finished) return 0;
-  return exit_status(status);
-}
-
 // Runs one povray process in `dir` with its output in `log`; returns its exit status.
 int run_povray(const fs::path& dir, const std::vector<std::string>& args, const fs::path& log,
                const std::atomic<bool>* stop, const std::function<bool()>& tick) {
   ChildSetup setup;
   setup.working_directory = dir.string();
   setup.output_file = log.string();
-  const pid_t pid = start_child_process(args, setup);
-  if (pid < 0) return -1;
-  return wait_for(pid, stop, tick);
+  return run_supervised(args, setup, stop, tick);
 }
 
 // Why a run that exited with `status` failed: its exit status (a signal above 128, as
-// wait_for reports it), then the log's error lines when it has any.
+// run_supervised reports it), then the log's error lines when it has any.
 std::string povray_failure(int status, const std::string& log) {
   std::string reason = status > 128 ? "POV-Ray was killed by signal " + std::to_string(status - 128)
                                     : "POV-Ray exited with status " + std::to_string(status);

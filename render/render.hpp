@@ -64,9 +64,10 @@ struct RenderReport {
 
 // The frames of a scene directory, from its scene.ini.
 struct SceneFrames {
-  bool animation = false;             // false: a single image, Output_File_Name itself
-  long first = 0, last = 0;           // Initial_Frame, Final_Frame
-  std::string output_name = "frame";  // Output_File_Name, without its quotes
+  bool animation = false;               // false: a single image, Output_File_Name itself
+  long first = 0, last = 0;             // Initial_Frame, Final_Frame
+  std::string output_name = "frame";    // Output_File_Name, without its quotes
+  int frame_rate = default_frame_rate;  // frames per second: the "; Frame_Rate=N" line
 };
 
 // Throws InputError when the directory holds no povgen scene.

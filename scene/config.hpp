@@ -165,6 +165,7 @@ struct RenderConfig {
   RenderQuality quality = RenderQuality::final;  // render_presets.hpp
   bool antialias = true;                         // false: off whatever the quality
   std::optional<FrameRange> frames;              // default: every frame found
+  int fps = default_frame_rate;                  // frames per second of the animation's video
   Color background{0.93, 0.96, 1.0};
 };
 

@@ -447,6 +447,8 @@ const Section<RenderConfig>& render_section() {
            "preset: size and antialiasing"),
        key("antialias", &C::antialias, Boolean{}, "false: antialiasing off whatever the quality"),
        key("frames", &C::frames, Frames{}, "frames written", "all"),
+       key("fps", &C::fps, Integer{1, max_frame_rate},
+           "frames per second of the video `toonwater render --video` makes"),
        key("background", &C::background, Colour{}, "background colour")},
       nullptr};
   return section;

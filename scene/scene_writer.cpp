@@ -529,7 +529,10 @@ std::string scene_ini(const SceneLayout& l) {
   s += "Display=Off\nPause_When_Done=Off\n";
   if (l.animation)
     s += "Initial_Frame=" + std::to_string(l.first_frame) +
-         "\nFinal_Frame=" + std::to_string(l.last_frame) + "\n";
+         "\nFinal_Frame=" + std::to_string(l.last_frame) +
+         "\n; Frames per second of `toonwater render --video` (render.fps); POV-Ray has no such "
+         "option.\n; Frame_Rate=" +
+         std::to_string(r.fps) + "\n";
   return s;
 }
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Idempotent set-up: installs the Debian packages toonwater needs (only those missing),
 # then configures and builds the project into ./build (or $TOONWATER_BUILD_DIR).
-# --tests also installs what only the tests need (scripts/test.sh passes it).
+# --tests (scripts/test.sh) also installs test_packages, which only some tests need, so that
+# the main job's set-up (scripts/demo.sh) stays as fast as it is.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${TOONWATER_BUILD_DIR:-$root/build}
@@ -18,16 +19,16 @@ packages=(
   clang-14 libclang-rt-14-dev  # fuzzing (scripts/fuzz.sh)
   slurm-wlm munge parallel     # render farms (render --on slurm|parallel) and their tests
 )
-# Only for the tests: the main job's set-up stays as fast as it is.
 test_packages=(
   blender python3  # the add-on's tests (tests/blender), Blender headless
+  ffmpeg           # render --video and its tests (ffprobe)
 )
-if [ "${1:-}" = "--tests" ]; then
-  packages+=("${test_packages[@]}")
-elif [ $# -gt 0 ]; then
-  echo "setup: unknown option '$1' (--tests)" >&2
-  exit 2
-fi
+
+case ${1:-} in
+  --tests) packages+=("${test_packages[@]}") ;;
+  "") ;;
+  *) echo "setup: unknown option '$1' (--tests)" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

@@ -314,6 +314,7 @@ TEST(PovgenScene, GlobSequencesStaticAndAnimatedObjectsMatchedByFrame) {
     EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
   const std::string ini = read_text(out / "scene.ini");
   EXPECT_NE(ini.find("Initial_Frame=8\nFinal_Frame=9"), std::string::npos) << ini;
+  EXPECT_NE(ini.find("\n; Frame_Rate=24\n"), std::string::npos) << ini;  // render.fps's default
   const std::string pov = read_text(out / "scene.pov");
   EXPECT_NE(pov.find("#include concat(\"obj_boat.\", str(frame_number, -4, 0), \".inc\")"),
             std::string::npos);

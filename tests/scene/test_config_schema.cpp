@@ -107,7 +107,7 @@ TEST(ConfigSchema, TheFuzzersDictionaryNamesEveryTableAndKey) {
 
 TEST(ConfigSchema, EveryKeyHasATypeAndHelp) {
   const std::vector<ConfigKey> schema = config_keys();
-  EXPECT_EQ(schema.size(), 61u);
+  EXPECT_EQ(schema.size(), 62u);
   for (const ConfigKey& k : schema) {
     EXPECT_FALSE(k.type.empty()) << k.key;
     EXPECT_FALSE(k.help.empty()) << k.key;
@@ -127,6 +127,8 @@ TEST(ConfigSchema, DefaultsShownAreTheStructsDefaults) {
   EXPECT_EQ(find("light.color").default_value, "[1,1,1]");
   EXPECT_EQ(find("render.width").default_value, "640");
   EXPECT_EQ(find("render.width").type, "whole number from 1 to 16384");
+  EXPECT_EQ(find("render.fps").default_value, "24");
+  EXPECT_EQ(find("render.fps").type, "whole number from 1 to 240");
   EXPECT_EQ(find("flow.style").type, "\"regions\" | \"lines\" | \"regions+lines\"");
   EXPECT_EQ(find("outline.enabled").default_value, "true");
 }
@@ -147,6 +149,11 @@ TEST(ConfigSchema, IntegerKeysTakeWholeNumbersOnly) {
             "scene.toml:3: config: 'flow.smoothing' must be a whole number");
   EXPECT_EQ(error_in_file("[render]\nheight = \"tall\"\n"),
             "scene.toml:2: config: 'render.height' must be a whole number");
+  EXPECT_EQ(config_from("[render]\nfps = 30\n").render.fps, 30);
+  EXPECT_EQ(error_in_file("[render]\nfps = 29.97\n"),
+            "scene.toml:2: config: 'render.fps' must be a whole number");
+  EXPECT_EQ(error_in_file("[render]\nfps = 0\n"),
+            "scene.toml:2: config: 'render.fps' must be between 1 and 240");
   // Compared as integers: no rounding of a 64-bit value through a double into range.
   EXPECT_EQ(error_in_file("[render]\nwidth = 9223372036854775807\n"),
             "scene.toml:2: config: 'render.width' must be between 1 and 16384");
