@@ -251,8 +251,10 @@ def write_inputs(context, settings, toonwater, water, staging, frame_range, came
     sections = look.look_sections(settings)
     sections["camera"] = camera_keys
     sections["light"] = camera.light_keys(scene)
+    # render.fps is a whole number of frames a second (1-240): NTSC's 29.97 plays at 30.
+    fps = max(1, min(240, round(scene.render.fps / scene.render.fps_base)))
     sections["render"].update({"width": size[0], "height": size[1],
-                               "frames": "%d-%d" % (frames[0], frames[-1])})
+                               "frames": "%d-%d" % (frames[0], frames[-1]), "fps": fps})
     header = ("Written by the Toon water Blender add-on from %s, scene '%s'.\n"
               "Blender's world coordinates, Z up: povgen --up z." %
               (bpy.data.filepath or "an unsaved file", scene.name))

@@ -117,6 +117,8 @@ def check_configuration(scene, cam, sun, config_path):
     r = config["render"]
     check("image size is Blender's resolution",
           (r["width"], r["height"]) == addon_scene.RESOLUTION, str((r["width"], r["height"])))
+    blender_fps = bpy.context.scene.render.fps / bpy.context.scene.render.fps_base
+    check("frame rate is Blender's", r["fps"] == round(blender_fps), str(r["fps"]))
     towards_sun = (sun.matrix_world.to_3x3() @ Vector((0, 0, 1))).normalized()
     check("light direction points at Blender's sun",
           (Vector(config["light"]["direction"]) - towards_sun).length < 1e-6)
