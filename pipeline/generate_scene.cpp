@@ -591,10 +591,10 @@ void write_spray(SceneRun& run, const SceneMesh* water, long frame, long written
   result.droplets = droplets.size();
   // Droplets are outlined as wide as the water in pixels; an outline given in scene units has
   // no size on a droplet made on screen, so it takes the default width in pixels.
-  const double line_pixels =
-      !c.outline.enabled ? 0.0
-      : c.outline.units == WidthUnits::pixels ? c.outline.width.value_or(2.0)
-                                              : 2.0;
+  const double line_pixels = !c.outline.enabled ? 0.0
+                             : c.outline.units == WidthUnits::pixels
+                                 ? c.outline.width.value_or(kDefaultOutlinePixels)
+                                 : kDefaultOutlinePixels;
   result.write_seconds += run.write(spray_include_name(written_frame),
                                     spray_include(droplets, screen, run.light, line_pixels));
 }

@@ -114,6 +114,10 @@ struct WaterConfig {
 // mesh's bounding-box diagonal; world: scene units.
 enum class WidthUnits { pixels, relative, world };
 
+// The outline's width when none is given in pixels, and a droplet's made on screen (whose
+// outline has no size in scene units).
+inline constexpr double kDefaultOutlinePixels = 2.0;
+
 struct OutlineConfig {
   bool enabled = true;
   std::optional<double> width;  // default: 2 pixels, 0.006 relative, 0.01 world

@@ -193,7 +193,7 @@ std::vector<double> shell_offsets(const OutlineConfig& outline, const SceneMesh&
       break;
   }
   std::vector<double> offsets = pixel_widths(mesh, camera, image_width);
-  for (double& offset : offsets) offset *= outline.width.value_or(2.0);
+  for (double& offset : offsets) offset *= outline.width.value_or(kDefaultOutlinePixels);
   return offsets;
 }
 

@@ -149,6 +149,8 @@ std::vector<Droplet> DropletTracks::update(std::vector<Droplet> droplets,
   const double spacing = 2.0 * options.size_pixels;  // the clustering's
   // Every pair of a new droplet and a last one within reach of its predicted place: a
   // spacing, or kFirstReach spacings for a droplet whose motion is not known yet.
+  std::vector<std::optional<Eigen::Vector2d>> found(droplets.size());
+  for (std::size_t d = 0; d < droplets.size(); ++d) found[d] = screen.pixel(droplets[d].centre);
   std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
   for (std::size_t t = 0; t < last_.size(); ++t) {
     const bool moving = last_[t].age > 0 && last_[t].motion != Vec3::Zero();
@@ -157,9 +159,8 @@ std::vector<Droplet> DropletTracks::update(std::vector<Droplet> droplets,
         screen.pixel(last_[t].droplet.centre + last_[t].motion);
     if (!predicted) continue;
     for (std::size_t d = 0; d < droplets.size(); ++d) {
-      const std::optional<Eigen::Vector2d> px = screen.pixel(droplets[d].centre);
-      if (!px) continue;
-      const double distance = (*px - *predicted).norm();
+      if (!found[d]) continue;
+      const double distance = (*found[d] - *predicted).norm();
       if (distance <= reach) pairs.emplace_back(distance, d, t);
     }
   }
