@@ -1,5 +1,7 @@
 #include "scene/scene_writer.hpp"
 
+#include "scene/pov_numbers.hpp"
+
 #include "analyzer/colormap.hpp"
 
 #include "scene/axes.hpp"
@@ -7,19 +9,16 @@
 #include "scene/seen_through_water.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <numbers>
-#include <stdexcept>
 
 namespace toonwater {
 namespace {
 
 std::string num(double v) {
-  if (!std::isfinite(v)) throw std::logic_error("scene writer: non-finite number");
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 7);
-  return std::string(buf, r.ptr);
+  std::string s;
+  append_pov_number(s, v);
+  return s;
 }
 
 // Built with += only: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
