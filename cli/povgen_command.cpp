@@ -103,8 +103,10 @@ void run_povgen(const PovgenArgs& args) {
                r.faces, r.read_seconds, r.analysis_seconds, r.simplify_seconds, r.write_seconds,
                printable_shell_word(args.out).c_str(), printable_shell_word(args.out).c_str());
   if (!args.particles.empty())
-    std::fprintf(stderr, "  spray: %zu particles -> %zu droplets over the frames (particles.*)\n",
-                 r.particles, r.droplets);
+    std::fprintf(stderr,
+                 "  spray: %zu particles -> %zu droplets; foam: %zu particles -> %zu patch "
+                 "components; over the frames (particles.*)\n",
+                 r.particles, r.droplets, r.foam_particles, r.foam_components);
   if (!args.maps.empty()) {
     std::fprintf(
         stderr, "  maps: %zu frame(s) -> %s, shared colour ranges K \u00b1%.6g, H \u00b1%.6g\n",

@@ -36,6 +36,8 @@ PovgenReport summarise(std::vector<FrameResult> frames, const RunResult& run) {
     r.map_frames += f.maps ? 1 : 0;
     r.particles += f.particles;
     r.droplets += f.droplets;
+    r.foam_particles += f.foam_particles;
+    r.foam_components += f.foam_components;
     r.read_seconds += f.read_seconds;
     r.analysis_seconds += f.analysis_seconds;
     r.simplify_seconds += f.simplify_seconds;

@@ -31,6 +31,7 @@ struct FrameResult {
   std::size_t shell_faces = 0, shell_faces_kept = 0;  // the water's outline shell
   bool maps = false;                                  // its curvature maps written
   std::size_t particles = 0, droplets = 0;  // spray particles read, and droplets drawn
+  std::size_t foam_particles = 0, foam_components = 0;  // foam particles read, blob components
   // The water file read, its analysis and preparation, the render mesh's simplification, the
   // include's text and file, the maps.
   double read_seconds = 0, analysis_seconds = 0, simplify_seconds = 0, write_seconds = 0,
@@ -58,6 +59,7 @@ struct PovgenReport {
               shell_faces_kept = 0;  // outline shells, water and objects, all frames
   std::size_t ridge_vertices = 0, valley_vertices = 0;
   std::size_t particles = 0, droplets = 0;  // spray particles read, and droplets drawn
+  std::size_t foam_particles = 0, foam_components = 0;  // foam particles read, blob components
   std::vector<std::string> empty_frames;  // "PATH: why", frames left without water (no faces)
   double read_seconds = 0, analysis_seconds = 0, simplify_seconds = 0, write_seconds = 0;
   // Water mesh files read: once per frame. Object mesh files read: once per static object,

@@ -22,6 +22,8 @@
 #include "pipeline/sequence.hpp"
 #include "scene/shell_culling.hpp"
 #include "scene/simplify.hpp"
+#include "scene/foam_patches.hpp"
+#include "scene/foam_writer.hpp"
 #include "scene/spray_droplets.hpp"
 
 #include <algorithm>
@@ -551,15 +553,22 @@ WaterShell water_shell(const SceneRun& run, const SceneMesh& mesh, std::span<con
   return shell;
 }
 
-// The spray particles of a frame from every particle cache, in POV-Ray's frame.
-std::vector<Vec3> read_spray(const SceneRun& run, long frame) {
-  std::vector<Vec3> spray;
+// A frame's spray and foam particles from every particle cache, in POV-Ray's frame.
+struct FrameParticles {
+  std::vector<Vec3> spray, foam;
+};
+
+FrameParticles read_frame_particles(const SceneRun& run, long frame) {
+  FrameParticles out;
   for (const Sequence& cache : run.particles) {
     const fs::path& path =
         cache.single_file ? cache.frames.begin()->second : cache.frames.at(frame);
     const ParticleSet set = read_particles(path);
     for (std::size_t i = 0; i < set.positions.size(); ++i) {
-      if (set.kinds[i] != ParticleKind::spray) continue;
+      std::vector<Vec3>* kind = set.kinds[i] == ParticleKind::spray  ? &out.spray
+                                : set.kinds[i] == ParticleKind::foam ? &out.foam
+                                                                     : nullptr;
+      if (!kind) continue;
       Vec3 p = set.positions[i];
       if (const std::optional<AffineTransform>& t = run.request.water_transform)
         p = t->linear * p + t->translation;
@@ -567,36 +576,48 @@ std::vector<Vec3> read_spray(const SceneRun& run, long frame) {
         throw InputError(path.string() + ": particle " + std::to_string(i) +
                          " lies beyond what a POV-Ray scene takes once placed (--scale, "
                          "--translate)");
-      spray.push_back(to_povray(p, run.request.up));
+      kind->push_back(to_povray(p, run.request.up));
     }
   }
-  return spray;
+  return out;
 }
 
-// A frame's spray include: its spray gathered into droplets in the air over `water` (none: a
-// frame without water), carried on from the last frame.
-void write_spray(SceneRun& run, const SceneMesh* water, long frame, long written_frame,
-                 FrameResult& result) {
-  std::vector<Vec3> spray;
-  result.read_seconds += seconds_of([&] { spray = read_spray(run, frame); });
+// A frame's particle includes: its spray gathered into droplets in the air over `water` (none:
+// a frame without water), carried on from the last frame; its foam as patches on the water.
+void write_particles(SceneRun& run, const SceneMesh* water, long frame, long written_frame,
+                     FrameResult& result) {
+  FrameParticles particles;
+  result.read_seconds += seconds_of([&] { particles = read_frame_particles(run, frame); });
   const SceneConfig& c = run.config;
   const ScreenProjection screen =
       screen_projection(run.layout.camera, c.render.width, c.render.height);
-  DropletOptions options;
-  options.size_pixels = c.particles.droplet_size;
-  options.max_droplets = static_cast<std::size_t>(c.particles.max_droplets);
-  std::vector<Droplet> droplets =
-      run.droplets.update(spray_droplets(spray, screen, options, water), screen, options);
-  result.particles = spray.size();
-  result.droplets = droplets.size();
-  // Droplets are outlined as wide as the water in pixels; an outline given in scene units has
-  // no size on a droplet made on screen, so it takes the default width in pixels.
-  const double line_pixels = !c.outline.enabled ? 0.0
-                             : c.outline.units == WidthUnits::pixels
-                                 ? c.outline.width.value_or(kDefaultOutlinePixels)
-                                 : kDefaultOutlinePixels;
-  result.write_seconds += run.write(spray_include_name(written_frame),
-                                    spray_include(droplets, screen, run.light, line_pixels));
+  if (run.layout.spray) {
+    DropletOptions options;
+    options.size_pixels = c.particles.droplet_size;
+    options.max_droplets = static_cast<std::size_t>(c.particles.max_droplets);
+    std::vector<Droplet> droplets = run.droplets.update(
+        spray_droplets(particles.spray, screen, options, water), screen, options);
+    result.particles = particles.spray.size();
+    result.droplets = droplets.size();
+    // Droplets are outlined as wide as the water in pixels; an outline given in scene units
+    // has no size on a droplet made on screen, so it takes the default width in pixels.
+    const double line_pixels = !c.outline.enabled ? 0.0
+                               : c.outline.units == WidthUnits::pixels
+                                   ? c.outline.width.value_or(kDefaultOutlinePixels)
+                                   : kDefaultOutlinePixels;
+    result.write_seconds += run.write(spray_include_name(written_frame),
+                                      spray_include(droplets, screen, run.light, line_pixels));
+  }
+  if (run.layout.foam) {
+    const FoamOptions options{c.particles.foam_reach, c.particles.foam_density};
+    // Without water there is no surface to paint.
+    const std::vector<FoamComponent> components =
+        water ? foam_components(particles.foam, *water, screen, options) : std::vector<FoamComponent>{};
+    result.foam_particles = particles.foam.size();
+    result.foam_components = components.size();
+    result.write_seconds += run.write(foam_include_name(written_frame),
+                                      foam_include(components, options.density));
+  }
 }
 
 // A frame with no liquid: the scene still needs its include, with nothing in it.
@@ -607,7 +628,8 @@ void write_empty_frame(SceneRun& run, long frame, long written_frame, const std:
   result.objects += write_animated_objects(run, frame, written_frame);
   result.write_seconds += run.write(water_include_name(written_frame),
                                     empty_water_include() + object_waters(run, nullptr));
-  if (run.layout.spray) write_spray(run, nullptr, frame, written_frame, result);
+  if (run.layout.spray || run.layout.foam)
+    write_particles(run, nullptr, frame, written_frame, result);
 }
 
 // A water frame's include: its text (the render mesh with its textures, outline shell and flow
@@ -653,6 +675,9 @@ void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long writt
   result.objects += write_animated_objects(run, frame, written_frame);
 
   std::vector<TextureCoordinate> uv = water_coordinates(s, run.light, run.layout);
+  // The particles meet the water as analysed (foam_patches.hpp), before it is simplified.
+  if (run.layout.spray || run.layout.foam)
+    write_particles(run, &s.mesh, frame, written_frame, result);
   result.simplify_seconds = seconds_of([&] { simplify_water(s, uv, run.layout, run.plan.flow); });
   result.faces_kept = s.mesh.triangles.size();
 
@@ -661,7 +686,6 @@ void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long writt
   result.shell_faces = include.shell.faces;
   result.shell_faces_kept = include.shell.faces_kept;
   result.write_seconds += run.write(water_include_name(written_frame), include.text);
-  if (run.layout.spray) write_spray(run, &s.mesh, frame, written_frame, result);
 }
 
 // A water frame as the frame loop takes it: why it has no water ("" when it has), its maps'
@@ -768,6 +792,8 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   run.layout.last_frame = run.layout.animation ? water.frames.rbegin()->first : 0;
   run.layout.spray =
       !run.particles.empty() && config.particles.spray && config.particles.max_droplets > 0;
+  run.layout.foam = !run.particles.empty() && config.particles.foam &&
+                    config.water.shading == WaterShading::toon;
   run.light = light_geometry(config.light, request.up);
   RunResult totals;
   totals.first_frame = run.layout.first_frame;

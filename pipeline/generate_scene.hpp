@@ -6,6 +6,7 @@
 //   DIR/water_NNNN.inc       per frame: Water_mesh (+ Water_shell) as mesh2
 //   DIR/obj_NAME[.NNNN].inc  per object (per frame if animated): Obj_NAME_mesh (+ _shell)
 //   DIR/spray_NNNN.inc       per frame, with particles: Spray_droplets (droplet_writer.hpp)
+//   DIR/foam_NNNN.inc        per frame, with particles: Foam_patches (foam_writer.hpp)
 //
 // All references inside are relative, so DIR can be moved. The directory is replaced whole, or
 // not at all (scene_directory.hpp).

@@ -156,11 +156,15 @@ struct ObjectConfig {
 };
 
 // Secondary particles (povgen --particles): the spray drawn as a few outlined droplets
-// (scene/spray_droplets.hpp).
+// (scene/spray_droplets.hpp), the foam as flat patches on the water (scene/foam_patches.hpp).
 struct ParticlesConfig {
   bool spray = true;
   double droplet_size = 8.0;  // pixels across, at the frame's median droplet
   int max_droplets = 40;      // a frame's most salient droplets
+  bool foam = true;
+  double foam_reach = 6.0;     // pixels: how far from a foam particle its foam reaches
+  double foam_density = 6.0;   // particles' worth of foam, within a reach, that make a patch
+  Color foam_color{1.0, 1.0, 1.0};
 };
 
 struct RenderConfig {

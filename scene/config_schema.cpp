@@ -428,7 +428,13 @@ const Section<ParticlesConfig>& particles_section() {
        key("droplet_size", &C::droplet_size, Number{1.0, 200.0},
            "a droplet's size across in pixels (the frame's median; denser clusters up to twice)"),
        key("max_droplets", &C::max_droplets, Integer{0, 10000},
-           "most droplets a frame shows, the ones with most particles")},
+           "most droplets a frame shows, the ones with most particles"),
+       key("foam", &C::foam, Boolean{}, "draw the foam particles as flat patches on the water"),
+       key("foam_reach", &C::foam_reach, Number{0.5, 100.0},
+           "how far a foam particle's foam reaches, in pixels"),
+       key("foam_density", &C::foam_density, Number{0.1, 1000.0},
+           "foam particles within a reach that make a patch"),
+       key("foam_color", &C::foam_color, Colour{}, "the foam's colour")},
       nullptr};
   return section;
 }

@@ -259,6 +259,7 @@ CameraReach camera_reach(const SceneLayout& l, const Vec3& min, const Vec3& max)
 
 std::string water_include_name(long frame) { return "water_" + padded(frame, 4) + ".inc"; }
 std::string spray_include_name(long frame) { return "spray_" + padded(frame, 4) + ".inc"; }
+std::string foam_include_name(long frame) { return "foam_" + padded(frame, 4) + ".inc"; }
 
 std::string object_include_name(const std::string& name, bool animated, long frame) {
   std::string s = std::string("obj_").append(name);
@@ -361,6 +362,21 @@ std::string scene_pov(const SceneLayout& l) {
            two_bands + ", 0)\n  " + body_finish + "\n}\n";
     }
     s += "\n";
+  }
+  if (l.foam) {
+    // Foam paints the free surface's textures (not an opaque body's walls and floor), flat.
+    s += "// Foam: the free surface painted where this frame's foam gathers (Foam_patches)\n";
+    s += "#include concat(\"foam_\", str(frame_number, -4, 0), \".inc\")\n";
+    s += "#ifdef (Foam_patches)\n";
+    s += "  #declare Toon_foam = texture { pigment { color " + rgb(c.particles.foam_color) +
+         " }\n    finish { Toon_flat_shading(" + num(w.ka) + ", <1, 1, 1>, " + num(w.kd) + ", " +
+         vec({c.light.color[0], c.light.color[1], c.light.color[2]}) + ") } }\n";
+    std::vector<const char*> painted{kWaterSurfaceTexture, kWaterSurfaceTwoBandTexture};
+    if (flow_regions)
+      painted.insert(painted.end(), kWaterOneBandTextures.begin(), kWaterOneBandTextures.end());
+    for (const char* id : painted)
+      s += std::string("  #declare ") + id + " = Toon_foam_over(" + id + ", Foam_patches, Toon_foam)\n";
+    s += "#end\n\n";
   }
   if (l.spray) {
     // Read by Toon_droplet while the spray include is parsed.
@@ -502,6 +518,7 @@ std::string scene_toon_inc(const SceneLayout& l) {
   if (!l.objects.empty()) parts.push_back("objects");
   if (c.outline.enabled || l.spray) parts.push_back("outline");  // droplets' shells too
   if (l.spray) parts.push_back("droplets");
+  if (l.foam) parts.push_back("foam");
   for (const ObjectPlacement& o : l.objects)
     if (reflects && !(c.outline.enabled && o.config->outline) &&
         o.config->reflection == ReflectionTarget::abstract) {

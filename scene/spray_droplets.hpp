@@ -24,6 +24,7 @@
 
 #include "analyzer/mesh.hpp"
 #include "scene/scene_mesh.hpp"
+#include "scene/screen_projection.hpp"
 #include "scene/scene_writer.hpp"
 
 #include <Eigen/Core>
@@ -52,22 +53,6 @@ struct DropletOptions {
   double size_pixels = 8.0;
   std::size_t max_droplets = 40;
 };
-
-// The camera as a pinhole on an image `width` × `height` pixels with square pixels (what
-// scene.pov's camera block makes of a CameraPlacement): pixel (0, 0) at the top left.
-struct ScreenProjection {
-  Vec3 location = Vec3::Zero(), right = Vec3::UnitX(), up = Vec3::UnitY(),
-       forward = Vec3::UnitZ();
-  double focal_pixels = 1.0;  // the image's half-width over tan(angle / 2)
-  int width = 1, height = 1;
-
-  // The pixel `p` projects to; none behind the camera.
-  std::optional<Eigen::Vector2d> pixel(const Vec3& p) const;
-  // The width of a pixel at p's distance from the camera, in world units.
-  double pixel_size(const Vec3& p) const;
-};
-
-ScreenProjection screen_projection(const CameraPlacement& camera, int width, int height);
 
 // Round droplets of one frame, in decreasing order of their particle counts. With `water`,
 // droplets whose centre lies under it (an upward ray crosses its surface an odd number of

@@ -1,5 +1,5 @@
-// Spray drawn as a cartoon draws it (issue 33): povgen --particles, rendered with POV-Ray and
-// read back, and the droplets of the shared dam break from frame to frame.
+// Spray and foam drawn as a cartoon draws them (issue 33): povgen --particles, rendered with
+// POV-Ray and read back, and the droplets and foam of the shared dam break from frame to frame.
 #include "tests/support/povray_test_util.hpp"
 
 #include "analyzer/affine_transform.hpp"
@@ -126,9 +126,63 @@ TEST(SprayRender, DropletsInTheAirAreOutlinedAndSprayUnderTheWaterIsNot) {
 TEST(SprayRender, ASceneWithoutParticlesHoldsNoneOfTheirMacros) {
   ScratchDir dir;
   render_pool(dir, {});
-  EXPECT_EQ(read_text(dir / "scene" / "toon.inc").find("Toon_droplet"), std::string::npos);
+  const std::string toon = read_text(dir / "scene" / "toon.inc");
+  EXPECT_EQ(toon.find("Toon_droplet"), std::string::npos);
+  EXPECT_EQ(toon.find("Toon_foam"), std::string::npos);
   EXPECT_EQ(read_text(dir / "scene" / "scene.pov").find("Spray"), std::string::npos);
+  EXPECT_EQ(read_text(dir / "scene" / "scene.pov").find("Foam"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir / "scene" / "spray_0000.inc"));
+  EXPECT_FALSE(fs::exists(dir / "scene" / "foam_0000.inc"));
+}
+
+// Foam in a colour nothing else in the picture has.
+const std::vector<std::string> kMagentaFoam{"--set", "particles.foam_color=[1, 0, 1]"};
+bool is_foam(const Rgb8& c) { return c[0] > 200 && c[1] < 60 && c[2] > 200; }
+
+// The foam pixels within `radius` pixels of (x, y).
+int foam_pixels_near(const Image& image, double x, double y, int radius) {
+  int count = 0;
+  for (int dy = -radius; dy <= radius; ++dy)
+    for (int dx = -radius; dx <= radius; ++dx)
+      count += is_foam(pixel(image, x + dx, y + dy)) ? 1 : 0;
+  return count;
+}
+
+TEST(FoamRender, FoamGatheredAtTheSurfaceIsAPatchOnItAndSparseOrDeepFoamIsNone) {
+  ScratchDir dir;
+  // A raft of foam a few millimetres under the surface, as simulators keep it; a sparse spread
+  // on it; a crowd deep under it.
+  std::vector<std::pair<int, Vec3>> foam = cloud({-0.5, -0.004, 1.0}, 80, 1);
+  for (int i = 0; i < 6; ++i) foam.emplace_back(0, Vec3(0.2 + 0.15 * i, 0.0, 1.0));
+  const auto deep = cloud({0.5, -0.6, 0.5}, 80, 2);
+  foam.insert(foam.end(), deep.begin(), deep.end());
+  write_text(dir / "foam000001.wwp", wwp_bytes(foam));
+  std::vector<std::string> args{"--particles", (dir / "foam000001.wwp").string()};
+  args.insert(args.end(), kMagentaFoam.begin(), kMagentaFoam.end());
+  const Image image = render_pool(dir, args);
+  ASSERT_EQ(image.width, kWidth);
+  // The raft: a patch several pixels across, flat in the foam's colour, on the water.
+  const auto [fx, fy] = project({-0.5, 0.0, 1.0});
+  EXPECT_TRUE(is_foam(pixel(image, fx, fy))) << fx << ", " << fy;
+  EXPECT_GE(foam_pixels_near(image, fx, fy, 8), 12);
+  // Nothing of the sparse or the deep foam, and nothing elsewhere: every foam pixel is the raft's.
+  int total = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) total += is_foam(image.at(x, y)) ? 1 : 0;
+  EXPECT_EQ(total, foam_pixels_near(image, fx, fy, 20));
+  for (int i = 0; i < 6; ++i) {
+    const auto [sx, sy] = project({0.2 + 0.15 * i, 0.0, 1.0});
+    EXPECT_EQ(foam_pixels_near(image, sx, sy, 4), 0) << "a lone particle makes no patch";
+  }
+  // Off: no foam include, no foam in the picture.
+  ScratchDir off;
+  write_text(off / "foam000001.wwp", wwp_bytes(foam));
+  std::vector<std::string> without{"--particles", (off / "foam000001.wwp").string(), "--set",
+                                   "particles.foam=false"};
+  without.insert(without.end(), kMagentaFoam.begin(), kMagentaFoam.end());
+  const Image plain = render_pool(off, without);
+  EXPECT_FALSE(is_foam(pixel(plain, fx, fy)));
+  EXPECT_FALSE(fs::exists(off / "scene" / "foam_0000.inc"));
 }
 
 TEST(SprayRender, AParticleCacheMissingAFrameIsRefusedNamingIt) {
@@ -228,6 +282,71 @@ TEST(SprayRender, TheDamBreaksDropletsAreFewAndCarriedFromFrameToFrame) {
   // particles' velocities would predict a droplet's first step: Mantaflow stores them in its
   // own units, not yet checked against Blender (docs/inputs.md).
   EXPECT_GE(share, 0.6);
+}
+
+// The foam pixels of an image, as a mask.
+std::vector<bool> foam_mask(const Image& image) {
+  std::vector<bool> mask(static_cast<std::size_t>(image.width) * image.height);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      mask[static_cast<std::size_t>(y) * image.width + x] = is_foam(image.at(x, y));
+  return mask;
+}
+
+// The dam break's foam over frames 19–22 (the crown falling back over the sphere), placed like
+// its spray, at 320×180: patches on the water in every frame, and a patch of one frame still
+// has foam within a few pixels in the next (the water moves 2–6 pixels a frame there).
+TEST(FoamRender, TheDamBreaksFoamIsPatchesThatFollowTheWater) {
+  const fs::path data = shared_dir().empty() ? fs::path() : shared_dir() / "data";
+  const fs::path bake = data / "mantaflow-dambreak" / "cache";
+  if (data.empty() || !fs::exists(bake / "particles"))
+    GTEST_SKIP() << "../shared/data/mantaflow-dambreak is absent: real-data test skipped";
+  ScratchDir dir;
+  std::vector<std::string> args{
+      "povgen", "--water", (bake / "mesh" / "fluid_mesh_####.bobj.gz").string(), "--scale",
+      "1.2", "--translate", "0,0,0.3", "--up", "z", "--particles",
+      (bake / "particles" / "fluid_particles_####.vdb").string(), "--set",
+      "render.frames=\"19-22\"", "--set", "render.width=320", "--set", "render.height=180",
+      "--out", (dir / "scene").string()};
+  args.insert(args.end(), kMagentaFoam.begin(), kMagentaFoam.end());
+  const CommandResult r = run_toonwater(args);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Povray p = run_povray(dir / "scene");
+  ASSERT_EQ(p.exit_code, 0) << p.output;
+  constexpr int kReach = 3;  // pixels a patch may move between frames
+  std::vector<bool> last;
+  double kept_sum = 0.0;
+  int pairs = 0;
+  for (int f = 19; f <= 22; ++f) {
+    const Image image = read_image(dir / "scene" / ("frame_" + std::to_string(f) + ".png"));
+    const std::vector<bool> mask = foam_mask(image);
+    const auto count = std::count(mask.begin(), mask.end(), true);
+    EXPECT_GE(count, 100) << "frame " << f << ": the splash's foam is drawn";
+    EXPECT_LE(count, image.width * image.height / 10) << "frame " << f << ": foam, not a flood";
+    if (!last.empty()) {
+      long had = 0, kept = 0;
+      for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+          if (!last[static_cast<std::size_t>(y) * image.width + x]) continue;
+          ++had;
+          bool near_foam = false;
+          for (int dy = -kReach; dy <= kReach && !near_foam; ++dy)
+            for (int dx = -kReach; dx <= kReach && !near_foam; ++dx) {
+              const int u = x + dx, v = y + dy;
+              near_foam = u >= 0 && v >= 0 && u < image.width && v < image.height &&
+                          mask[static_cast<std::size_t>(v) * image.width + u];
+            }
+          kept += near_foam ? 1 : 0;
+        }
+      const double share = static_cast<double>(kept) / static_cast<double>(had);
+      std::printf("frame %d: %ld foam pixels, %.0f %% of the last frame's have foam within %d px\n",
+                  f, static_cast<long>(count), 100.0 * share, kReach);
+      kept_sum += share;
+      ++pairs;
+    }
+    last = mask;
+  }
+  EXPECT_GE(kept_sum / pairs, 0.7) << "foam follows the water instead of flickering";
 }
 
 }  // namespace
