@@ -38,6 +38,8 @@ PovgenReport summarise(std::vector<FrameResult> frames, const RunResult& run) {
     r.droplets += f.droplets;
     r.foam_particles += f.foam_particles;
     r.foam_components += f.foam_components;
+    r.bubble_particles += f.bubble_particles;
+    r.bubbles += f.bubbles;
     r.read_seconds += f.read_seconds;
     r.analysis_seconds += f.analysis_seconds;
     r.simplify_seconds += f.simplify_seconds;

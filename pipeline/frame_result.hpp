@@ -32,6 +32,7 @@ struct FrameResult {
   bool maps = false;                                  // its curvature maps written
   std::size_t particles = 0, droplets = 0;  // spray particles read, and droplets drawn
   std::size_t foam_particles = 0, foam_components = 0;  // foam particles read, blob components
+  std::size_t bubble_particles = 0, bubbles = 0;        // bubble particles read, bubbles drawn
   // The water file read, its analysis and preparation, the render mesh's simplification, the
   // include's text and file, the maps.
   double read_seconds = 0, analysis_seconds = 0, simplify_seconds = 0, write_seconds = 0,
@@ -60,6 +61,7 @@ struct PovgenReport {
   std::size_t ridge_vertices = 0, valley_vertices = 0;
   std::size_t particles = 0, droplets = 0;  // spray particles read, and droplets drawn
   std::size_t foam_particles = 0, foam_components = 0;  // foam particles read, blob components
+  std::size_t bubble_particles = 0, bubbles = 0;        // bubble particles read, bubbles drawn
   std::vector<std::string> empty_frames;  // "PATH: why", frames left without water (no faces)
   double read_seconds = 0, analysis_seconds = 0, simplify_seconds = 0, write_seconds = 0;
   // Water mesh files read: once per frame. Object mesh files read: once per static object,

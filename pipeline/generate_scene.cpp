@@ -24,6 +24,7 @@
 #include "scene/simplify.hpp"
 #include "scene/foam_patches.hpp"
 #include "scene/foam_writer.hpp"
+#include "scene/bubble_writer.hpp"
 #include "scene/spray_droplets.hpp"
 
 #include <algorithm>
@@ -272,6 +273,7 @@ struct SceneRun {
   StrokePersistence strokes;         // the flow strokes carried from frame to frame
   std::vector<Sequence> particles;   // the particle caches (PovgenRequest::particle_patterns)
   DropletTracks droplets;            // the spray's droplets carried from frame to frame
+  DropletTracks bubbles;             // the bubbles carried from frame to frame
   std::vector<bool> submerged;
   std::vector<double> contact_depth;  // each object's, in scene units (Obj_NAME_contact)
   double view_range = 0;
@@ -553,9 +555,9 @@ WaterShell water_shell(const SceneRun& run, const SceneMesh& mesh, std::span<con
   return shell;
 }
 
-// A frame's spray and foam particles from every particle cache, in POV-Ray's frame.
+// A frame's spray, foam and bubble particles from every particle cache, in POV-Ray's frame.
 struct FrameParticles {
-  std::vector<Vec3> spray, foam;
+  std::vector<Vec3> spray, foam, bubbles;
 };
 
 FrameParticles read_frame_particles(const SceneRun& run, long frame) {
@@ -565,9 +567,10 @@ FrameParticles read_frame_particles(const SceneRun& run, long frame) {
         cache.single_file ? cache.frames.begin()->second : cache.frames.at(frame);
     const ParticleSet set = read_particles(path);
     for (std::size_t i = 0; i < set.positions.size(); ++i) {
-      std::vector<Vec3>* kind = set.kinds[i] == ParticleKind::spray  ? &out.spray
-                                : set.kinds[i] == ParticleKind::foam ? &out.foam
-                                                                     : nullptr;
+      std::vector<Vec3>* kind = set.kinds[i] == ParticleKind::spray    ? &out.spray
+                                : set.kinds[i] == ParticleKind::foam   ? &out.foam
+                                : set.kinds[i] == ParticleKind::bubble ? &out.bubbles
+                                                                       : nullptr;
       if (!kind) continue;
       Vec3 p = set.positions[i];
       if (const std::optional<AffineTransform>& t = run.request.water_transform)
@@ -583,7 +586,8 @@ FrameParticles read_frame_particles(const SceneRun& run, long frame) {
 }
 
 // A frame's particle includes: its spray gathered into droplets in the air over `water` (none:
-// a frame without water), carried on from the last frame; its foam as patches on the water.
+// a frame without water) and its bubbles under it, each carried on from the last frame; its
+// foam as patches on the water.
 void write_particles(SceneRun& run, const SceneMesh* water, long frame, long written_frame,
                      FrameResult& result) {
   FrameParticles particles;
@@ -591,6 +595,12 @@ void write_particles(SceneRun& run, const SceneMesh* water, long frame, long wri
   const SceneConfig& c = run.config;
   const ScreenProjection screen =
       screen_projection(run.layout.camera, c.render.width, c.render.height);
+  // Droplets and bubbles are outlined as wide as the water in pixels; an outline given in
+  // scene units has no size on a shape made on screen, so it takes the default width in pixels.
+  const double line_pixels = !c.outline.enabled ? 0.0
+                             : c.outline.units == WidthUnits::pixels
+                                 ? c.outline.width.value_or(kDefaultOutlinePixels)
+                                 : kDefaultOutlinePixels;
   if (run.layout.spray) {
     DropletOptions options;
     options.size_pixels = c.particles.droplet_size;
@@ -599,14 +609,23 @@ void write_particles(SceneRun& run, const SceneMesh* water, long frame, long wri
         spray_droplets(particles.spray, screen, options, water), screen, options);
     result.particles = particles.spray.size();
     result.droplets = droplets.size();
-    // Droplets are outlined as wide as the water in pixels; an outline given in scene units
-    // has no size on a droplet made on screen, so it takes the default width in pixels.
-    const double line_pixels = !c.outline.enabled ? 0.0
-                               : c.outline.units == WidthUnits::pixels
-                                   ? c.outline.width.value_or(kDefaultOutlinePixels)
-                                   : kDefaultOutlinePixels;
     result.write_seconds += run.write(spray_include_name(written_frame),
                                       spray_include(droplets, screen, run.light, line_pixels));
+  }
+  if (run.layout.bubbles) {
+    DropletOptions options;
+    options.size_pixels = c.particles.bubble_size;
+    options.max_droplets = static_cast<std::size_t>(c.particles.max_bubbles);
+    options.under_water = true;
+    // Without water nothing is under it.
+    std::vector<Droplet> bubbles =
+        water ? run.bubbles.update(spray_droplets(particles.bubbles, screen, options, water),
+                                   screen, options)
+              : std::vector<Droplet>{};
+    result.bubble_particles = particles.bubbles.size();
+    result.bubbles = bubbles.size();
+    result.write_seconds += run.write(bubbles_include_name(written_frame),
+                                      bubble_include(bubbles, screen, line_pixels));
   }
   if (run.layout.foam) {
     const FoamOptions options{c.particles.foam_reach, c.particles.foam_density};
@@ -628,7 +647,7 @@ void write_empty_frame(SceneRun& run, long frame, long written_frame, const std:
   result.objects += write_animated_objects(run, frame, written_frame);
   result.write_seconds += run.write(water_include_name(written_frame),
                                     empty_water_include() + object_waters(run, nullptr));
-  if (run.layout.spray || run.layout.foam)
+  if (run.layout.spray || run.layout.foam || run.layout.bubbles)
     write_particles(run, nullptr, frame, written_frame, result);
 }
 
@@ -676,7 +695,7 @@ void write_water_frame(SceneRun& run, PreparedSurface& s, long frame, long writt
 
   std::vector<TextureCoordinate> uv = water_coordinates(s, run.light, run.layout);
   // The particles meet the water as analysed (foam_patches.hpp), before it is simplified.
-  if (run.layout.spray || run.layout.foam)
+  if (run.layout.spray || run.layout.foam || run.layout.bubbles)
     write_particles(run, &s.mesh, frame, written_frame, result);
   result.simplify_seconds = seconds_of([&] { simplify_water(s, uv, run.layout, run.plan.flow); });
   result.faces_kept = s.mesh.triangles.size();
@@ -794,6 +813,10 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
       !run.particles.empty() && config.particles.spray && config.particles.max_droplets > 0;
   run.layout.foam = !run.particles.empty() && config.particles.foam &&
                     config.water.shading == WaterShading::toon;
+  // Bubbles are seen through the water only.
+  run.layout.bubbles = !run.particles.empty() && config.particles.bubbles &&
+                       config.particles.max_bubbles > 0 &&
+                       config.water.shading == WaterShading::toon && config.water.transmit > 0;
   run.light = light_geometry(config.light, request.up);
   RunResult totals;
   totals.first_frame = run.layout.first_frame;

@@ -7,6 +7,7 @@
 //   DIR/obj_NAME[.NNNN].inc  per object (per frame if animated): Obj_NAME_mesh (+ _shell)
 //   DIR/spray_NNNN.inc       per frame, with particles: Spray_droplets (droplet_writer.hpp)
 //   DIR/foam_NNNN.inc        per frame, with particles: Foam_patches (foam_writer.hpp)
+//   DIR/bubbles_NNNN.inc     per frame, with particles: Water_bubbles (bubble_writer.hpp)
 //
 // All references inside are relative, so DIR can be moved. The directory is replaced whole, or
 // not at all (scene_directory.hpp).

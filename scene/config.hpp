@@ -156,7 +156,8 @@ struct ObjectConfig {
 };
 
 // Secondary particles (povgen --particles): the spray drawn as a few outlined droplets
-// (scene/spray_droplets.hpp), the foam as flat patches on the water (scene/foam_patches.hpp).
+// (scene/spray_droplets.hpp), the foam as flat patches on the water (scene/foam_patches.hpp),
+// the bubbles as a few outlined discs seen through the water (scene/bubble_writer.hpp).
 struct ParticlesConfig {
   bool spray = true;
   double droplet_size = 8.0;  // pixels across, at the frame's median droplet
@@ -165,6 +166,9 @@ struct ParticlesConfig {
   double foam_reach = 6.0;     // pixels: how far from a foam particle its foam reaches
   double foam_density = 6.0;   // particles' worth of foam, within a reach, that make a patch
   Color foam_color{1.0, 1.0, 1.0};
+  bool bubbles = true;
+  double bubble_size = 6.0;  // pixels across
+  int max_bubbles = 12;      // a frame's most salient bubbles
 };
 
 struct RenderConfig {

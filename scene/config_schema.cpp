@@ -434,7 +434,12 @@ const Section<ParticlesConfig>& particles_section() {
            "how far a foam particle's foam reaches, in pixels"),
        key("foam_density", &C::foam_density, Number{0.1, 1000.0},
            "foam particles within a reach that make a patch"),
-       key("foam_color", &C::foam_color, Colour{}, "the foam's colour")},
+       key("foam_color", &C::foam_color, Colour{}, "the foam's colour"),
+       key("bubbles", &C::bubbles, Boolean{},
+           "draw the bubble particles as outlined discs seen through the water"),
+       key("bubble_size", &C::bubble_size, Number{1.0, 200.0}, "a bubble's size across in pixels"),
+       key("max_bubbles", &C::max_bubbles, Integer{0, 10000},
+           "most bubbles a frame shows, the ones with most particles")},
       nullptr};
   return section;
 }

@@ -260,6 +260,7 @@ CameraReach camera_reach(const SceneLayout& l, const Vec3& min, const Vec3& max)
 std::string water_include_name(long frame) { return "water_" + padded(frame, 4) + ".inc"; }
 std::string spray_include_name(long frame) { return "spray_" + padded(frame, 4) + ".inc"; }
 std::string foam_include_name(long frame) { return "foam_" + padded(frame, 4) + ".inc"; }
+std::string bubbles_include_name(long frame) { return "bubbles_" + padded(frame, 4) + ".inc"; }
 
 std::string object_include_name(const std::string& name, bool animated, long frame) {
   std::string s = std::string("obj_").append(name);
@@ -287,6 +288,12 @@ ToonLimits water_toon_limits(const SceneLayout& l) {
   ToonLimits limits{{band_coordinate(t_medium), band_coordinate(t_bright)}, std::nullopt};
   if (draws_flow_regions(*l.config)) limits.flow = {flow_coordinate(-1.0), flow_coordinate(1.0)};
   return limits;
+}
+
+// The pigment of a line under the water, as dark as its colour where the brightest band shows
+// above it.
+Color line_under_water(const SceneConfig& c, const WaterSurfaceLook& look) {
+  return seen_through_water(linear_from_srgb(c.outline.color), {1, 1, 1}, look.brightest, look);
 }
 
 std::string scene_pov(const SceneLayout& l) {
@@ -388,6 +395,18 @@ std::string scene_pov(const SceneLayout& l) {
     s += "#declare Toon_droplet_finish = " + finish(c, false) + "\n";
     s += "#declare Toon_droplet_line_color = " + rgb(c.outline.color) + ";\n\n";
   }
+  if (l.bubbles) {
+    // Read by Toon_bubble while the bubbles include is parsed. A bubble shows the water's
+    // bright colour under calm water, outlined like an object under water.
+    const WaterSurfaceLook look = water_surface_look(c);
+    s += "// Bubbles: discs in the water's bright colour and the line colour, as seen through "
+         "its surface\n";
+    s += "#declare Toon_bubble_color = " +
+         linear_rgb(seen_through_water(linear_from_srgb(w.bright), {1, 1, 1}, look.calm, look)) +
+         ";\n";
+    s += "#declare Toon_bubble_line_color = " + linear_rgb(line_under_water(c, look)) + ";\n";
+    s += "#declare Toon_bubble_ior = " + num(w.ior) + ";\n\n";
+  }
   s += "// Meshes of the current frame\n";
   s += "#include concat(\"water_\", str(frame_number, -4, 0), \".inc\")\n";
   for (const ObjectPlacement& o : l.objects) {
@@ -398,6 +417,7 @@ std::string scene_pov(const SceneLayout& l) {
       s += "#include " + quoted(object_include_name(o.config->name, false, 0)) + "\n";
   }
   if (l.spray) s += "#include concat(\"spray_\", str(frame_number, -4, 0), \".inc\")\n";
+  if (l.bubbles) s += "#include concat(\"bubbles_\", str(frame_number, -4, 0), \".inc\")\n";
   s += "\n";
   camera(s, l);
 
@@ -460,8 +480,8 @@ std::string scene_pov(const SceneLayout& l) {
   // Under the water: colours that show through its surface as a cartoon draws them.
   const WaterSurfaceLook look = water_surface_look(c);
   const Color& gain = look.gain;
-  const Color line_under_water =
-      seen_through_water(linear_from_srgb(c.outline.color), {1, 1, 1}, look.brightest, look);
+  const Color line_seen_through = line_under_water(c, look);
+  if (l.bubbles) s += "object { Water_bubbles }\n";
   for (const ObjectPlacement& o : l.objects) {
     const ObjectConfig& oc = *o.config;
     const bool outline = c.outline.enabled && oc.outline;
@@ -483,7 +503,7 @@ std::string scene_pov(const SceneLayout& l) {
       s += "Toon_in_water(" + object_water_id(oc.name) + ", " + object_contact_id(oc.name) +
            ",\n    texture { " + in_air + " },\n    texture { " + under +
            " },\n    texture { pigment { color " + rgb(c.outline.color) + " } " + flat_finish() +
-           " },\n    texture { pigment { color " + linear_rgb(line_under_water) + " } " +
+           " },\n    texture { pigment { color " + linear_rgb(line_seen_through) + " } " +
            flat_finish() + " })\n  }\n";
     } else {
       s += in_air + "\n  }\n";
@@ -497,7 +517,7 @@ std::string scene_pov(const SceneLayout& l) {
       if (in_water) {
         const std::string line = water_line_id(oc.name);
         s += shell + rgb(c.outline.color) + ") clipped_by { plane { -y, -" + line + " } }" + tail;
-        s += shell + linear_rgb(line_under_water) + ") clipped_by { plane { y, " + line +
+        s += shell + linear_rgb(line_seen_through) + ") clipped_by { plane { y, " + line +
              " } } interior { ior " + num(w.ior) + " }" + tail;
       } else {
         s += shell + rgb(c.outline.color) + ")" + tail;
@@ -516,9 +536,11 @@ std::string scene_toon_inc(const SceneLayout& l) {
   if (draws_flow_regions(c)) parts.push_back("flow");
   if (draws_flow_lines(c)) parts.push_back("strokes");
   if (!l.objects.empty()) parts.push_back("objects");
-  if (c.outline.enabled || l.spray) parts.push_back("outline");  // droplets' shells too
+  if (c.outline.enabled || l.spray || l.bubbles)
+    parts.push_back("outline");  // droplets' and bubbles' shells too
   if (l.spray) parts.push_back("droplets");
   if (l.foam) parts.push_back("foam");
+  if (l.bubbles) parts.push_back("bubbles");
   for (const ObjectPlacement& o : l.objects)
     if (reflects && !(c.outline.enabled && o.config->outline) &&
         o.config->reflection == ReflectionTarget::abstract) {

@@ -54,6 +54,7 @@ struct SceneLayout {
   long first_frame = 0, last_frame = 0;
   bool spray = false;  // each frame's spray droplets, in spray_NNNN.inc (droplet_writer.hpp)
   bool foam = false;   // each frame's foam patches, in foam_NNNN.inc (foam_writer.hpp)
+  bool bubbles = false;  // each frame's bubbles, in bubbles_NNNN.inc (bubble_writer.hpp)
 };
 
 // The camera: the configured location and look_at; what is not configured frames the box
@@ -131,6 +132,7 @@ CameraReach camera_reach(const SceneLayout& layout, const Vec3& min, const Vec3&
 std::string water_include_name(long frame);
 std::string spray_include_name(long frame);
 std::string foam_include_name(long frame);
+std::string bubbles_include_name(long frame);
 std::string object_include_name(const std::string& object_name, bool animated, long frame);
 // PNG name POV-Ray gives a frame (padded to the digits of the last frame).
 std::string frame_image_name(const SceneLayout& layout, long frame);

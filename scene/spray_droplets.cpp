@@ -102,7 +102,9 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
     droplets.push_back(d);
   }
   if (water)
-    std::erase_if(droplets, [&](const Droplet& d) { return under_water(*water, d.centre); });
+    std::erase_if(droplets, [&](const Droplet& d) {
+      return under_water(*water, d.centre) != options.under_water;
+    });
   std::stable_sort(droplets.begin(), droplets.end(),
                    [](const Droplet& a, const Droplet& b) { return a.particles > b.particles; });
   if (droplets.size() > options.max_droplets) droplets.resize(options.max_droplets);

@@ -52,12 +52,14 @@ struct Droplet {
 struct DropletOptions {
   double size_pixels = 8.0;
   std::size_t max_droplets = 40;
+  bool under_water = false;  // keep the droplets under the water (bubbles), not those in the air
 };
 
 // Round droplets of one frame, in decreasing order of their particle counts. With `water`,
 // droplets whose centre lies under it (an upward ray crosses its surface an odd number of
 // times: inside a closed volume, below an open surface) are left out before the most salient
-// are chosen: spray is drawn in the air, where the water's own shapes do not hide it.
+// are chosen: spray is drawn in the air, where the water's own shapes do not hide it. With
+// `options.under_water` it is the other way round: bubbles are drawn under the water.
 std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenProjection& screen,
                                     const DropletOptions& options,
                                     const SceneMesh* water = nullptr);

@@ -107,7 +107,7 @@ TEST(ConfigSchema, TheFuzzersDictionaryNamesEveryTableAndKey) {
 
 TEST(ConfigSchema, EveryKeyHasATypeAndHelp) {
   const std::vector<ConfigKey> schema = config_keys();
-  EXPECT_EQ(schema.size(), 66u);
+  EXPECT_EQ(schema.size(), 69u);
   for (const ConfigKey& k : schema) {
     EXPECT_FALSE(k.type.empty()) << k.key;
     EXPECT_FALSE(k.help.empty()) << k.key;

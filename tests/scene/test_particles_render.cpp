@@ -129,10 +129,68 @@ TEST(SprayRender, ASceneWithoutParticlesHoldsNoneOfTheirMacros) {
   const std::string toon = read_text(dir / "scene" / "toon.inc");
   EXPECT_EQ(toon.find("Toon_droplet"), std::string::npos);
   EXPECT_EQ(toon.find("Toon_foam"), std::string::npos);
+  EXPECT_EQ(toon.find("Toon_bubble"), std::string::npos);
   EXPECT_EQ(read_text(dir / "scene" / "scene.pov").find("Spray"), std::string::npos);
   EXPECT_EQ(read_text(dir / "scene" / "scene.pov").find("Foam"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir / "scene" / "spray_0000.inc"));
   EXPECT_FALSE(fs::exists(dir / "scene" / "foam_0000.inc"));
+  EXPECT_FALSE(fs::exists(dir / "scene" / "bubbles_0000.inc"));
+}
+
+// The line pixels in the square of half-width `radius` around (x, y).
+int line_pixels_near(const Image& image, double x, double y, int radius) {
+  int count = 0;
+  for (int dy = -radius; dy <= radius; ++dy)
+    for (int dx = -radius; dx <= radius; ++dx)
+      count += is_line(pixel(image, x + dx, y + dy)) ? 1 : 0;
+  return count;
+}
+
+TEST(BubbleRender, BubblesUnderTheWaterAreOutlinedDiscsSeenThroughItAndNoneInTheAir) {
+  // Clouds of bubbles under the pool's surface, seen from above, and one in the air (not a
+  // bubble there).
+  const std::vector<Vec3> under{{-0.6, -0.05, 0.0}, {0.0, -0.05, 0.0}, {0.6, -0.05, 0.0}};
+  std::vector<std::pair<int, Vec3>> bubbles;
+  for (std::size_t c = 0; c < under.size(); ++c) {
+    const auto more = cloud(under[c], 20, static_cast<unsigned>(20 + c));
+    bubbles.insert(bubbles.end(), more.begin(), more.end());
+  }
+  const auto in_air = cloud({0.0, 0.8, 0.0}, 30, 40);
+  bubbles.insert(bubbles.end(), in_air.begin(), in_air.end());
+  const std::vector<std::string> above{"--set", "camera.location=[0, 2.5, 2.5]", "--set",
+                                       "camera.look_at=[0, 0, 0]"};
+  ScratchDir with, without;
+  write_text(with / "bubble000001.wwp", wwp_bytes(bubbles));
+  write_text(without / "bubble000001.wwp", wwp_bytes(bubbles));
+  std::vector<std::string> args{"--particles", (with / "bubble000001.wwp").string()};
+  args.insert(args.end(), above.begin(), above.end());
+  const Image drawn = render_pool(with, args);
+  args = {"--particles", (without / "bubble000001.wwp").string(), "--set",
+          "particles.bubbles=false"};
+  args.insert(args.end(), above.begin(), above.end());
+  const Image plain = render_pool(without, args);
+  const std::string include = read_text(with / "scene" / "bubbles_0000.inc");
+  std::size_t count = 0;
+  for (std::size_t at = include.find("Toon_bubble("); at != std::string::npos;
+       at = include.find("Toon_bubble(", at + 1))
+    ++count;
+  EXPECT_EQ(count, 3u) << include;  // the three under the water, not the one in the air
+  EXPECT_FALSE(fs::exists(without / "scene" / "bubbles_0000.inc"));
+  // Each shows, bent a little by the surface, as a ring of line pixels where the same scene
+  // without bubbles has none. The input is y-up, so POV-Ray's frame flips z.
+  CameraPlacement camera;
+  camera.location = Vec3(0, 2.5, -2.5);
+  camera.look_at = Vec3::Zero();
+  camera.angle = 40;
+  const ScreenProjection screen = screen_projection(camera, kWidth, kHeight);
+  for (const Vec3& c : under) {
+    const Eigen::Vector2d at = *screen.pixel(Vec3(c.x(), c.y(), -c.z()));
+    EXPECT_EQ(line_pixels_near(plain, at.x(), at.y(), 12), 0);
+    EXPECT_GE(line_pixels_near(drawn, at.x(), at.y(), 12), 12)
+        << "no bubble's line near " << at.x() << ", " << at.y();
+  }
+  const Eigen::Vector2d air = *screen.pixel(Vec3(0.0, 0.8, 0.0));
+  EXPECT_EQ(line_pixels_near(drawn, air.x(), air.y(), 12), 0) << "a bubble in the air";
 }
 
 // Foam in a colour nothing else in the picture has.
