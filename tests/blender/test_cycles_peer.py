@@ -18,7 +18,7 @@ FRAME = 18  # the run-up at the far wall: sheets, a crest, the sphere under wate
 WIDTH, HEIGHT = 320, 180
 # A band colour counts where every channel is within this of it (8-bit steps).
 COLOUR_TOLERANCE = 3 / 255
-MIN_BAND_SHARE = 0.003  # of the picture, for each of the three bands (the bright band: 0.7 %)
+MIN_BAND_SHARE = 0.02  # of the picture, for each of the three bands (8–14 % on FRAME)
 DARK = 0.2  # the outline: every channel below this
 MIN_OUTLINED_RIM = 0.8  # share of the scene's rim pixels with a dark pixel within OUTLINE_REACH
 OUTLINE_REACH = 2  # pixels
