@@ -53,10 +53,11 @@ mkdir -p "$OUT" || fail "$OUT: cannot create the output directory"
 
 water="$DATA/cache/mesh/fluid_mesh_####.bobj.gz"
 object="$DATA/sphere_####.obj"
-placement=(--scale 1.2 --translate 0,0,0.3 --up z)
+# Mantaflow's normalised cache to world metres: the domain's longest side and centre
+placement=(--scale 1.2 --translate 0,0,0.3)
 
 povgen() {  # povgen DIR: the default look of FRAMES at WIDTH×HEIGHT
-  "$TOONWATER" povgen --water "$water" "${placement[@]}" --object "$object" \
+  "$TOONWATER" povgen --water "$water" "${placement[@]}" --up z --object "$object" \
     --set render.width=$WIDTH --set render.height=$HEIGHT --set render.frames=$FRAMES \
     --out "$1"
 }
@@ -67,7 +68,7 @@ toonwater_run() {
 
 cycles_run() {
   "$BLENDER" -b --factory-startup --python-exit-code 1 --python "$here/cycles_toon.py" -- \
-    --scene "$OUT/camera" --water "$water" --scale 1.2 --translate 0,0,0.3 \
+    --scene "$OUT/camera" --water "$water" "${placement[@]}" \
     --object "$object" --frames "$FRAMES" "${see_through[@]}" --out "$OUT/cycles"
 }
 
