@@ -11,6 +11,9 @@
 namespace toonwater {
 namespace {
 
+// How far, in median edges of the water, a particle looks for the nearest vertex.
+constexpr double kEdgeSearch = 2.0;
+
 // A visible particle and the radius its foam reaches.
 struct Reaching {
   Vec3 position;
@@ -80,14 +83,22 @@ std::vector<FoamComponent> foam_components(std::span<const Vec3> foam, const Sce
   std::nth_element(radii.begin(), middle, radii.end());
   const double median_radius = *middle;
 
-  // Onto the surface: the tangent plane of the nearest vertex. A point of a face is within its
-  // longest edge of a vertex, so the nearest one is searched that far, or kFoamSearch reaches.
-  double longest_edge = 0.0;
+  // Onto the surface: the tangent plane of the nearest vertex. A point of a face lies within
+  // about an edge of a vertex, so the nearest one is searched kFoamSearch reaches away, or
+  // kEdgeSearch median edges on a coarse mesh (not its longest edge: one huge face would put
+  // every vertex in one cell of the search).
+  std::vector<double> edges;
+  edges.reserve(water.triangles.size());
   for (const Triangle& t : water.triangles)
-    for (int k = 0; k < 3; ++k)
-      longest_edge = std::max(
-          longest_edge, (water.positions[t[k]] - water.positions[t[(k + 1) % 3]]).norm());
-  const PointGrid grid(water.positions, std::max(kFoamSearch * median_radius, longest_edge));
+    edges.push_back((water.positions[t[0]] - water.positions[t[1]]).norm());
+  double median_edge = 0.0;
+  if (!edges.empty()) {
+    const auto half = edges.begin() + static_cast<std::ptrdiff_t>(edges.size() / 2);
+    std::nth_element(edges.begin(), half, edges.end());
+    median_edge = *half;
+  }
+  const PointGrid grid(water.positions,
+                       std::max(kFoamSearch * median_radius, kEdgeSearch * median_edge));
   std::vector<Reaching> on_surface;
   on_surface.reserve(visible.size());
   for (const Reaching& r : visible) {
