@@ -606,7 +606,8 @@ void write_particles(SceneRun& run, const SceneMesh* water, long frame, long wri
     options.size_pixels = c.particles.droplet_size;
     options.max_droplets = static_cast<std::size_t>(c.particles.max_droplets);
     std::vector<Droplet> droplets = run.droplets.update(
-        spray_droplets(particles.spray, screen, options, water), screen, options);
+        spray_droplets(particles.spray, screen, options, water, run.droplets.predicted()), screen,
+        options);
     result.particles = particles.spray.size();
     result.droplets = droplets.size();
     result.write_seconds += run.write(spray_include_name(written_frame),
@@ -619,7 +620,8 @@ void write_particles(SceneRun& run, const SceneMesh* water, long frame, long wri
     options.under_water = true;
     // Without water nothing is under it.
     std::vector<Droplet> bubbles =
-        water ? run.bubbles.update(spray_droplets(particles.bubbles, screen, options, water),
+        water ? run.bubbles.update(spray_droplets(particles.bubbles, screen, options, water,
+                                                  run.bubbles.predicted()),
                                    screen, options)
               : std::vector<Droplet>{};
     result.bubble_particles = particles.bubbles.size();

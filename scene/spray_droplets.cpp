@@ -61,7 +61,8 @@ bool under_water(const SceneMesh& water, const Vec3& p) {
 }  // namespace
 
 std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenProjection& screen,
-                                    const DropletOptions& options, const SceneMesh* water) {
+                                    const DropletOptions& options, const SceneMesh* water,
+                                    std::span<const Vec3> predicted) {
   if (!(options.size_pixels > 0.0) || options.max_droplets == 0) return {};
   const double spacing = 2.0 * options.size_pixels;
   // The image and a margin of one cell, so droplets at its edge are whole.
@@ -77,16 +78,18 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
     ++c.count;
     c.sum += p;
   }
-  std::vector<std::size_t> seeds;
-  for (std::size_t i = 0; i < cells.size(); ++i)
-    if (cells[i].count >= 2) seeds.push_back(i);
-  std::stable_sort(seeds.begin(), seeds.end(),
-                   [&](std::size_t a, std::size_t b) { return cells[a].count > cells[b].count; });
-
+  // The droplet seeded at cell `seed`: the particles of its 3 × 3 block not yet taken, when
+  // there are at least two.
   std::vector<Droplet> droplets;
-  for (const std::size_t seed : seeds) {
-    if (cells[seed].taken) continue;
+  auto gather = [&](std::size_t seed) {
     const int sx = static_cast<int>(seed % columns), sy = static_cast<int>(seed / columns);
+    std::size_t count = 0;
+    for (int y = std::max(0, sy - 1); y <= std::min(rows - 1, sy + 1); ++y)
+      for (int x = std::max(0, sx - 1); x <= std::min(columns - 1, sx + 1); ++x) {
+        const Cell& c = cells[static_cast<std::size_t>(y) * columns + static_cast<std::size_t>(x)];
+        if (!c.taken) count += c.count;
+      }
+    if (count < 2) return;
     Droplet d;
     Vec3 sum = Vec3::Zero();
     for (int y = std::max(0, sy - 1); y <= std::min(rows - 1, sy + 1); ++y)
@@ -100,7 +103,23 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
     d.centre = sum / static_cast<double>(d.particles);
     d.tail = d.centre;
     droplets.push_back(d);
+  };
+  // Where the last frame's droplets are expected first, so that they are gathered again as they
+  // were rather than split across the grid's cells; then the fullest cells left.
+  for (const Vec3& p : predicted) {
+    const std::optional<Eigen::Vector2d> px = screen.pixel(p);
+    if (!px) continue;
+    const double cx = std::floor(px->x() / spacing) + 1, cy = std::floor(px->y() / spacing) + 1;
+    if (!(cx >= 0 && cx < columns && cy >= 0 && cy < rows)) continue;
+    gather(static_cast<std::size_t>(cy) * columns + static_cast<std::size_t>(cx));
   }
+  std::vector<std::size_t> seeds;
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    if (cells[i].count >= 2) seeds.push_back(i);
+  std::stable_sort(seeds.begin(), seeds.end(),
+                   [&](std::size_t a, std::size_t b) { return cells[a].count > cells[b].count; });
+  for (const std::size_t seed : seeds)
+    if (!cells[seed].taken) gather(seed);
   if (water)
     std::erase_if(droplets, [&](const Droplet& d) {
       return under_water(*water, d.centre) != options.under_water;
@@ -117,6 +136,13 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
     d.radius = 0.5 * options.size_pixels * scale * screen.pixel_size(d.centre);
   }
   return droplets;
+}
+
+std::vector<Vec3> DropletTracks::predicted() const {
+  std::vector<Vec3> places;
+  for (const Track& t : last_)
+    if (t.age > 0 && t.motion != Vec3::Zero()) places.push_back(t.droplet.centre + t.motion);
+  return places;
 }
 
 std::vector<Droplet> DropletTracks::update(std::vector<Droplet> droplets,

@@ -2,9 +2,10 @@
 // "larger than life" droplets, and each droplet carried from frame to frame.
 //
 // Clustering (`spray_droplets`): every particle in front of the camera falls into a square cell
-// of the image `spacing = 2 · size` pixels wide. The fullest cell seeds a droplet, which takes
-// the particles of its own cell and of the occupied cells around it (its 3 × 3 block) not yet
-// taken; then the next fullest cell left, and so on. So droplets lie about a spacing apart on
+// of the image `spacing = 2 · size` pixels wide. The cells where the last frame's moving
+// droplets are expected seed a droplet each first, then the fullest cell left, and so on; a
+// droplet takes the particles of its cell and of the occupied cells around it (its 3 × 3
+// block) not yet taken, when there are two or more. So droplets lie about a spacing apart on
 // screen whatever the number of particles, a droplet sits at the mean of its particles (it
 // moves smoothly as they do, not by cells), and a cell with a lone particle makes none. The
 // `max_droplets` with most particles are kept: a salience order, and a bound on what a frame
@@ -60,9 +61,11 @@ struct DropletOptions {
 // times: inside a closed volume, below an open surface) are left out before the most salient
 // are chosen: spray is drawn in the air, where the water's own shapes do not hide it. With
 // `options.under_water` it is the other way round: bubbles are drawn under the water.
+// `predicted`: where droplets are expected (DropletTracks::predicted), gathered first.
 std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenProjection& screen,
                                     const DropletOptions& options,
-                                    const SceneMesh* water = nullptr);
+                                    const SceneMesh* water = nullptr,
+                                    std::span<const Vec3> predicted = {});
 
 // The frames over which a new droplet grows to its size.
 inline constexpr int kDropletGrowth = 3;
@@ -73,6 +76,9 @@ class DropletTracks {
   // tails for drawing, and the fading ones from the last frame appended.
   std::vector<Droplet> update(std::vector<Droplet> droplets, const ScreenProjection& screen,
                               const DropletOptions& options);
+  // Where the last frame's moving droplets would be now (their last motion carried on), the
+  // most particles first.
+  std::vector<Vec3> predicted() const;
 
  private:
   struct Track {

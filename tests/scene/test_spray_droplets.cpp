@@ -95,6 +95,34 @@ TEST(SprayDroplets, AFrameShowsItsMostSalientDropletsOnly) {
   for (std::size_t i = 0; i < d.size(); ++i) EXPECT_EQ(d[i].particles, 31u - i);
 }
 
+TEST(SprayDroplets, ADropletExpectedWhereItsParticlesAreIsGatheredBeforeAFullerNeighbour) {
+  const ScreenProjection s = screen_projection(front_camera(), kWidth, kHeight);
+  // The point at pixel column px on the image's middle row, at the look_at's depth.
+  const auto at_column = [](double px) {
+    return Vec3((px - 0.5 * kWidth) * 4.0 * std::tan(20 * M_PI / 180) / (0.5 * kWidth), 0, 0);
+  };
+  // A droplet's particles astride two cells of the 16-pixel grid (columns 157.5 and 162.5), and
+  // a fuller cloud in the next cell but one (column 178.5), whose 3 × 3 block reaches A's right
+  // half.
+  std::vector<Vec3> spray;
+  add_cloud(spray, at_column(157.5), 6, 1e-4, 1);
+  add_cloud(spray, at_column(162.5), 6, 1e-4, 2);
+  add_cloud(spray, at_column(178.5), 30, 1e-4, 3);
+  const DropletOptions options;
+  // Alone, the fuller cloud is gathered first and takes half of the other.
+  const std::vector<Droplet> split = spray_droplets(spray, s, options);
+  ASSERT_EQ(split.size(), 2u);
+  EXPECT_EQ(split[0].particles, 36u);
+  EXPECT_EQ(split[1].particles, 6u);
+  // Expected where its left half is, the droplet is gathered whole first.
+  const std::vector<Vec3> expected{at_column(157.5)};
+  const std::vector<Droplet> whole = spray_droplets(spray, s, options, nullptr, expected);
+  ASSERT_EQ(whole.size(), 2u);
+  EXPECT_EQ(whole[0].particles, 30u);
+  EXPECT_EQ(whole[1].particles, 12u);
+  EXPECT_NEAR(pixel_of(s, whole[1].centre).x(), 160.0, 0.1);
+}
+
 TEST(SprayDroplets, SprayUnderTheWaterIsLeftOut) {
   const ScreenProjection s = screen_projection(front_camera(), kWidth, kHeight);
   // A closed box of water, y from −1 to 0, and an open sheet at y = 0 beside it.
@@ -143,6 +171,10 @@ TEST(SprayDroplets, ADropletIsCarriedGrownStretchedAndFaded) {
   EXPECT_EQ(born.age, 0);
   EXPECT_GT(slow.age, 0);
   EXPECT_EQ(slow.tail, slow.centre);  // moved less than its radius: round
+  // Only the droplet whose motion is known is expected somewhere: one more step on.
+  const std::vector<Vec3> expected = tracks.predicted();
+  ASSERT_EQ(expected.size(), 1u);
+  EXPECT_NEAR((expected[0] - (slow.centre + (slow.centre - f1[0].centre))).norm(), 0.0, 1e-12);
   // Frame 3: the first droplet jumps by three of its radii: a teardrop whose tail points back.
   const Vec3 jump(3 * full, 0, 0);
   const std::vector<Droplet> f3 = frame({a + Vec3(0.01, 0, 0) + jump, b});
