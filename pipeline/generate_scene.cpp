@@ -558,6 +558,7 @@ WaterShell water_shell(const SceneRun& run, const SceneMesh& mesh, std::span<con
 // A frame's spray, foam and bubble particles from every particle cache, in POV-Ray's frame.
 struct FrameParticles {
   std::vector<Vec3> spray, foam, bubbles;
+  std::vector<Vec3> spray_velocities;  // one per spray particle, or none
 };
 
 FrameParticles read_frame_particles(const SceneRun& run, long frame) {
@@ -580,8 +581,15 @@ FrameParticles read_frame_particles(const SceneRun& run, long frame) {
                          " lies beyond what a POV-Ray scene takes once placed (--scale, "
                          "--translate)");
       kind->push_back(to_povray(p, run.request.up));
+      if (kind == &out.spray && !set.velocities.empty()) {
+        Vec3 v = set.velocities[i];
+        if (const std::optional<AffineTransform>& t = run.request.water_transform) v = t->linear * v;
+        out.spray_velocities.push_back(to_povray(v, run.request.up));
+      }
     }
   }
+  // Velocities only when every cache gave them.
+  if (out.spray_velocities.size() != out.spray.size()) out.spray_velocities.clear();
   return out;
 }
 
@@ -606,8 +614,9 @@ void write_particles(SceneRun& run, const SceneMesh* water, long frame, long wri
     options.size_pixels = c.particles.droplet_size;
     options.max_droplets = static_cast<std::size_t>(c.particles.max_droplets);
     std::vector<Droplet> droplets = run.droplets.update(
-        spray_droplets(particles.spray, screen, options, water, run.droplets.predicted()), screen,
-        options);
+        spray_droplets(particles.spray, screen, options, water, run.droplets.predicted(),
+                       particles.spray_velocities),
+        screen, options);
     result.particles = particles.spray.size();
     result.droplets = droplets.size();
     result.write_seconds += run.write(spray_include_name(written_frame),

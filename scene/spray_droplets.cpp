@@ -13,6 +13,7 @@ namespace {
 struct Cell {
   std::size_t count = 0;
   Vec3 sum = Vec3::Zero();
+  Vec3 velocity_sum = Vec3::Zero();
   bool taken = false;
 };
 
@@ -21,8 +22,11 @@ double growth(int age) {
   return std::min(1.0, 0.5 + 0.5 * age / static_cast<double>(kDropletGrowth - 1));
 }
 
-// How far (in spacings) a droplet seen once may have moved by the next frame.
+// How far (in spacings) a droplet seen once may have moved by the next frame, when neither its
+// motion nor its velocity's scale is known.
 constexpr double kFirstReach = 3.0;
+// The droplets found again before the velocities' scale is trusted.
+constexpr std::size_t kCalibrationDroplets = 8;
 
 // A droplet drawn shrunk for the frame after it was last found.
 constexpr double kFadingSize = 0.5;
@@ -62,14 +66,17 @@ bool under_water(const SceneMesh& water, const Vec3& p) {
 
 std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenProjection& screen,
                                     const DropletOptions& options, const SceneMesh* water,
-                                    std::span<const Vec3> predicted) {
+                                    std::span<const Vec3> predicted,
+                                    std::span<const Vec3> velocities) {
   if (!(options.size_pixels > 0.0) || options.max_droplets == 0) return {};
   const double spacing = 2.0 * options.size_pixels;
   // The image and a margin of one cell, so droplets at its edge are whole.
   const int columns = static_cast<int>(std::ceil(screen.width / spacing)) + 2;
   const int rows = static_cast<int>(std::ceil(screen.height / spacing)) + 2;
   std::vector<Cell> cells(static_cast<std::size_t>(columns) * rows);
-  for (const Vec3& p : spray) {
+  const bool with_velocities = velocities.size() == spray.size();
+  for (std::size_t i = 0; i < spray.size(); ++i) {
+    const Vec3& p = spray[i];
     const std::optional<Eigen::Vector2d> px = screen.pixel(p);
     if (!px) continue;
     const double cx = std::floor(px->x() / spacing) + 1, cy = std::floor(px->y() / spacing) + 1;
@@ -77,6 +84,7 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
     Cell& c = cells[static_cast<std::size_t>(cy) * columns + static_cast<std::size_t>(cx)];
     ++c.count;
     c.sum += p;
+    if (with_velocities) c.velocity_sum += velocities[i];
   }
   // The droplet seeded at cell `seed`: the particles of its 3 × 3 block not yet taken, when
   // there are at least two.
@@ -91,7 +99,7 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
       }
     if (count < 2) return;
     Droplet d;
-    Vec3 sum = Vec3::Zero();
+    Vec3 sum = Vec3::Zero(), velocity_sum = Vec3::Zero();
     for (int y = std::max(0, sy - 1); y <= std::min(rows - 1, sy + 1); ++y)
       for (int x = std::max(0, sx - 1); x <= std::min(columns - 1, sx + 1); ++x) {
         Cell& c = cells[static_cast<std::size_t>(y) * columns + static_cast<std::size_t>(x)];
@@ -99,8 +107,10 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
         c.taken = true;
         d.particles += c.count;
         sum += c.sum;
+        velocity_sum += c.velocity_sum;
       }
     d.centre = sum / static_cast<double>(d.particles);
+    d.velocity = velocity_sum / static_cast<double>(d.particles);
     d.tail = d.centre;
     droplets.push_back(d);
   };
@@ -138,10 +148,24 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
   return droplets;
 }
 
+Vec3 DropletTracks::expected(const Track& track, bool& known) const {
+  if (track.age > 0 && track.motion != Vec3::Zero()) {
+    known = true;
+    return track.droplet.centre + track.motion;
+  }
+  known = calibrated_from_ >= kCalibrationDroplets && track.droplet.velocity != Vec3::Zero();
+  if (!known) return track.droplet.centre;
+  return track.droplet.centre +
+         motion_dot_velocity_ / velocity_dot_velocity_ * track.droplet.velocity;
+}
+
 std::vector<Vec3> DropletTracks::predicted() const {
   std::vector<Vec3> places;
-  for (const Track& t : last_)
-    if (t.age > 0 && t.motion != Vec3::Zero()) places.push_back(t.droplet.centre + t.motion);
+  for (const Track& t : last_) {
+    bool known = false;
+    const Vec3 at = expected(t, known);
+    if (known) places.push_back(at);
+  }
   return places;
 }
 
@@ -155,10 +179,12 @@ std::vector<Droplet> DropletTracks::update(std::vector<Droplet> droplets,
   for (std::size_t d = 0; d < droplets.size(); ++d) found[d] = screen.pixel(droplets[d].centre);
   std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
   for (std::size_t t = 0; t < last_.size(); ++t) {
+    bool known = false;
+    const Vec3 at = expected(last_[t], known);
     const bool moving = last_[t].age > 0 && last_[t].motion != Vec3::Zero();
+    // A new droplet's place from its velocity is a guess: it keeps the wide reach.
     const double reach = moving ? spacing : kFirstReach * spacing;
-    const std::optional<Eigen::Vector2d> predicted =
-        screen.pixel(last_[t].droplet.centre + last_[t].motion);
+    const std::optional<Eigen::Vector2d> predicted = screen.pixel(at);
     if (!predicted) continue;
     for (std::size_t d = 0; d < droplets.size(); ++d) {
       if (!found[d]) continue;
@@ -184,6 +210,11 @@ std::vector<Droplet> DropletTracks::update(std::vector<Droplet> droplets,
       const Track& before = last_[static_cast<std::size_t>(match[d])];
       track.motion = droplets[d].centre - before.droplet.centre;
       track.age = before.age + 1;
+      if (before.droplet.velocity != Vec3::Zero()) {
+        motion_dot_velocity_ += track.motion.dot(before.droplet.velocity);
+        velocity_dot_velocity_ += before.droplet.velocity.squaredNorm();
+        ++calibrated_from_;
+      }
     } else if (!started_) {
       track.age = kDropletGrowth;  // the first frame shows its droplets as they are
     }
@@ -199,7 +230,8 @@ std::vector<Droplet> DropletTracks::update(std::vector<Droplet> droplets,
   for (std::size_t t = 0; t < last_.size(); ++t) {
     if (matched[t]) continue;  // a fading droplet is not kept: it goes after one frame
     Droplet fading = last_[t].droplet;
-    fading.centre += last_[t].motion;
+    bool known = false;
+    fading.centre = expected(last_[t], known);
     fading.tail = fading.centre;
     fading.fading = true;
     fading.radius *= kFadingSize * growth(last_[t].age);

@@ -14,13 +14,17 @@
 // drop.
 //
 // Time (`DropletTracks`): each droplet is matched to the last frame's droplet whose predicted
-// place (where it was, moved on by its last motion) projects nearest, within a spacing (three
-// for a droplet whose motion is not known yet: spray flies tens of pixels a frame); greedily,
-// nearest pairs first. A matched droplet that moved more than its own radius is
-// drawn as a teardrop, its tail pointing back along the motion, at most three radii long. A
-// droplet without a match is born at half its size and grows over kDropletGrowth frames; a droplet that
-// finds no match is drawn once more at its predicted place, shrunk, then dropped: droplets
-// come and go over a few frames instead of popping. The first frame shows its droplets grown.
+// place projects nearest, greedily, nearest pairs first. The predicted place is where it was,
+// moved on by its last motion, within a spacing; a droplet seen once has no motion yet (spray
+// flies tens of pixels a frame), so it is looked for within three spacings, around where its
+// particles' mean velocity takes it once the sequence has shown what a velocity moves a droplet
+// in a frame: the scale is fitted by least squares, Δ ≈ s·v, over the droplets found again, so
+// the simulation's units need not be known. A matched droplet that moved more than its own
+// radius is drawn as a teardrop, its tail pointing back along the motion, at most three radii
+// long. A droplet without a match is born at half its size and grows over kDropletGrowth
+// frames; a droplet that finds no match is drawn once more at its predicted place, shrunk,
+// then dropped: droplets come and go over a few frames instead of popping. The first frame
+// shows its droplets grown.
 #pragma once
 
 #include "analyzer/mesh.hpp"
@@ -44,6 +48,9 @@ struct Droplet {
   double radius = 0.0;
   Vec3 tail = Vec3::Zero();
   std::size_t particles = 0;
+  // The mean of its particles' velocities, as the simulation gives them (its units per unit of
+  // its time, placed like the positions); zero when they have none.
+  Vec3 velocity = Vec3::Zero();
   // From DropletTracks: the frames it was found in before this one (a first frame's droplets
   // count as grown), and whether it is a last frame's droplet drawn once more as it fades.
   int age = 0;
@@ -61,11 +68,13 @@ struct DropletOptions {
 // times: inside a closed volume, below an open surface) are left out before the most salient
 // are chosen: spray is drawn in the air, where the water's own shapes do not hide it. With
 // `options.under_water` it is the other way round: bubbles are drawn under the water.
-// `predicted`: where droplets are expected (DropletTracks::predicted), gathered first.
+// `velocities`: one per particle, or none. `predicted`: where droplets are expected
+// (DropletTracks::predicted), gathered first.
 std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenProjection& screen,
                                     const DropletOptions& options,
                                     const SceneMesh* water = nullptr,
-                                    std::span<const Vec3> predicted = {});
+                                    std::span<const Vec3> predicted = {},
+                                    std::span<const Vec3> velocities = {});
 
 // The frames over which a new droplet grows to its size.
 inline constexpr int kDropletGrowth = 3;
@@ -86,8 +95,15 @@ class DropletTracks {
     Vec3 motion = Vec3::Zero();
     int age = 0;
   };
+  // Where a last frame's droplet is expected now, and whether that is known (its own motion,
+  // or its particles' velocity once the sequence has shown what a velocity moves a droplet).
+  Vec3 expected(const Track& track, bool& known) const;
   std::vector<Track> last_;
   bool started_ = false;
+  // The velocities' scale to a frame's motion, fitted by least squares over the droplets
+  // found again: the sums of Δ·v and v·v, and how many droplets they hold.
+  double motion_dot_velocity_ = 0.0, velocity_dot_velocity_ = 0.0;
+  std::size_t calibrated_from_ = 0;
 };
 
 }  // namespace toonwater

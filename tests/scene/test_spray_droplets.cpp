@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -121,6 +122,35 @@ TEST(SprayDroplets, ADropletExpectedWhereItsParticlesAreIsGatheredBeforeAFullerN
   EXPECT_EQ(whole[0].particles, 30u);
   EXPECT_EQ(whole[1].particles, 12u);
   EXPECT_NEAR(pixel_of(s, whole[1].centre).x(), 160.0, 0.1);
+}
+
+TEST(SprayDroplets, OnceDropletsAreFoundAgainANewOnesVelocityTellsWhereToLookForIt) {
+  const ScreenProjection s = screen_projection(front_camera(), kWidth, kHeight);
+  DropletTracks tracks;
+  const DropletOptions options;
+  // Each frame a new droplet is thrown whose particles carry the velocity v, in units the
+  // simulation chose: it moves 0.04·v a frame. The older ones fly on the same way.
+  const Vec3 v(2.0, 1.0, 0.0);
+  constexpr double scale = 0.04;
+  std::vector<Vec3> thrown;
+  for (int frame = 0; frame < 6; ++frame) {
+    for (Vec3& p : thrown) p += scale * v;
+    thrown.push_back(Vec3(-1.3 + 0.45 * frame, -0.5, 0.0));  // 50 pixels right of the last
+    std::vector<Vec3> spray, velocities;
+    for (std::size_t i = 0; i < thrown.size(); ++i) add_cloud(spray, thrown[i], 10, 0.002, 7 + i);
+    velocities.assign(spray.size(), v);
+    tracks.update(spray_droplets(spray, s, options, nullptr, tracks.predicted(), velocities), s,
+                  options);
+  }
+  // The newest droplet, found once, is expected where its velocity takes it at the fitted scale.
+  const std::vector<Vec3> expected = tracks.predicted();
+  const Vec3 newest = thrown.back() + scale * v;
+  const auto nearest = std::min_element(expected.begin(), expected.end(), [&](const Vec3& a,
+                                                                              const Vec3& b) {
+    return (a - newest).norm() < (b - newest).norm();
+  });
+  ASSERT_NE(nearest, expected.end());
+  EXPECT_LT((*nearest - newest).norm(), 1e-3);
 }
 
 TEST(SprayDroplets, SprayUnderTheWaterIsLeftOut) {
