@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <tuple>
 
@@ -28,6 +29,9 @@ constexpr double kFirstReach = 3.0;
 // The droplets found again before the velocities' scale is trusted.
 constexpr std::size_t kCalibrationDroplets = 8;
 
+// How deep, in droplet sizes, a droplet found where one was expected may skim under the water.
+constexpr double kSkimming = 2.0;
+
 // A droplet drawn shrunk for the frame after it was last found.
 constexpr double kFadingSize = 0.5;
 // A teardrop's tail is at most this many radii long.
@@ -35,15 +39,16 @@ constexpr double kMaxTailRadii = 3.0;
 // A droplet grows with the square root of its count up to this many times its size.
 constexpr double kMaxDropletGrowth = 2.0;
 
-// Whether p lies under the water: a ray from p straight up crosses its surface an odd number of
-// times. That is inside for a closed volume and below the surface for an open one (a height
-// field, a tank without its walls) alike. A crossing through an edge or a vertex shared by two
-// faces would count twice; a nudge off the lattice of the simulation's cells keeps it
-// improbable.
-bool under_water(const SceneMesh& water, const Vec3& p) {
+// How deep p lies under the water, up to its surface above; 0 when it is not under it. Under:
+// a ray from p straight up crosses the surface an odd number of times. That is inside for a
+// closed volume and below the surface for an open one (a height field, a tank without its
+// walls) alike. A crossing through an edge or a vertex shared by two faces would count twice; a
+// nudge off the lattice of the simulation's cells keeps it improbable.
+double depth_under_water(const SceneMesh& water, const Vec3& p) {
   const double nudge = 1e-7 * std::max(water.diagonal(), 1e-12);
   const double x = p.x() + nudge, z = p.z() + 0.61803 * nudge;
   bool inside = false;
+  double nearest = std::numeric_limits<double>::infinity();
   for (const Triangle& t : water.triangles) {
     const Vec3 &a = water.positions[t[0]], &b = water.positions[t[1]], &c = water.positions[t[2]];
     if (std::max({a.y(), b.y(), c.y()}) < p.y()) continue;
@@ -57,9 +62,12 @@ bool under_water(const SceneMesh& water, const Vec3& p) {
     const double v = ((b.x() - a.x()) * (z - a.z()) - (x - a.x()) * (b.z() - a.z())) / d;
     if (u < 0.0 || v < 0.0 || u + v > 1.0) continue;
     const double height = a.y() + u * (b.y() - a.y()) + v * (c.y() - a.y());
-    if (height > p.y()) inside = !inside;
+    if (height > p.y()) {
+      inside = !inside;
+      nearest = std::min(nearest, height);
+    }
   }
-  return inside;
+  return inside ? nearest - p.y() : 0.0;
 }
 
 }  // namespace
@@ -123,6 +131,7 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
     if (!(cx >= 0 && cx < columns && cy >= 0 && cy < rows)) continue;
     gather(static_cast<std::size_t>(cy) * columns + static_cast<std::size_t>(cx));
   }
+  const std::size_t expected_count = droplets.size();
   std::vector<std::size_t> seeds;
   for (std::size_t i = 0; i < cells.size(); ++i)
     if (cells[i].count >= 2) seeds.push_back(i);
@@ -130,10 +139,21 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
                    [&](std::size_t a, std::size_t b) { return cells[a].count > cells[b].count; });
   for (const std::size_t seed : seeds)
     if (!cells[seed].taken) gather(seed);
-  if (water)
-    std::erase_if(droplets, [&](const Droplet& d) {
-      return under_water(*water, d.centre) != options.under_water;
-    });
+  if (water) {
+    // A droplet found where one was expected keeps being drawn while it skims the surface,
+    // up to kSkimming droplet sizes under it: spray at the crown's surface would otherwise come
+    // and go as its centre crosses it. A new one must be wholly on its side.
+    std::vector<Droplet> kept;
+    for (std::size_t i = 0; i < droplets.size(); ++i) {
+      const double depth = depth_under_water(*water, droplets[i].centre);
+      const double skimming =
+          i < expected_count && !options.under_water
+              ? kSkimming * options.size_pixels * screen.pixel_size(droplets[i].centre)
+              : 0.0;
+      if (options.under_water ? depth > 0.0 : depth <= skimming) kept.push_back(droplets[i]);
+    }
+    droplets = std::move(kept);
+  }
   std::stable_sort(droplets.begin(), droplets.end(),
                    [](const Droplet& a, const Droplet& b) { return a.particles > b.particles; });
   if (droplets.size() > options.max_droplets) droplets.resize(options.max_droplets);

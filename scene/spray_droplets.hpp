@@ -66,8 +66,11 @@ struct DropletOptions {
 // Round droplets of one frame, in decreasing order of their particle counts. With `water`,
 // droplets whose centre lies under it (an upward ray crosses its surface an odd number of
 // times: inside a closed volume, below an open surface) are left out before the most salient
-// are chosen: spray is drawn in the air, where the water's own shapes do not hide it. With
-// `options.under_water` it is the other way round: bubbles are drawn under the water.
+// are chosen: spray is drawn in the air, where the water's own shapes do not hide it. A
+// droplet gathered where one was expected is kept while it skims the surface, up to two
+// droplet sizes under it, so that spray at a crown's surface does not come and go as its
+// centre crosses it. With `options.under_water` it is the other way round: bubbles are drawn
+// under the water.
 // `velocities`: one per particle, or none. `predicted`: where droplets are expected
 // (DropletTracks::predicted), gathered first.
 std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenProjection& screen,

@@ -137,7 +137,7 @@ TEST(SprayDroplets, OnceDropletsAreFoundAgainANewOnesVelocityTellsWhereToLookFor
     for (Vec3& p : thrown) p += scale * v;
     thrown.push_back(Vec3(-1.3 + 0.45 * frame, -0.5, 0.0));  // 50 pixels right of the last
     std::vector<Vec3> spray, velocities;
-    for (std::size_t i = 0; i < thrown.size(); ++i) add_cloud(spray, thrown[i], 10, 0.002, 7 + i);
+    for (std::size_t i = 0; i < thrown.size(); ++i) add_cloud(spray, thrown[i], 10, 0.002, static_cast<unsigned>(7 + i));
     velocities.assign(spray.size(), v);
     tracks.update(spray_droplets(spray, s, options, nullptr, tracks.predicted(), velocities), s,
                   options);
@@ -177,6 +177,25 @@ TEST(SprayDroplets, SprayUnderTheWaterIsLeftOut) {
   ASSERT_EQ(d.size(), 2u);
   for (const Droplet& droplet : d) EXPECT_GT(droplet.centre.y(), 0.0);
   EXPECT_EQ(spray_droplets(spray, s, {}).size(), 4u);
+  // Bubbles are the other way round.
+  DropletOptions bubbles;
+  bubbles.under_water = true;
+  const std::vector<Droplet> b = spray_droplets(spray, s, bubbles, &box);
+  ASSERT_EQ(b.size(), 2u);
+  for (const Droplet& bubble : b) EXPECT_LT(bubble.centre.y(), 0.0);
+
+  // Spray skimming just under the surface (a tenth of a droplet size: 0.0073 here): a new
+  // droplet there is left out, one found where it was expected is kept; deeper than two
+  // droplet sizes, neither.
+  const double size = DropletOptions{}.size_pixels * s.pixel_size(Vec3(0.5, 0, 0.3));
+  std::vector<Vec3> skimming, deep;
+  add_cloud(skimming, Vec3(0.5, -0.1 * size, 0.3), 20, 0.001, 9);
+  add_cloud(deep, Vec3(0.5, -3 * size, 0.3), 20, 0.001, 9);
+  const std::vector<Vec3> expected{Vec3(0.5, -0.1 * size, 0.3)};
+  EXPECT_TRUE(spray_droplets(skimming, s, {}, &box).empty());
+  EXPECT_EQ(spray_droplets(skimming, s, {}, &box, expected).size(), 1u);
+  const std::vector<Vec3> expected_deep{Vec3(0.5, -3 * size, 0.3)};
+  EXPECT_TRUE(spray_droplets(deep, s, {}, &box, expected_deep).empty());
 }
 
 TEST(SprayDroplets, ADropletIsCarriedGrownStretchedAndFaded) {
