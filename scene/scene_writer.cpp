@@ -93,10 +93,15 @@ std::string curvature_view_pigment() {
 
 std::string flat_finish() { return "finish { emission 1 diffuse 0 ambient 0 }"; }
 
+// The flat shading of water and objects (Toon_flat_shading): ka, kd and the light's colour.
+std::string flat_shading(const SceneConfig& c) {
+  return "finish { Toon_flat_shading(" + num(c.water.ka) + ", <1, 1, 1>, " + num(c.water.kd) +
+         ", " + vec({c.light.color[0], c.light.color[1], c.light.color[2]}) + ")";
+}
+
 std::string finish(const SceneConfig& c, bool water) {
   const WaterConfig& w = c.water;
-  std::string s = "finish { Toon_flat_shading(" + num(w.ka) + ", <1, 1, 1>, " + num(w.kd) + ", " +
-                  vec({c.light.color[0], c.light.color[1], c.light.color[2]}) + ")";
+  std::string s = flat_shading(c);
   if (w.ks > 0) s += " phong " + num(w.ks) + " phong_size " + num(w.phong_size);
   if (water && w.reflection > 0) s += " reflection { " + num(w.reflection) + " }";
   return s + " }";
@@ -290,11 +295,15 @@ ToonLimits water_toon_limits(const SceneLayout& l) {
   return limits;
 }
 
+namespace {
+
 // The pigment of a line under the water, as dark as its colour where the brightest band shows
 // above it.
 Color line_under_water(const SceneConfig& c, const WaterSurfaceLook& look) {
   return seen_through_water(linear_from_srgb(c.outline.color), {1, 1, 1}, look.brightest, look);
 }
+
+}  // namespace
 
 std::string scene_pov(const SceneLayout& l) {
   const SceneConfig& c = *l.config;
@@ -359,9 +368,7 @@ std::string scene_pov(const SceneLayout& l) {
       // A closed volume is a see-through free surface over an opaque body: its walls and floor
       // show flat bands, and nothing is seen through them, so objects leave no ghost images on
       // the walls and no ray bounces around inside.
-      const std::string body_finish =
-          "finish { Toon_flat_shading(" + num(w.ka) + ", <1, 1, 1>, " + num(w.kd) + ", " +
-          vec({c.light.color[0], c.light.color[1], c.light.color[2]}) + ") }";
+      const std::string body_finish = flat_shading(c) + " }";
       s += "// The closed volume's walls and floor: opaque\n";
       s += std::string("#declare ") + kWaterBodyTexture + " = texture {\n  Toon_bands(" + bands +
            ", 0)\n  " + body_finish + "\n}\n";
@@ -376,8 +383,7 @@ std::string scene_pov(const SceneLayout& l) {
     s += "#include concat(\"foam_\", str(frame_number, -4, 0), \".inc\")\n";
     s += "#ifdef (Foam_patches)\n";
     s += "  #declare Toon_foam = texture { pigment { color " + rgb(c.particles.foam_color) +
-         " }\n    finish { Toon_flat_shading(" + num(w.ka) + ", <1, 1, 1>, " + num(w.kd) + ", " +
-         vec({c.light.color[0], c.light.color[1], c.light.color[2]}) + ") } }\n";
+         " }\n    " + flat_shading(c) + " } }\n";
     std::vector<const char*> painted{kWaterSurfaceTexture, kWaterSurfaceTwoBandTexture};
     if (flow_regions)
       painted.insert(painted.end(), kWaterOneBandTextures.begin(), kWaterOneBandTextures.end());
