@@ -47,7 +47,9 @@ bool LineReader::next(std::string_view& line) {
   const std::size_t end = rest_.find('\n');
   if (end == std::string_view::npos) {
     line = rest_;
-    rest_ = {};
+    // Empty, but still pointing at the end of the text, where a binary body read from here
+    // starts: a null pointer would make any offset from it undefined.
+    rest_ = rest_.substr(rest_.size());
   } else {
     line = rest_.substr(0, end);
     rest_.remove_prefix(end + 1);

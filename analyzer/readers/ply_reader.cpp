@@ -613,8 +613,8 @@ class BinaryReader {
     const std::size_t chunks = chunk_count(count);
     std::vector<std::uint8_t> all_triangles(chunks, 1);
     parallel_chunks(count, chunks, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-      const char* record = position_ + begin * record_size + before;
-      for (std::size_t f = begin; f < end; ++f, record += record_size) {
+      for (std::size_t f = begin; f < end; ++f) {
+        const char* record = position_ + f * record_size + before;
         if (load<Count>(record) != 3) {
           all_triangles[chunk] = 0;
           return;
