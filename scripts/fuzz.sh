@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (clang, ASan + UBSan) and runs each for a bounded time on its seed
-# corpus (tests/fuzz/corpus/<target>). Fails when any target finds a crash, a sanitizer report, a
-# leak, an allocation over the limit or an input that takes longer than the per-input timeout;
-# the input is kept in the build directory's artifacts/ and the command to reproduce it printed.
+# corpus (tests/fuzz/corpus/<target>: meshes and configurations the tests read too) and on the
+# inputs that were once findings (tests/fuzz/regressions/<target>). Fails when any target finds
+# a crash, a sanitizer report, a leak, an allocation over the limit or an input that takes longer
+# than the per-input timeout; the input is kept in the build directory's artifacts/ and the
+# command to reproduce it printed.
 #
 #   scripts/fuzz.sh [TARGET...]          default: every target
 #   FUZZ_SECONDS=60                      time per target
@@ -28,13 +30,15 @@ build() {
 # run_target NAME: one bounded libFuzzer run; its log is FUZZ_BUILD_DIR/logs/NAME.log.
 run_target() {
   local name=$1 dict=()
-  local seeds=$root/tests/fuzz/corpus/$name
+  local seeds=$root/tests/fuzz/corpus/$name regressions=()
+  [ -d "$root/tests/fuzz/regressions/$name" ] && regressions=("$root/tests/fuzz/regressions/$name")
   local dict_file=$root/tests/fuzz/${name/analyze/obj}.dict
   [ -f "$dict_file" ] && dict=(-dict="$dict_file")
   mkdir -p "$build_dir/corpus/$name" "$build_dir/artifacts"
   # -timeout: an input running longer is a hang; -malloc_limit_mb: a single allocation over it
   # (e.g. from a count in a header nobody checked) is a finding, as is a leak at the end.
-  "$build_dir/tests/fuzz/fuzz_$name" "$build_dir/corpus/$name" "$seeds" "${dict[@]}" \
+  "$build_dir/tests/fuzz/fuzz_$name" "$build_dir/corpus/$name" "$seeds" "${regressions[@]}" \
+    "${dict[@]}" \
     -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=512 \
     -max_len=8192 -print_final_stats=1 -artifact_prefix="$build_dir/artifacts/$name-" \
     >"$build_dir/logs/$name.log" 2>&1

@@ -96,8 +96,8 @@ TEST(HostileInputs, PlyFaceAndListCountsBeyondTheDataFailWithoutAllocatingThem) 
 
 // A binary body may be empty and the header may end without a newline: the reader then starts
 // at the very end of the file, and a face element with a property before its list must not
-// step from there. GCC's sanitizer does not check offsets from a null pointer; the same file is
-// a seed of the fuzz corpus (tests/fuzz/corpus/ply/binary_header_only.ply), where clang's does.
+// step from there. GCC's sanitizer does not check offsets from a null pointer; the fuzzer's
+// clang build does, and starts from the same file (tests/fuzz/regressions/ply).
 TEST(HostileInputs, BinaryPlyEndingAtItsHeaderIsReadOrRefusedCleanly) {
   ScratchDir dir;
   const std::string header =
