@@ -32,6 +32,11 @@ constexpr std::size_t kCalibrationDroplets = 8;
 // How deep, in droplet sizes, a droplet found where one was expected may skim under the water.
 constexpr double kSkimming = 2.0;
 
+// When the count is capped, a droplet gathered where one was expected outranks a new one of
+// up to this many times its particles: the same droplets stay drawn from frame to frame rather
+// than trading places with new ones of about their size.
+constexpr double kTrackedSalience = 2.0;
+
 // A droplet drawn shrunk for the frame after it was last found.
 constexpr double kFadingSize = 0.5;
 // A teardrop's tail is at most this many radii long.
@@ -124,14 +129,16 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
   };
   // Where the last frame's droplets are expected first, so that they are gathered again as they
   // were rather than split across the grid's cells; then the fullest cells left.
-  for (const Vec3& p : predicted) {
-    const std::optional<Eigen::Vector2d> px = screen.pixel(p);
+  for (std::size_t k = 0; k < predicted.size(); ++k) {
+    const std::optional<Eigen::Vector2d> px = screen.pixel(predicted[k]);
     if (!px) continue;
     const double cx = std::floor(px->x() / spacing) + 1, cy = std::floor(px->y() / spacing) + 1;
     if (!(cx >= 0 && cx < columns && cy >= 0 && cy < rows)) continue;
+    const std::size_t before = droplets.size();
     gather(static_cast<std::size_t>(cy) * columns + static_cast<std::size_t>(cx));
+    if (droplets.size() > before) droplets.back().gathered_at = static_cast<int>(k);
   }
-  const std::size_t expected_count = droplets.size();
+  const std::size_t expected_count = droplets.size();  // gathered where one was expected
   std::vector<std::size_t> seeds;
   for (std::size_t i = 0; i < cells.size(); ++i)
     if (cells[i].count >= 2) seeds.push_back(i);
@@ -139,24 +146,32 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
                    [&](std::size_t a, std::size_t b) { return cells[a].count > cells[b].count; });
   for (const std::size_t seed : seeds)
     if (!cells[seed].taken) gather(seed);
-  if (water) {
-    // A droplet found where one was expected keeps being drawn while it skims the surface,
-    // up to kSkimming droplet sizes under it: spray at the crown's surface would otherwise come
-    // and go as its centre crosses it. A new one must be wholly on its side.
-    std::vector<Droplet> kept;
-    for (std::size_t i = 0; i < droplets.size(); ++i) {
+  // Each droplet's salience: its particles, more where it was expected.
+  std::vector<std::pair<double, Droplet>> ranked;
+  for (std::size_t i = 0; i < droplets.size(); ++i) {
+    const bool was_expected = i < expected_count;
+    if (water) {
+      // A droplet found where one was expected keeps being drawn while it skims the surface,
+      // up to kSkimming droplet sizes under it: spray at the crown's surface would otherwise
+      // come and go as its centre crosses it. A new one must be wholly on its side.
       const double depth = depth_under_water(*water, droplets[i].centre);
       const double skimming =
-          i < expected_count && !options.under_water
+          was_expected && !options.under_water
               ? kSkimming * options.size_pixels * screen.pixel_size(droplets[i].centre)
               : 0.0;
-      if (options.under_water ? depth > 0.0 : depth <= skimming) kept.push_back(droplets[i]);
+      if (!(options.under_water ? depth > 0.0 : depth <= skimming)) continue;
     }
-    droplets = std::move(kept);
+    const double salience =
+        static_cast<double>(droplets[i].particles) * (was_expected ? kTrackedSalience : 1.0);
+    ranked.emplace_back(salience, droplets[i]);
   }
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  if (ranked.size() > options.max_droplets) ranked.resize(options.max_droplets);
+  droplets.clear();
+  for (const auto& [salience, d] : ranked) droplets.push_back(d);
   std::stable_sort(droplets.begin(), droplets.end(),
                    [](const Droplet& a, const Droplet& b) { return a.particles > b.particles; });
-  if (droplets.size() > options.max_droplets) droplets.resize(options.max_droplets);
   if (droplets.empty()) return droplets;
 
   const double median_count =
@@ -169,22 +184,32 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
 }
 
 Vec3 DropletTracks::expected(const Track& track, bool& known) const {
-  if (track.age > 0 && track.motion != Vec3::Zero()) {
+  // Where its particles' mean velocity takes it, at the scale the sequence has shown; before
+  // that scale is known, or without velocities, where its last motion takes it.
+  if (calibrated_from_ >= kCalibrationDroplets && track.droplet.velocity != Vec3::Zero()) {
     known = true;
-    return track.droplet.centre + track.motion;
+    return track.droplet.centre +
+           motion_dot_velocity_ / velocity_dot_velocity_ * track.droplet.velocity;
   }
-  known = calibrated_from_ >= kCalibrationDroplets && track.droplet.velocity != Vec3::Zero();
-  if (!known) return track.droplet.centre;
-  return track.droplet.centre +
-         motion_dot_velocity_ / velocity_dot_velocity_ * track.droplet.velocity;
+  known = track.age > 0 && track.motion != Vec3::Zero();
+  return known ? Vec3(track.droplet.centre + track.motion) : track.droplet.centre;
+}
+
+std::vector<std::size_t> DropletTracks::predicted_tracks() const {
+  std::vector<std::size_t> tracks;
+  for (std::size_t t = 0; t < last_.size(); ++t) {
+    bool known = false;
+    expected(last_[t], known);
+    if (known) tracks.push_back(t);
+  }
+  return tracks;
 }
 
 std::vector<Vec3> DropletTracks::predicted() const {
   std::vector<Vec3> places;
-  for (const Track& t : last_) {
+  for (const std::size_t t : predicted_tracks()) {
     bool known = false;
-    const Vec3 at = expected(t, known);
-    if (known) places.push_back(at);
+    places.push_back(expected(last_[t], known));
   }
   return places;
 }
@@ -202,7 +227,8 @@ std::vector<Droplet> DropletTracks::update(std::vector<Droplet> droplets,
     bool known = false;
     const Vec3 at = expected(last_[t], known);
     const bool moving = last_[t].age > 0 && last_[t].motion != Vec3::Zero();
-    // A new droplet's place from its velocity is a guess: it keeps the wide reach.
+    // A droplet seen once has shown no motion of its own: its place from its velocity is a
+    // guess, and it keeps the wide reach.
     const double reach = moving ? spacing : kFirstReach * spacing;
     const std::optional<Eigen::Vector2d> predicted = screen.pixel(at);
     if (!predicted) continue;
@@ -215,6 +241,19 @@ std::vector<Droplet> DropletTracks::update(std::vector<Droplet> droplets,
   std::sort(pairs.begin(), pairs.end());
   std::vector<int> match(droplets.size(), -1);
   std::vector<bool> matched(last_.size(), false);
+  // A droplet gathered at a last one's expected place holds the particles found there: it is
+  // that droplet, when their centre lies within a spacing of the place.
+  const std::vector<std::size_t> expected_tracks = predicted_tracks();
+  for (std::size_t d = 0; d < droplets.size(); ++d) {
+    const int k = droplets[d].gathered_at;
+    if (k < 0 || static_cast<std::size_t>(k) >= expected_tracks.size() || !found[d]) continue;
+    const std::size_t t = expected_tracks[static_cast<std::size_t>(k)];
+    bool known = false;
+    const std::optional<Eigen::Vector2d> place = screen.pixel(expected(last_[t], known));
+    if (matched[t] || !place || (*found[d] - *place).norm() > spacing) continue;
+    match[d] = static_cast<int>(t);
+    matched[t] = true;
+  }
   for (const auto& [distance, d, t] : pairs)
     if (match[d] < 0 && !matched[t]) {
       match[d] = static_cast<int>(t);

@@ -55,6 +55,9 @@ struct Droplet {
   // count as grown), and whether it is a last frame's droplet drawn once more as it fades.
   int age = 0;
   bool fading = false;
+  // From spray_droplets: the index in its `predicted` of the place this droplet was gathered
+  // at, the continuation of the droplet expected there; −1 for a droplet seeded anew.
+  int gathered_at = -1;
 };
 
 struct DropletOptions {
@@ -85,7 +88,9 @@ inline constexpr int kDropletGrowth = 3;
 class DropletTracks {
  public:
   // This frame's droplets (from spray_droplets) matched with the last frame's: their sizes and
-  // tails for drawing, and the fading ones from the last frame appended.
+  // tails for drawing, and the fading ones from the last frame appended. A droplet gathered at
+  // a last droplet's expected place (Droplet::gathered_at, from predicted()) continues it; the
+  // others are matched to the nearest last droplets within reach of their expected places.
   std::vector<Droplet> update(std::vector<Droplet> droplets, const ScreenProjection& screen,
                               const DropletOptions& options);
   // Where the last frame's moving droplets would be now (their last motion carried on), the
@@ -101,6 +106,8 @@ class DropletTracks {
   // Where a last frame's droplet is expected now, and whether that is known (its own motion,
   // or its particles' velocity once the sequence has shown what a velocity moves a droplet).
   Vec3 expected(const Track& track, bool& known) const;
+  // The last droplets whose expected places predicted() gives, in its order.
+  std::vector<std::size_t> predicted_tracks() const;
   std::vector<Track> last_;
   bool started_ = false;
   // The velocities' scale to a frame's motion, fitted by least squares over the droplets

@@ -96,6 +96,31 @@ TEST(SprayDroplets, AFrameShowsItsMostSalientDropletsOnly) {
   for (std::size_t i = 0; i < d.size(); ++i) EXPECT_EQ(d[i].particles, 31u - i);
 }
 
+TEST(SprayDroplets, ADropletExpectedThereKeepsItsPlaceAgainstANewOneOfUpToTwiceItsParticles) {
+  const ScreenProjection s = screen_projection(front_camera(), kWidth, kHeight);
+  // Three clouds, far apart: 25 particles where a droplet is expected, new ones of 40 and 30.
+  const Vec3 tracked(-1, 0, 0), bigger(0, 0, 0), equal(1, 0, 0);
+  std::vector<Vec3> spray;
+  add_cloud(spray, tracked, 25, 0.005, 1);
+  add_cloud(spray, bigger, 40, 0.005, 2);
+  add_cloud(spray, equal, 30, 0.005, 3);
+  DropletOptions options;
+  options.max_droplets = 2;
+  // By count alone the two new ones are drawn; expected, the tracked one outranks the one of 30
+  // (under twice its particles), not the one of 40 (over twice).
+  const std::vector<Droplet> by_count = spray_droplets(spray, s, options);
+  ASSERT_EQ(by_count.size(), 2u);
+  EXPECT_EQ(by_count[0].particles, 40u);
+  EXPECT_EQ(by_count[1].particles, 30u);
+  const std::vector<Vec3> expected{tracked};
+  const std::vector<Droplet> kept = spray_droplets(spray, s, options, nullptr, expected);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].particles, 40u);
+  EXPECT_EQ(kept[1].particles, 25u);
+  EXPECT_EQ(kept[1].gathered_at, 0);
+  EXPECT_EQ(kept[0].gathered_at, -1);
+}
+
 TEST(SprayDroplets, ADropletExpectedWhereItsParticlesAreIsGatheredBeforeAFullerNeighbour) {
   const ScreenProjection s = screen_projection(front_camera(), kWidth, kHeight);
   // The point at pixel column px on the image's middle row, at the look_at's depth.
@@ -151,6 +176,50 @@ TEST(SprayDroplets, OnceDropletsAreFoundAgainANewOnesVelocityTellsWhereToLookFor
   });
   ASSERT_NE(nearest, expected.end());
   EXPECT_LT((*nearest - newest).norm(), 1e-3);
+}
+
+TEST(SprayDroplets, AFallingDropletIsExpectedWhereItsParticlesVelocityTakesIt) {
+  const ScreenProjection s = screen_projection(front_camera(), kWidth, kHeight);
+  DropletTracks tracks;
+  const DropletOptions options;
+  // Eight droplets drift at a steady velocity (the scale's calibration: 0.04 a frame per unit
+  // of velocity); one more is thrown up and falls back, its particles' velocity changing by
+  // 5 units a frame, so that its last motion misses its next place by 0.2 (22 pixels, beyond
+  // the spacing of 16 within which a moving droplet is matched), while its velocity takes it
+  // there.
+  constexpr double scale = 0.04;
+  const Vec3 drift(1.0, 0.0, 0.0), gravity(0.0, -5.0, 0.0);
+  std::vector<Vec3> drifting;
+  for (int i = 0; i < 8; ++i) drifting.push_back(Vec3(-1.6 + 0.4 * (i % 4), 0.5 + 0.3 * (i / 4), 0));
+  Vec3 falling(0.4, -0.6, 0), velocity(0.0, 12.0, 0.0);
+  int carried = 0;
+  for (int frame = 0; frame < 8; ++frame) {
+    std::vector<Vec3> spray, velocities;
+    for (std::size_t i = 0; i < drifting.size(); ++i) {
+      add_cloud(spray, drifting[i], 20, 0.004, static_cast<unsigned>(10 + i));
+      velocities.resize(spray.size(), drift);
+    }
+    add_cloud(spray, falling, 20, 0.004, 99);
+    velocities.resize(spray.size(), velocity);
+    const std::vector<Vec3> expected = tracks.predicted();
+    if (frame >= 3) {  // calibrated: the falling droplet is expected exactly where it is
+      ASSERT_FALSE(expected.empty());
+      const auto nearest = std::min_element(
+          expected.begin(), expected.end(),
+          [&](const Vec3& a, const Vec3& b) { return (a - falling).norm() < (b - falling).norm(); });
+      EXPECT_LT((*nearest - falling).norm(), 0.004) << frame;
+    }
+    const std::vector<Droplet> drawn =
+        tracks.update(spray_droplets(spray, s, options, nullptr, expected, velocities), s, options);
+    for (const Droplet& d : drawn)
+      if (!d.fading && (d.centre - falling).norm() < 0.01 && d.age > 0) ++carried;
+    for (Vec3& p : drifting) p += scale * drift;
+    falling += scale * velocity;
+    velocity += gravity;
+  }
+  // Found again in every frame once the scale is known (from the third on): in the second, a
+  // droplet seen once and not yet expected anywhere is looked for within three spacings only.
+  EXPECT_EQ(carried, 6);
 }
 
 TEST(SprayDroplets, SprayUnderTheWaterIsLeftOut) {
