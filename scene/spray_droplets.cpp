@@ -138,7 +138,6 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
     gather(static_cast<std::size_t>(cy) * columns + static_cast<std::size_t>(cx));
     if (droplets.size() > before) droplets.back().gathered_at = static_cast<int>(k);
   }
-  const std::size_t expected_count = droplets.size();  // gathered where one was expected
   std::vector<std::size_t> seeds;
   for (std::size_t i = 0; i < cells.size(); ++i)
     if (cells[i].count >= 2) seeds.push_back(i);
@@ -149,7 +148,7 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
   // Each droplet's salience: its particles, more where it was expected.
   std::vector<std::pair<double, Droplet>> ranked;
   for (std::size_t i = 0; i < droplets.size(); ++i) {
-    const bool was_expected = i < expected_count;
+    const bool was_expected = droplets[i].gathered_at >= 0;
     if (water) {
       // A droplet found where one was expected keeps being drawn while it skims the surface,
       // up to kSkimming droplet sizes under it: spray at the crown's surface would otherwise
