@@ -176,7 +176,8 @@ std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenPro
   const double median_count =
       static_cast<double>(droplets[droplets.size() / 2].particles);  // sorted, descending
   for (Droplet& d : droplets) {
-    const double scale = std::clamp(std::sqrt(static_cast<double>(d.particles) / median_count), 1.0, kMaxDropletGrowth);
+    const double scale = std::clamp(std::sqrt(static_cast<double>(d.particles) / median_count), 1.0,
+                                    kMaxDropletGrowth);
     d.radius = 0.5 * options.size_pixels * scale * screen.pixel_size(d.centre);
   }
   return droplets;
@@ -221,19 +222,22 @@ std::vector<Droplet> DropletTracks::update(std::vector<Droplet> droplets,
   // spacing, or kFirstReach spacings for a droplet whose motion is not known yet.
   std::vector<std::optional<Eigen::Vector2d>> found(droplets.size());
   for (std::size_t d = 0; d < droplets.size(); ++d) found[d] = screen.pixel(droplets[d].centre);
-  std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
+  // Where on screen each last droplet is expected.
+  std::vector<std::optional<Eigen::Vector2d>> place(last_.size());
   for (std::size_t t = 0; t < last_.size(); ++t) {
     bool known = false;
-    const Vec3 at = expected(last_[t], known);
+    place[t] = screen.pixel(expected(last_[t], known));
+  }
+  std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
+  for (std::size_t t = 0; t < last_.size(); ++t) {
+    if (!place[t]) continue;
     const bool moving = last_[t].age > 0 && last_[t].motion != Vec3::Zero();
     // A droplet seen once has shown no motion of its own: its place from its velocity is a
     // guess, and it keeps the wide reach.
     const double reach = moving ? spacing : kFirstReach * spacing;
-    const std::optional<Eigen::Vector2d> predicted = screen.pixel(at);
-    if (!predicted) continue;
     for (std::size_t d = 0; d < droplets.size(); ++d) {
       if (!found[d]) continue;
-      const double distance = (*found[d] - *predicted).norm();
+      const double distance = (*found[d] - *place[t]).norm();
       if (distance <= reach) pairs.emplace_back(distance, d, t);
     }
   }
@@ -247,9 +251,7 @@ std::vector<Droplet> DropletTracks::update(std::vector<Droplet> droplets,
     const int k = droplets[d].gathered_at;
     if (k < 0 || static_cast<std::size_t>(k) >= expected_tracks.size() || !found[d]) continue;
     const std::size_t t = expected_tracks[static_cast<std::size_t>(k)];
-    bool known = false;
-    const std::optional<Eigen::Vector2d> place = screen.pixel(expected(last_[t], known));
-    if (matched[t] || !place || (*found[d] - *place).norm() > spacing) continue;
+    if (matched[t] || !place[t] || (*found[d] - *place[t]).norm() > spacing) continue;
     match[d] = static_cast<int>(t);
     matched[t] = true;
   }
@@ -281,7 +283,8 @@ std::vector<Droplet> DropletTracks::update(std::vector<Droplet> droplets,
     shown.radius *= growth(track.age);
     const double moved = track.motion.norm();
     if (moved > shown.radius)
-      shown.tail = shown.centre - std::min(moved, kMaxTailRadii * shown.radius) / moved * track.motion;
+      shown.tail =
+          shown.centre - std::min(moved, kMaxTailRadii * shown.radius) / moved * track.motion;
     drawn.push_back(shown);
     tracks.push_back(track);
   }

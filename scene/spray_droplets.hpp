@@ -77,8 +77,7 @@ struct DropletOptions {
 // `velocities`: one per particle, or none. `predicted`: where droplets are expected
 // (DropletTracks::predicted), gathered first.
 std::vector<Droplet> spray_droplets(std::span<const Vec3> spray, const ScreenProjection& screen,
-                                    const DropletOptions& options,
-                                    const SceneMesh* water = nullptr,
+                                    const DropletOptions& options, const SceneMesh* water = nullptr,
                                     std::span<const Vec3> predicted = {},
                                     std::span<const Vec3> velocities = {});
 
@@ -93,8 +92,9 @@ class DropletTracks {
   // others are matched to the nearest last droplets within reach of their expected places.
   std::vector<Droplet> update(std::vector<Droplet> droplets, const ScreenProjection& screen,
                               const DropletOptions& options);
-  // Where the last frame's moving droplets would be now (their last motion carried on), the
-  // most particles first.
+  // Where the last frame's droplets are expected now, those whose place is known (their
+  // particles' velocity at the fitted scale, or their last motion carried on), the most
+  // particles first.
   std::vector<Vec3> predicted() const;
 
  private:

@@ -49,12 +49,23 @@ std::vector<std::pair<int, Vec3>> cloud(const Vec3& centre, int count, unsigned 
 // without antialiasing.
 Image render_pool(const ScratchDir& dir, const std::vector<std::string>& extra) {
   write_obj(dir / "water.obj", make_height_grid(8, 1.5, [](double, double) { return 0.0; }));
-  std::vector<std::string> args{"povgen", "--water", (dir / "water.obj").string(), "--out",
-                                (dir / "scene").string(), "--set", "render.antialias=false",
-                                "--set", "render.width=" + std::to_string(kWidth), "--set",
-                                "render.height=" + std::to_string(kHeight), "--set",
-                                "camera.location=[0, 0.5, 4]", "--set",
-                                "camera.look_at=[0, 0.5, 0]", "--set", "camera.angle=40"};
+  std::vector<std::string> args{"povgen",
+                                "--water",
+                                (dir / "water.obj").string(),
+                                "--out",
+                                (dir / "scene").string(),
+                                "--set",
+                                "render.antialias=false",
+                                "--set",
+                                "render.width=" + std::to_string(kWidth),
+                                "--set",
+                                "render.height=" + std::to_string(kHeight),
+                                "--set",
+                                "camera.location=[0, 0.5, 4]",
+                                "--set",
+                                "camera.look_at=[0, 0.5, 0]",
+                                "--set",
+                                "camera.angle=40"};
   args.insert(args.end(), extra.begin(), extra.end());
   const CommandResult r = run_toonwater(args);
   EXPECT_EQ(r.exit_code, 0) << r.output;
@@ -119,8 +130,7 @@ TEST(SprayRender, DropletsInTheAirAreOutlinedAndSprayUnderTheWaterIsNot) {
   // Under the water at (0.4, −0.3, 0.5) nothing of a droplet shows through.
   const auto [ux, uy] = project({0.4, -0.3, 0.5});
   for (int dy = -4; dy <= 4; ++dy)
-    for (int dx = -4; dx <= 4; ++dx)
-      EXPECT_FALSE(is_line(pixel(image, ux + dx, uy + dy)));
+    for (int dx = -4; dx <= 4; ++dx) EXPECT_FALSE(is_line(pixel(image, ux + dx, uy + dy)));
 }
 
 TEST(SprayRender, ASceneWithoutParticlesHoldsNoneOfTheirMacros) {
@@ -250,25 +260,25 @@ TEST(SprayRender, AParticleCacheMissingAFrameIsRefusedNamingIt) {
               make_height_grid(4, 1.0, [](double, double) { return 0.0; }));
   for (int f : {1, 3})
     write_text(dir / ("spray00000" + std::to_string(f) + ".wwp"), wwp_bytes({{0, {0, 1, 0}}}));
-  const CommandResult r = run_toonwater(
-      {"povgen", "--water", (dir / "water_####.obj").string(), "--particles",
-       (dir / "spray######.wwp").string(), "--out", (dir / "scene").string()});
+  const CommandResult r =
+      run_toonwater({"povgen", "--water", (dir / "water_####.obj").string(), "--particles",
+                     (dir / "spray######.wwp").string(), "--out", (dir / "scene").string()});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("spray######.wwp: the particles have no file for frame 2"),
             std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(dir / "scene"));
   write_text(dir / "spray000002.wwp", wwp_bytes({{0, {0, 1e30, 0}}}));
-  const CommandResult far = run_toonwater(
-      {"povgen", "--water", (dir / "water_####.obj").string(), "--particles",
-       (dir / "spray######.wwp").string(), "--out", (dir / "scene").string()});
+  const CommandResult far =
+      run_toonwater({"povgen", "--water", (dir / "water_####.obj").string(), "--particles",
+                     (dir / "spray######.wwp").string(), "--out", (dir / "scene").string()});
   EXPECT_EQ(far.exit_code, 2) << far.output;
   EXPECT_NE(far.output.find("spray000002.wwp: particle 0 lies beyond"), std::string::npos)
       << far.output;
   EXPECT_FALSE(fs::exists(dir / "scene"));
-  const CommandResult missing = run_toonwater(
-      {"povgen", "--water", (dir / "water_####.obj").string(), "--particles",
-       (dir / "foam_####.vdb").string(), "--out", (dir / "scene").string()});
+  const CommandResult missing =
+      run_toonwater({"povgen", "--water", (dir / "water_####.obj").string(), "--particles",
+                     (dir / "foam_####.vdb").string(), "--out", (dir / "scene").string()});
   EXPECT_EQ(missing.exit_code, 2) << missing.output;
   EXPECT_NE(missing.output.find("foam_####.vdb"), std::string::npos) << missing.output;
 }
@@ -319,8 +329,8 @@ TEST(SprayRender, TheDamBreaksDropletsAreFewAndCarriedFromFrameToFrame) {
       }
     const std::vector<Vec3> expected = tracks.predicted();
     const std::vector<Droplet> drawn = tracks.update(
-        spray_droplets(spray, screen, options, &water[static_cast<std::size_t>(f - 14)],
-                       expected, velocities),
+        spray_droplets(spray, screen, options, &water[static_cast<std::size_t>(f - 14)], expected,
+                       velocities),
         screen, options);
     for (const Droplet& d : drawn)
       if (!d.fading && d.age > 0 && d.gathered_at >= 0)
@@ -335,8 +345,8 @@ TEST(SprayRender, TheDamBreaksDropletsAreFewAndCarriedFromFrameToFrame) {
       carried += matched;
       found_before += last_found;
     }
-    std::printf("frame %d: %zu spray particles, %zu droplets drawn, %zu found, %zu carried on\n",
-                f, spray.size(), drawn.size(), found, matched);
+    std::printf("frame %d: %zu spray particles, %zu droplets drawn, %zu found, %zu carried on\n", f,
+                spray.size(), drawn.size(), found, matched);
     counts.push_back(drawn.size());
     last_found = found;
     EXPECT_LE(found, options.max_droplets) << f;
@@ -411,9 +421,20 @@ TEST(SprayRender, TheDamBreaksDropletsInTheAirAreOutlinedAllRound) {
   ScratchDir dir;
   auto povgen = [&](const std::string& name, bool particles) {
     std::vector<std::string> args{
-        "povgen", "--config", (fs::path(TOONWATER_SOURCE_DIR) / "examples" / "spray" / "scene.toml").string(),
-        "--water", (bake / "mesh" / "fluid_mesh_####.bobj.gz").string(), "--scale", "1.2",
-        "--translate", "0,0,0.3", "--up", "z", "--set", "render.frames=\"21\"", "--out",
+        "povgen",
+        "--config",
+        (fs::path(TOONWATER_SOURCE_DIR) / "examples" / "spray" / "scene.toml").string(),
+        "--water",
+        (bake / "mesh" / "fluid_mesh_####.bobj.gz").string(),
+        "--scale",
+        "1.2",
+        "--translate",
+        "0,0,0.3",
+        "--up",
+        "z",
+        "--set",
+        "render.frames=\"21\"",
+        "--out",
         (dir / name).string()};
     if (particles)
       args.insert(args.end(),
@@ -448,10 +469,12 @@ TEST(SprayRender, TheDamBreaksDropletsInTheAirAreOutlinedAllRound) {
         Eigen::Vector2d at = *centre;
         for (double r = 0.5; r <= reach && !lined; r += 0.5) {
           at = *centre + r * step;
-          const Rgb8 p = pixel(image, at.x(), at.y());
           if (at.x() < 0 || at.y() < 0 || at.x() >= image.width || at.y() >= image.height) break;
-          if (is_line(p)) lined = true;
-          else if (near(p, sky, 8)) lined = false;
+          const Rgb8 p = pixel(image, at.x(), at.y());
+          if (is_line(p))
+            lined = true;
+          else if (near(p, sky, 8))
+            lined = false;
         }
         const Eigen::Vector2d beyond = at + 2.0 * step;
         if (!lined || !near(pixel(bare, beyond.x(), beyond.y()), sky, 8)) continue;
@@ -460,9 +483,9 @@ TEST(SprayRender, TheDamBreaksDropletsInTheAirAreOutlinedAllRound) {
       }
       if (rays < 36) continue;  // less than half its edge against the sky: not in the air
       ++in_air;
-      EXPECT_GE(outlined, 0.9 * rays) << "the droplet at " << centre->x()
-                                      << ", " << centre->y() << " is outlined along " << outlined
-                                      << " of " << rays << " rays";
+      EXPECT_GE(outlined, 0.9 * rays)
+          << "the droplet at " << centre->x() << ", " << centre->y() << " is outlined along "
+          << outlined << " of " << rays << " rays";
     }
   }
   std::printf("droplets in the air: %zu\n", in_air);
@@ -487,12 +510,25 @@ TEST(FoamRender, TheDamBreaksFoamIsPatchesThatFollowTheWater) {
   if (data.empty() || !fs::exists(bake / "particles"))
     GTEST_SKIP() << "../shared/data/mantaflow-dambreak is absent: real-data test skipped";
   ScratchDir dir;
-  std::vector<std::string> args{
-      "povgen", "--water", (bake / "mesh" / "fluid_mesh_####.bobj.gz").string(), "--scale",
-      "1.2", "--translate", "0,0,0.3", "--up", "z", "--particles",
-      (bake / "particles" / "fluid_particles_####.vdb").string(), "--set",
-      "render.frames=\"19-22\"", "--set", "render.width=320", "--set", "render.height=180",
-      "--out", (dir / "scene").string()};
+  std::vector<std::string> args{"povgen",
+                                "--water",
+                                (bake / "mesh" / "fluid_mesh_####.bobj.gz").string(),
+                                "--scale",
+                                "1.2",
+                                "--translate",
+                                "0,0,0.3",
+                                "--up",
+                                "z",
+                                "--particles",
+                                (bake / "particles" / "fluid_particles_####.vdb").string(),
+                                "--set",
+                                "render.frames=\"19-22\"",
+                                "--set",
+                                "render.width=320",
+                                "--set",
+                                "render.height=180",
+                                "--out",
+                                (dir / "scene").string()};
   args.insert(args.end(), kMagentaFoam.begin(), kMagentaFoam.end());
   const CommandResult r = run_toonwater(args);
   ASSERT_EQ(r.exit_code, 0) << r.output;

@@ -38,7 +38,8 @@ Eigen::Vector2d pixel_of(const ScreenProjection& s, const Vec3& p) { return *s.p
 
 TEST(SprayDroplets, TheProjectionIsScenePovsCamera) {
   const ScreenProjection s = screen_projection(front_camera(), kWidth, kHeight);
-  // The look_at point at the centre; +x to the right, +y up; the edge of a 40° view at x = 4 tan 20°.
+  // The look_at point at the centre; +x to the right, +y up; the edge of a 40° view at x = 4 tan
+  // 20°.
   EXPECT_NEAR((pixel_of(s, Vec3::Zero()) - Eigen::Vector2d(160, 90)).norm(), 0.0, 1e-9);
   EXPECT_NEAR(pixel_of(s, Vec3(4 * std::tan(20 * M_PI / 180), 0, 0)).x(), kWidth, 1e-9);
   EXPECT_LT(pixel_of(s, Vec3(0, 0.5, 0)).y(), 90);
@@ -162,7 +163,8 @@ TEST(SprayDroplets, OnceDropletsAreFoundAgainANewOnesVelocityTellsWhereToLookFor
     for (Vec3& p : thrown) p += scale * v;
     thrown.push_back(Vec3(-1.3 + 0.45 * frame, -0.5, 0.0));  // 50 pixels right of the last
     std::vector<Vec3> spray, velocities;
-    for (std::size_t i = 0; i < thrown.size(); ++i) add_cloud(spray, thrown[i], 10, 0.002, static_cast<unsigned>(7 + i));
+    for (std::size_t i = 0; i < thrown.size(); ++i)
+      add_cloud(spray, thrown[i], 10, 0.002, static_cast<unsigned>(7 + i));
     velocities.assign(spray.size(), v);
     tracks.update(spray_droplets(spray, s, options, nullptr, tracks.predicted(), velocities), s,
                   options);
@@ -170,10 +172,9 @@ TEST(SprayDroplets, OnceDropletsAreFoundAgainANewOnesVelocityTellsWhereToLookFor
   // The newest droplet, found once, is expected where its velocity takes it at the fitted scale.
   const std::vector<Vec3> expected = tracks.predicted();
   const Vec3 newest = thrown.back() + scale * v;
-  const auto nearest = std::min_element(expected.begin(), expected.end(), [&](const Vec3& a,
-                                                                              const Vec3& b) {
-    return (a - newest).norm() < (b - newest).norm();
-  });
+  const auto nearest = std::min_element(
+      expected.begin(), expected.end(),
+      [&](const Vec3& a, const Vec3& b) { return (a - newest).norm() < (b - newest).norm(); });
   ASSERT_NE(nearest, expected.end());
   EXPECT_LT((*nearest - newest).norm(), 1e-3);
 }
@@ -190,7 +191,8 @@ TEST(SprayDroplets, AFallingDropletIsExpectedWhereItsParticlesVelocityTakesIt) {
   constexpr double scale = 0.04;
   const Vec3 drift(1.0, 0.0, 0.0), gravity(0.0, -5.0, 0.0);
   std::vector<Vec3> drifting;
-  for (int i = 0; i < 8; ++i) drifting.push_back(Vec3(-1.6 + 0.4 * (i % 4), 0.5 + 0.3 * (i / 4), 0));
+  for (int i = 0; i < 8; ++i)
+    drifting.push_back(Vec3(-1.6 + 0.4 * (i % 4), 0.5 + 0.3 * (i / 4), 0));
   Vec3 falling(0.4, -0.6, 0), velocity(0.0, 12.0, 0.0);
   int carried = 0;
   for (int frame = 0; frame < 8; ++frame) {
@@ -204,9 +206,10 @@ TEST(SprayDroplets, AFallingDropletIsExpectedWhereItsParticlesVelocityTakesIt) {
     const std::vector<Vec3> expected = tracks.predicted();
     if (frame >= 3) {  // calibrated: the falling droplet is expected exactly where it is
       ASSERT_FALSE(expected.empty());
-      const auto nearest = std::min_element(
-          expected.begin(), expected.end(),
-          [&](const Vec3& a, const Vec3& b) { return (a - falling).norm() < (b - falling).norm(); });
+      const auto nearest =
+          std::min_element(expected.begin(), expected.end(), [&](const Vec3& a, const Vec3& b) {
+            return (a - falling).norm() < (b - falling).norm();
+          });
       EXPECT_LT((*nearest - falling).norm(), 0.004) << frame;
     }
     const std::vector<Droplet> drawn =
