@@ -103,7 +103,7 @@ TEST(Particles, DamagedWhitewaterFilesAreOneLineErrors) {
 // grid 'phi'. Fixtures rather than written here: OpenVDB's point conversion templates would
 // take most of this file's compile time, in the normal and the sanitizer builds alike.
 TEST(Particles, APointGridThatIsNotMantaflowsKeepsItsWorldCoordinates) {
-  const fs::path data = TOONWATER_TEST_DATA;
+  const fs::path data = fs::path(TOONWATER_SOURCE_DIR) / "tests/analyzer/data";
   const std::vector<Vec3> points{{0.1, 0.2, 0.3}, {-1.5, 2.25, 0.75}, {3, -4, 5}};
   const ParticleSet set = read_particles(data / "three_points.vdb");
   ASSERT_EQ(set.positions.size(), points.size());
