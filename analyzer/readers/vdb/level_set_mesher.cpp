@@ -68,15 +68,39 @@ Vec3 normalised(const openvdb::GridBase& grid, const openvdb::Vec3s& p, const op
           (index.z() + 0.5 - 0.5 * res.z()) / longest};
 }
 
+// Mantaflow's domain is walled by its outermost layer of cells, where phi is extrapolated from the
+// liquid beside them; Mantaflow closes its own mesh there by raising that layer to half a cell
+// outside (its save_mesh: `setBound(0.5, 0)` on a copy of phi). The same here, so that the
+// level set's mesh meets the walls where the mesh cache does, not half a cell beyond the domain.
 template <class Grid>
-TriangleMesh mesh_zero_level(const Grid& grid, double adaptivity) {
+void close_at_domain_walls(Grid& grid, const openvdb::Vec3i& resolution) {
+  using Value = typename Grid::ValueType;
+  constexpr Value outside = Value(0.5);  // phi is in cells
+  auto accessor = grid.getAccessor();
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u_axis = (axis + 1) % 3, v_axis = (axis + 2) % 3;
+    for (const int layer : {0, resolution[axis] - 1})
+      for (int u = 0; u < resolution[u_axis]; ++u)
+        for (int v = 0; v < resolution[v_axis]; ++v) {
+          openvdb::Coord ijk;
+          ijk[axis] = layer;
+          ijk[u_axis] = u;
+          ijk[v_axis] = v;
+          if (accessor.getValue(ijk) < outside) accessor.setValue(ijk, outside);
+        }
+  }
+}
+
+template <class Grid>
+TriangleMesh mesh_zero_level(Grid& grid, double adaptivity) {
+  const std::optional<openvdb::Vec3i> mantaflow = mantaflow_resolution(grid);
+  if (mantaflow) close_at_domain_walls(grid, *mantaflow);
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> triangles;
   std::vector<openvdb::Vec4I> quads;
   openvdb::tools::volumeToMesh(grid, points, triangles, quads, 0.0, adaptivity);
   TriangleMesh mesh;
   mesh.positions.reserve(points.size());
-  const std::optional<openvdb::Vec3i> mantaflow = mantaflow_resolution(grid);
   for (const auto& p : points)
     mesh.positions.push_back(mantaflow ? normalised(grid, p, *mantaflow)
                                        : Vec3(p.x(), p.y(), p.z()));
