@@ -13,6 +13,12 @@
 //                    targets are stated for
 //   AnalyzeCommand   `toonwater analyze MESH --csv FILE` end to end as a child process, with
 //                    its peak resident memory per vertex (counter bytes_per_vertex)
+// and frame 15 of a Mantaflow bake, as issue #32 compares its inputs: the mesh cache against the
+// level set of the data cache. The bake is the directory TOONWATER_BENCH_BAKE names (with mesh/
+// and data/; mantaflow_dambreak.py bakes one), else the shared dam break's cache.
+//   BakeFrame/0      read_mesh of mesh/fluid_mesh_0015.bobj.gz, then analyze_mesh
+//   BakeFrame/1      read_mesh of data/fluid_data_0015.vdb: reading and meshing the level set
+//   BakeFrame/2      read_mesh of data/fluid_data_0015.vdb, then analyze_mesh
 #include "analyzer/analysis.hpp"
 #include "corpus/analytic_surfaces.hpp"
 #include "analyzer/flow_coherence.hpp"
@@ -28,6 +34,7 @@
 #include <bit>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <filesystem>
 #include <map>
@@ -209,6 +216,30 @@ void AnalyzeCommand(benchmark::State& state) {
   fs::remove(csv);
 }
 
+void BakeFrame(benchmark::State& state) {
+  const char* bake = std::getenv("TOONWATER_BENCH_BAKE");
+  const fs::path cache =
+      bake ? fs::path(bake) : fs::path(TOONWATER_SHARED_DIR) / "data/mantaflow-dambreak/cache";
+  const fs::path path = state.range(0) == 0 ? cache / "mesh/fluid_mesh_0015.bobj.gz"
+                                            : cache / "data/fluid_data_0015.vdb";
+  if (!fs::exists(path)) {
+    state.SkipWithError(("no " + path.string()).c_str());
+    return;
+  }
+  AnalyzeOptions options;
+  options.flow.up = Axis::z;
+  std::size_t n = 0;
+  for (auto _ : state) {
+    InputMesh input = read_mesh(path);
+    n = input.mesh.positions.size();
+    if (state.range(0) == 1)
+      benchmark::DoNotOptimize(input);
+    else
+      benchmark::DoNotOptimize(analyze_mesh(std::move(input.mesh), options));
+  }
+  set_vertex_rate(state, n);
+}
+
 // Arguments: 55 → 55k vertices, 1000 → 1M vertices.
 BENCHMARK(ReadObj)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(ReadPly)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
@@ -219,6 +250,7 @@ BENCHMARK(FlowWithCoherence)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(CurvatureAndLabels)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(CurvatureAndFlowStage)->Arg(55)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(AnalyzeCommand)->Arg(1000)->UseManualTime()->Iterations(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BakeFrame)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace toonwater
