@@ -15,7 +15,7 @@
 //                    its peak resident memory per vertex (counter bytes_per_vertex)
 // and frame 15 of a Mantaflow bake, as issue #32 compares its inputs: the mesh cache against the
 // level set of the data cache. The bake is the directory TOONWATER_BENCH_BAKE names (with mesh/
-// and data/; mantaflow_dambreak.py bakes one), else the shared dam break's cache.
+// and data/: the cache folder of mantaflow_bake.py's bakes), else the shared dam break's cache.
 //   BakeFrame/0      read_mesh of mesh/fluid_mesh_0015.bobj.gz, then analyze_mesh
 //   BakeFrame/1      read_mesh of data/fluid_data_0015.vdb: reading and meshing the level set
 //   BakeFrame/2      read_mesh of data/fluid_data_0015.vdb, then analyze_mesh

@@ -9,7 +9,7 @@
 #      reading and meshing the level set, and reading, meshing and analysing it.
 #   bench/level_set_vs_mesh_cache.sh [RUNS]      (default 9)
 # Environment: TOONWATER (build/cli/toonwater), BENCH (build/bench/bench_analyzer), BLENDER
-# (blender), OUT (out/level-set-bench: the bakes, made with mantaflow_dambreak.py when absent).
+# (blender), OUT (out/level-set-bench: the bakes, made with mantaflow_bake.py when absent).
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -24,7 +24,7 @@ frame=0015
 fail() { echo "level_set_vs_mesh_cache: error: $*" >&2; exit 1; }
 [[ -x $TOONWATER ]] || fail "no toonwater at $TOONWATER (build it, or set TOONWATER)"
 [[ -x $BENCH ]] || fail "no bench_analyzer at $BENCH (make bench_analyzer, or set BENCH)"
-[[ $runs =~ ^[1-9][0-9]?$ ]] || fail "RUNS must be 1-99, not '$runs'"
+[[ $runs =~ ^[1-9][0-9]?$ ]] && ((runs >= 3)) || fail "RUNS must be 3-99 (a median of the runs), not '$runs'"
 
 wall() {  # seconds of one whole `toonwater analyze FILE --up z`
   local start end
@@ -37,14 +37,15 @@ median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] 
 
 for mesh_scale in 1 2; do
   bake=$OUT/res96-mesh$mesh_scale
-  if [[ ! -f $bake/data/fluid_data_$frame.vdb || ! -f $bake/mesh/fluid_mesh_$frame.bobj.gz ]]; then
+  cache=$bake/cache
+  if [[ ! -f $cache/data/fluid_data_$frame.vdb || ! -f $cache/mesh/fluid_mesh_$frame.bobj.gz ]]; then
     mkdir -p "$bake"
-    "$BLENDER" -b --factory-startup --python "$here/mantaflow_dambreak.py" -- \
-      "$(cd "$bake" && pwd)" 96 "$mesh_scale" 16 >"$bake/bake.log" 2>&1 ||
+    "$BLENDER" -b --factory-startup --python "$here/mantaflow_bake.py" -- \
+      dambreak "$bake" 96 "$mesh_scale" 16 >"$bake/bake.log" 2>&1 ||
       fail "the bake failed: $bake/bake.log"
   fi
-  level_set=$bake/data/fluid_data_$frame.vdb
-  mesh_cache=$bake/mesh/fluid_mesh_$frame.bobj.gz
+  level_set=$cache/data/fluid_data_$frame.vdb
+  mesh_cache=$cache/mesh/fluid_mesh_$frame.bobj.gz
   wall "$level_set" >/dev/null
   wall "$mesh_cache" >/dev/null
   a=() b=() r=()
@@ -57,7 +58,7 @@ for mesh_scale in 1 2; do
     "level set $(printf '%s\n' "${a[@]}" | median) s," \
     "mesh cache $(printf '%s\n' "${b[@]}" | median) s," \
     "ratio $(printf '%s\n' "${r[@]}" | median)"
-  TOONWATER_BENCH_BAKE=$bake "$BENCH" --benchmark_filter='BakeFrame' \
+  TOONWATER_BENCH_BAKE=$cache "$BENCH" --benchmark_filter='BakeFrame' \
     --benchmark_repetitions="$runs" --benchmark_enable_random_interleaving=true \
     --benchmark_report_aggregates_only=true 2>/dev/null | grep -E '_median'
 done

@@ -2,7 +2,7 @@
 // band and region in a pure colour (report/overhead_study.hpp), one line a frame, then the
 // medians the targets are stated for, and the regions' boundary roughness at 8 pixels a cell
 // (report/flow_study.hpp). What the tests assert on ../shared/data
-// (tests/report/test_flow_study.cpp), for bakes that are not there (mantaflow_ball_drop.py).
+// (tests/report/test_flow_study.cpp), for bakes that are not there (mantaflow_bake.py's ball-drop).
 //
 //   overhead_study WATER CELL X0,Y0,Z0,X1,Y1,Z1 [OBJECT ...]
 //
