@@ -10,6 +10,8 @@
 #include <openvdb/tools/LevelSetSphere.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <numbers>
 #include <string>
 
@@ -123,6 +125,34 @@ TEST(VdbReader, NoLevelSetOrTwoAreErrorsNamingTheGrids) {
   empty->setGridClass(openvdb::GRID_LEVEL_SET);
   write_vdb(dir / "empty.vdb", {empty});
   EXPECT_THROW(read_mesh(dir / "empty.vdb"), EmptyMeshError);
+}
+
+// OpenVDB states each grid's size in memory in the file: one larger than the machine (a dense
+// grid of zeros is small on disk) is refused before it is read, with one line naming the file.
+TEST(VdbReader, AGridLargerThanTheMachinesMemoryIsRefusedBeforeItIsRead) {
+  ScratchDir dir;
+  write_vdb(dir / "huge.vdb", {sphere("surface", 1.0, {0, 0, 0}, 0.1)});
+  std::string bytes = read_text(dir / "huge.vdb");
+  // The metadata's layout: the name, the type name "int64" (each after its 4-byte length), the
+  // value's size (8), then the value, little-endian.
+  const std::string key = "file_mem_bytes";
+  const std::size_t at = bytes.find(key);
+  ASSERT_NE(at, std::string::npos) << "OpenVDB wrote no size";
+  const std::size_t value = at + key.size() + 4 + 5 + 4;
+  ASSERT_EQ(bytes.substr(at + key.size() + 4, 5), "int64");
+  const std::int64_t petabyte = std::int64_t{1} << 50;
+  std::memcpy(&bytes[value], &petabyte, sizeof petabyte);
+  write_text(dir / "huge.vdb", bytes);
+  try {
+    read_mesh(dir / "huge.vdb");
+    FAIL() << "a grid of a petabyte was read";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("huge.vdb: grid 'surface' takes 1048576 GiB in memory"),
+              std::string::npos)
+        << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
 }
 
 }  // namespace

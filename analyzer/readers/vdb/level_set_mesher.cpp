@@ -4,7 +4,10 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdint>
 #include <optional>
 
 namespace toonwater {
@@ -56,6 +59,22 @@ std::string choose_grid(const openvdb::GridPtrVec& grids, const std::string& wan
         "its grids: " +
         present);
   return only->getName();
+}
+
+// A grid larger in memory than the machine is refused before it is read: OpenVDB writes the
+// size of each grid's tree with it (`file_mem_bytes`), and a dense grid of zeros, small on disk,
+// can take more memory than there is.
+void check_fits_in_memory(const openvdb::GridBase& grid) {
+  const auto bytes =
+      grid.getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_MEM_BYTES);
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  if (!bytes || bytes->value() <= 0 || pages <= 0 || page <= 0) return;
+  const auto memory = static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page);
+  if (static_cast<std::uint64_t>(bytes->value()) > memory)
+    throw std::runtime_error("grid '" + grid.getName() + "' takes " +
+                             std::to_string(static_cast<std::uint64_t>(bytes->value()) >> 30) +
+                             " GiB in memory, more than this machine's " +
+                             std::to_string(memory >> 30) + " GiB");
 }
 
 // A point of the grid's world in Mantaflow's normalised domain coordinates, those of its mesh
@@ -130,6 +149,8 @@ MeshedLevelSet mesh_level_set(const std::string& path, const std::string& wanted
     const openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();
     MeshedLevelSet out;
     out.grid = choose_grid(*grids, wanted);
+    for (const auto& g : *grids)
+      if (g && g->getName() == out.grid) check_fits_in_memory(*g);
     const openvdb::GridBase::Ptr grid = file.readGrid(out.grid);
     file.close();
     out.voxel_size = grid->voxelSize()[0];
