@@ -127,6 +127,29 @@ TEST(VdbReader, NoLevelSetOrTwoAreErrorsNamingTheGrids) {
   EXPECT_THROW(read_mesh(dir / "empty.vdb"), EmptyMeshError);
 }
 
+// A file cut short anywhere in the grid it needs is one short line, whatever OpenVDB read in
+// place of a type name.
+TEST(VdbReader, ATruncatedFileIsOneShortLine) {
+  ScratchDir dir;
+  // The grid it needs last, so that every cut falls before its end.
+  write_vdb(dir / "whole.vdb",
+            {fog("density"), fog("heat"), sphere("surface", 1.0, {0, 0, 0}, 0.1)});
+  const std::string bytes = read_text(dir / "whole.vdb");
+  for (double kept = 0.01; kept < 1.0; kept += 0.02) {
+    SCOPED_TRACE(kept);
+    write_text(dir / "cut.vdb", bytes.substr(0, static_cast<std::size_t>(kept * bytes.size())));
+    try {
+      read_mesh(dir / "cut.vdb");
+      FAIL() << "a truncated file was read";
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("cut.vdb: "), std::string::npos) << message;
+      EXPECT_LT(message.size(), 400u) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+  }
+}
+
 // OpenVDB states each grid's size in memory in the file: one larger than the machine (a dense
 // grid of zeros is small on disk) is refused before it is read, with one line naming the file.
 TEST(VdbReader, AGridLargerThanTheMachinesMemoryIsRefusedBeforeItIsRead) {

@@ -160,7 +160,7 @@ MeshedLevelSet mesh_level_set(const std::string& path, const std::string& wanted
       out.mesh = mesh_zero_level(*d, adaptivity);
     return out;
   } catch (const openvdb::Exception& e) {
-    throw std::runtime_error(e.what());
+    throw unreadable(e);
   }
 }
 

@@ -49,11 +49,17 @@ Vec3 to_vec3(const openvdb::Vec3d& v) { return {v.x(), v.y(), v.z()}; }
 
 ParticleSet read_point_grid(const std::string& path) {
   initialise_openvdb();
-  openvdb::io::File file(path);
-  file.open(false);
-  const std::string name = choose_point_grid(*file.readAllGridMetadata());
-  const auto grid = openvdb::gridPtrCast<openvdb::points::PointDataGrid>(file.readGrid(name));
-  file.close();
+  openvdb::points::PointDataGrid::Ptr grid;
+  std::string name;
+  try {
+    openvdb::io::File file(path);
+    file.open(false);
+    name = choose_point_grid(*file.readAllGridMetadata());
+    grid = openvdb::gridPtrCast<openvdb::points::PointDataGrid>(file.readGrid(name));
+    file.close();
+  } catch (const openvdb::Exception& e) {
+    throw unreadable(e);
+  }
   if (!grid) throw std::runtime_error("grid '" + name + "' is not a point grid");
   const std::optional<openvdb::Vec3i> mantaflow = mantaflow_resolution(*grid);
   const double longest =

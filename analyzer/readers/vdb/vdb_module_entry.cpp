@@ -4,6 +4,7 @@
 #include <openvdb/points/AttributeArray.h>
 
 #include <mutex>
+#include <string_view>
 
 namespace toonwater {
 
@@ -30,6 +31,24 @@ std::optional<openvdb::Vec3i> mantaflow_resolution(const openvdb::GridBase& grid
   const openvdb::Vec3i res = resolution->value();
   if (res.x() <= 0 || res.y() <= 0 || res.z() <= 0) return std::nullopt;
   return res;
+}
+
+std::runtime_error unreadable(const openvdb::Exception& e) {
+  constexpr std::size_t longest_reason = 160;
+  std::string reason;
+  for (const char c : std::string_view(e.what())) {
+    if (reason.size() > longest_reason) {
+      reason += "...";
+      break;
+    }
+    const bool blank = c == ' ' || (static_cast<unsigned char>(c) < ' ') || c == '\x7f';
+    if (blank) {
+      if (!reason.empty() && reason.back() != ' ') reason += ' ';
+    } else {
+      reason += static_cast<unsigned char>(c) > '~' ? '?' : c;
+    }
+  }
+  return std::runtime_error("OpenVDB cannot read it (a truncated or damaged file?): " + reason);
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include <openvdb/openvdb.h>
 
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 namespace toonwater {
@@ -18,6 +19,10 @@ void initialise_openvdb();
 // Mantaflow's base resolution when the grid is Mantaflow's (the `file_base_resolution`
 // metadata Mantaflow writes on every grid it saves), else nothing.
 std::optional<openvdb::Vec3i> mantaflow_resolution(const openvdb::GridBase& grid);
+
+// OpenVDB's reason for a file it cannot read, as one short line: a truncated or damaged file
+// puts what it held where a grid's type name belongs, kilobytes of it, into the message.
+std::runtime_error unreadable(const openvdb::Exception& e);
 
 MeshedLevelSet mesh_level_set(const std::string& path, const std::string& grid, double adaptivity);
 ParticleSet read_point_grid(const std::string& path);
