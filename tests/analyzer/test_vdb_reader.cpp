@@ -137,7 +137,8 @@ TEST(VdbReader, ATruncatedFileIsOneShortLine) {
   const std::string bytes = read_text(dir / "whole.vdb");
   for (double kept = 0.01; kept < 1.0; kept += 0.02) {
     SCOPED_TRACE(kept);
-    write_text(dir / "cut.vdb", bytes.substr(0, static_cast<std::size_t>(kept * bytes.size())));
+    const auto length = static_cast<std::size_t>(kept * static_cast<double>(bytes.size()));
+    write_text(dir / "cut.vdb", bytes.substr(0, length));
     try {
       read_mesh(dir / "cut.vdb");
       FAIL() << "a truncated file was read";

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <new>
 #include <optional>
 
 namespace toonwater {
@@ -161,6 +162,10 @@ MeshedLevelSet mesh_level_set(const std::string& path, const std::string& wanted
     return out;
   } catch (const openvdb::Exception& e) {
     throw unreadable(e);
+  } catch (const std::bad_alloc&) {
+    throw unreadable_size();
+  } catch (const std::length_error&) {
+    throw unreadable_size();
   }
 }
 

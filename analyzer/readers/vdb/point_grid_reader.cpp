@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 
 namespace toonwater {
 namespace {
@@ -59,6 +60,10 @@ ParticleSet read_point_grid(const std::string& path) {
     file.close();
   } catch (const openvdb::Exception& e) {
     throw unreadable(e);
+  } catch (const std::bad_alloc&) {
+    throw unreadable_size();
+  } catch (const std::length_error&) {
+    throw unreadable_size();
   }
   if (!grid) throw std::runtime_error("grid '" + name + "' is not a point grid");
   const std::optional<openvdb::Vec3i> mantaflow = mantaflow_resolution(*grid);

@@ -33,6 +33,10 @@ std::optional<openvdb::Vec3i> mantaflow_resolution(const openvdb::GridBase& grid
   return res;
 }
 
+namespace {
+const std::string unreadable_prefix = "OpenVDB cannot read it (a truncated or damaged file?): ";
+}  // namespace
+
 std::runtime_error unreadable(const openvdb::Exception& e) {
   constexpr std::size_t longest_reason = 160;
   std::string reason;
@@ -48,7 +52,11 @@ std::runtime_error unreadable(const openvdb::Exception& e) {
       reason += static_cast<unsigned char>(c) > '~' ? '?' : c;
     }
   }
-  return std::runtime_error("OpenVDB cannot read it (a truncated or damaged file?): " + reason);
+  return std::runtime_error(unreadable_prefix + reason);
+}
+
+std::runtime_error unreadable_size() {
+  return std::runtime_error(unreadable_prefix + "it states a size larger than memory");
 }
 
 namespace {

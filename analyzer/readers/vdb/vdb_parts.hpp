@@ -24,6 +24,10 @@ std::optional<openvdb::Vec3i> mantaflow_resolution(const openvdb::GridBase& grid
 // puts what it held where a grid's type name belongs, kilobytes of it, into the message.
 std::runtime_error unreadable(const openvdb::Exception& e);
 
+// A damaged file whose bytes, read as a length, ask for more memory than any machine has
+// (std::bad_alloc or std::length_error from OpenVDB's reading), as one line.
+std::runtime_error unreadable_size();
+
 MeshedLevelSet mesh_level_set(const std::string& path, const std::string& grid, double adaptivity);
 ParticleSet read_point_grid(const std::string& path);
 
