@@ -4,7 +4,7 @@
 # set at most 3× reading the mesh cache and analysing it), frame 15 of a dam break baked by
 # Blender at resolution_max 96 (a 96 × 60 × 48 grid) with mesh_scale 1 and 2:
 #   1. whole processes, `toonwater analyze FILE --up z`, the two inputs in turn (A B A B ...)
-#      after one warm-up each: medians of the wall times and of the pairs' ratios;
+#      after one warm-up each (alternate.py): medians of the times and of the pairs' ratios;
 #   2. in one process (bench_analyzer's BakeFrame): reading and analysing the mesh cache,
 #      reading and meshing the level set, and reading, meshing and analysing it.
 #   bench/level_set_vs_mesh_cache.sh [RUNS]      (default 9)
@@ -26,14 +26,7 @@ fail() { echo "level_set_vs_mesh_cache: error: $*" >&2; exit 1; }
 [[ -x $BENCH ]] || fail "no bench_analyzer at $BENCH (make bench_analyzer, or set BENCH)"
 [[ $runs =~ ^[1-9][0-9]?$ ]] && ((runs >= 3)) || fail "RUNS must be 3-99 (a median of the runs), not '$runs'"
 
-wall() {  # seconds of one whole `toonwater analyze FILE --up z`
-  local start end
-  start=$(date +%s%N)
-  "$TOONWATER" analyze "$1" --up z >/dev/null 2>&1 || fail "toonwater analyze $1 failed"
-  end=$(date +%s%N)
-  awk -v ns=$((end - start)) 'BEGIN { printf "%.4f\n", ns / 1e9 }'
-}
-median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+analyze() { printf '%q ' "$TOONWATER" analyze "$1" --up z; }  # as shell text
 
 for mesh_scale in 1 2; do
   bake=$OUT/res96-mesh$mesh_scale
@@ -46,18 +39,9 @@ for mesh_scale in 1 2; do
   fi
   level_set=$cache/data/fluid_data_$frame.vdb
   mesh_cache=$cache/mesh/fluid_mesh_$frame.bobj.gz
-  wall "$level_set" >/dev/null
-  wall "$mesh_cache" >/dev/null
-  a=() b=() r=()
-  for ((i = 0; i < runs; ++i)); do
-    a+=("$(wall "$level_set")")
-    b+=("$(wall "$mesh_cache")")
-    r+=("$(awk -v a="${a[i]}" -v b="${b[i]}" 'BEGIN { printf "%.3f\n", a / b }')")
-  done
-  echo "96 × 60 × 48, mesh_scale $mesh_scale, frame $frame, whole processes ($runs pairs):" \
-    "level set $(printf '%s\n' "${a[@]}" | median) s," \
-    "mesh cache $(printf '%s\n' "${b[@]}" | median) s," \
-    "ratio $(printf '%s\n' "${r[@]}" | median)"
+  echo "96 × 60 × 48, mesh_scale $mesh_scale, frame $frame, whole processes:"
+  "$here/alternate.py" --rounds "$runs" "mesh cache=$(analyze "$mesh_cache")" \
+    "level set=$(analyze "$level_set")"
   TOONWATER_BENCH_BAKE=$cache "$BENCH" --benchmark_filter='BakeFrame' \
     --benchmark_repetitions="$runs" --benchmark_enable_random_interleaving=true \
     --benchmark_report_aggregates_only=true 2>/dev/null | grep -E '_median'

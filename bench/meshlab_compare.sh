@@ -3,13 +3,14 @@
 # (meshlabserver, Debian's 2020.09, under one Xvfb server started beforehand so that its own
 # start-up is not counted), and optionally against a second toonwater build, on the
 # bench_analyzer height field z = 0.1 sin 6x cos 6y over [-1, 1]^2 written as a binary PLY of
-# float coordinates at 235^2 (55k) and 1000^2 (1M) vertices. Runs alternate (A, B, MeshLab) in
-# each of PAIRS rounds; prints the medians of wall and CPU (user + system) time and of the
-# rounds' ratios. Neither program writes an output.
+# float coordinates at 235^2 (55k) and 1000^2 (1M) vertices. Runs alternate (MeshLab, A, B) in
+# each of PAIRS rounds (bench/alternate.py); prints the medians of wall and CPU (user + system)
+# time and of the rounds' ratios to MeshLab. Neither program writes an output.
 #
 # Usage: bench/meshlab_compare.sh TOONWATER [OTHER_TOONWATER] [PAIRS]   (PAIRS default 7)
-# Needs: meshlab and xvfb (apt-get install meshlab xvfb), python3, /usr/bin/time.
+# Needs: meshlab and xvfb (apt-get install meshlab xvfb), python3.
 set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 a=$1
 b=${2:-}
 pairs=${3:-7}
@@ -54,44 +55,14 @@ if [ -z "${DISPLAY:-}" ]; then
   sleep 2
 fi
 
-# Appends "wall cpu" of one run of the command to the file $1.
-timed() {
-  local out=$1
-  shift
-  /usr/bin/time -f "%e %U %S" -o "$work/time" "$@" >/dev/null 2>&1
-  awk '{ printf "%s %.3f\n", $1, $2 + $3 }' "$work/time" >>"$out"
-}
+analyze() { printf '%q analyze --up z %q' "$1" "$work/$size.ply"; }  # as shell text
 
 for size in 55k 1M; do
   script=$work/gaussian_mean.mlx
-  [ "$size" = 1M ] && script=$work/gaussian.mlx
-  for ((round = 0; round < pairs; ++round)); do
-    timed "$work/$size.a" "$a" analyze --up z "$work/$size.ply"
-    [ -n "$b" ] && timed "$work/$size.b" "$b" analyze --up z "$work/$size.ply"
-    timed "$work/$size.meshlab" meshlabserver -i "$work/$size.ply" -s "$script"
-  done
+  meshlab_name="Gaussian + mean"
+  [ "$size" = 1M ] && script=$work/gaussian.mlx meshlab_name=Gaussian
+  echo "$size vertices, MeshLab's $meshlab_name:"
+  "$here/alternate.py" --rounds "$pairs" \
+    "MeshLab=$(printf 'meshlabserver -i %q -s %q' "$work/$size.ply" "$script")" \
+    "toonwater A=$(analyze "$a")" ${b:+"toonwater B=$(analyze "$b")"}
 done
-
-python3 - "$work" "$pairs" "${b:+b}" <<'PY'
-import sys, statistics as st
-work, pairs, has_b = sys.argv[1], int(sys.argv[2]), sys.argv[3] == "b"
-def runs(name):
-    return [tuple(map(float, l.split())) for l in open(f"{work}/{name}")]
-print(f"{pairs} rounds, medians; wall and CPU (user + system) in seconds")
-print("| mesh | program | wall | CPU | ratio wall (range) | ratio CPU (range) |")
-print("|---|---|---:|---:|---:|---:|")
-for size, meshlab_name in (("55k", "Gaussian + mean"), ("1M", "Gaussian")):
-    a, m = runs(f"{size}.a"), runs(f"{size}.meshlab")
-    rows = [("toonwater A", a)] + ([("toonwater B", runs(f"{size}.b"))] if has_b else [])
-    print(f"| {size} | MeshLab {meshlab_name} | {st.median(r[0] for r in m):.3f} | {st.median(r[1] for r in m):.3f} | | |")
-    for name, t in rows:
-        rw = [x[0] / y[0] for x, y in zip(t, m)]
-        rc = [x[1] / y[1] for x, y in zip(t, m)]
-        print(f"| {size} | {name} | {st.median(r[0] for r in t):.3f} | {st.median(r[1] for r in t):.3f} | "
-              f"{st.median(rw):.3f} ({min(rw):.3f}–{max(rw):.3f}) vs MeshLab | {st.median(rc):.3f} ({min(rc):.3f}–{max(rc):.3f}) vs MeshLab |")
-    if has_b:
-        b = runs(f"{size}.b")
-        rw = [x[0] / y[0] for x, y in zip(a, b)]
-        rc = [x[1] / y[1] for x, y in zip(a, b)]
-        print(f"| {size} | A / B | | | {st.median(rw):.3f} ({min(rw):.3f}–{max(rw):.3f}) | {st.median(rc):.3f} ({min(rc):.3f}–{max(rc):.3f}) |")
-PY

@@ -3,14 +3,16 @@
 # directories written by `toonwater povgen` (A, the reference, and B, the candidate) rendered
 # over the same frames, every pixel of B compared with A's (the largest channel difference, and
 # how many pixels differ by more than 8/255), then A and B timed in turn, A B A B ..., one
-# POV-Ray thread each, with the medians of user CPU and wall seconds and of the rounds' ratios.
+# POV-Ray thread each, with the medians of CPU and wall seconds and of the rounds' ratios B / A
+# (bench/alternate.py).
 #   scripts/measure_render_costs.sh SCENE_A SCENE_B [FIRST_FRAME LAST_FRAME] [ROUNDS]
-# Needs povray, idiff (openimageio-tools) and GNU time; writes only into a temporary directory.
+# Needs povray, idiff (openimageio-tools) and python3; writes only into a temporary directory.
 set -euo pipefail
 if [ $# -lt 2 ]; then
   sed -n '2,8p' "$0" >&2
   exit 2
 fi
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 a=$(cd "$1" && pwd)
 b=$(cd "$2" && pwd)
 first=${3:-}
@@ -21,15 +23,17 @@ frames=()
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-render() {  # render SCENE OUT_PREFIX: one POV-Ray thread, prints "user wall" seconds
-  (cd "$1" && /usr/bin/time -f "%U %e" -o "$work/time" \
-    povray scene.ini -D +WT1 "${frames[@]}" +O"$2" >/dev/null 2>&1)
-  cat "$work/time"
+render() {  # render SCENE OUT_PREFIX, as shell text: one POV-Ray thread
+  printf 'cd %q && povray scene.ini -D +WT1' "$1"
+  printf ' %q' "${frames[@]}" +O"$2"
 }
 
 mkdir -p "$work/a" "$work/b"
-render "$a" "$work/a/frame_" >/dev/null
-render "$b" "$work/b/frame_" >/dev/null
+for side in a b; do
+  scene=${!side}
+  bash -c "$(render "$scene" "$work/$side/frame_")" >"$work/$side.log" 2>&1 ||
+    { tail -n 5 "$work/$side.log" >&2; echo "measure_render_costs: POV-Ray failed on $scene" >&2; exit 1; }
+done
 for image in "$work"/a/*.png; do
   name=$(basename "$image")
   # idiff's status says whether the images differ: reported below, not a failure of this script.
@@ -38,18 +42,5 @@ for image in "$work"/a/*.png; do
       END { printf "%s: largest difference %d/255, %d pixels above 8/255\n", name, max * 255 + 0.5, over }'
 done
 
-for round in $(seq "$rounds"); do
-  read -r ua wa < <(render "$a" "$work/a/frame_")
-  read -r ub wb < <(render "$b" "$work/b/frame_")
-  echo "$ua $wa $ub $wb"
-done | awk '
-  { ua[NR] = $1; wa[NR] = $2; ub[NR] = $3; wb[NR] = $4; r[NR] = ($1 > 0 ? $3 / $1 : 0) }
-  function median(v, n,   i, j, t) {
-    for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++) if (v[j] < v[i]) { t = v[i]; v[i] = v[j]; v[j] = t }
-    return n % 2 ? v[(n + 1) / 2] : (v[n / 2] + v[n / 2 + 1]) / 2
-  }
-  END {
-    n = NR
-    printf "%d rounds, medians: A user %.2f s wall %.2f s, B user %.2f s wall %.2f s, B/A user %.3f\n",
-      n, median(ua, n), median(wa, n), median(ub, n), median(wb, n), median(r, n)
-  }'
+python3 "$here/../bench/alternate.py" --rounds "$rounds" \
+  "A=$(render "$a" "$work/a/frame_")" "B=$(render "$b" "$work/b/frame_")"

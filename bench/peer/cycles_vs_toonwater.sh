@@ -3,8 +3,8 @@
 # Mantaflow dam break (../shared/data/mantaflow-dambreak) at 640×360, the same camera, rendered
 # by toonwater (povgen + render, the default look) and by Blender Cycles (4 samples, a colour
 # ramp on the light angle, Freestyle outlines: cycles_toon.py), whole processes timed in turn,
-# A B A B ..., after one warm-up of each. Prints each side's median, min and max wall time, the
-# median of the pairs' ratios toonwater / Cycles, and a one-line summary.
+# A B A B ..., after one warm-up of each (bench/alternate.py). Prints each side's median, min
+# and max wall and CPU time and the medians of the runs' ratios toonwater / Cycles.
 #   bench/peer/cycles_vs_toonwater.sh [FRAMES] [RUNS] [LOOK]     (default 14-22 5 opaque)
 #   bench/peer/cycles_vs_toonwater.sh --one toonwater|cycles [FRAMES] [LOOK]   one run, not timed
 # LOOK is the Cycles water's: opaque (issue 35's peer) or see-through (the free surface
@@ -56,21 +56,19 @@ object="$DATA/sphere_####.obj"
 # Mantaflow's normalised cache to world metres: the domain's longest side and centre
 placement=(--scale 1.2 --translate 0,0,0.3)
 
-povgen() {  # povgen DIR: the default look of FRAMES at WIDTH×HEIGHT
-  "$TOONWATER" povgen --water "$water" "${placement[@]}" --up z --object "$object" \
-    --set render.width=$WIDTH --set render.height=$HEIGHT --set render.frames=$FRAMES \
-    --out "$1"
+# The commands as arrays: run here, and given to alternate.py as shell text.
+povgen_command() {  # povgen_command DIR: the default look of FRAMES at WIDTH×HEIGHT
+  command=("$TOONWATER" povgen --water "$water" "${placement[@]}" --up z --object "$object"
+    --set render.width=$WIDTH --set render.height=$HEIGHT --set render.frames=$FRAMES
+    --out "$1")
 }
-
-toonwater_run() {
-  povgen "$OUT/toonwater" && "$TOONWATER" render "$OUT/toonwater"
-}
-
-cycles_run() {
-  "$BLENDER" -b --factory-startup --python-exit-code 1 --python "$here/cycles_toon.py" -- \
-    --scene "$OUT/camera" --water "$water" "${placement[@]}" \
-    --object "$object" --frames "$FRAMES" "${see_through[@]}" --out "$OUT/cycles"
-}
+cycles_command=("$BLENDER" -b --factory-startup --python-exit-code 1 --python "$here/cycles_toon.py"
+  -- --scene "$OUT/camera" --water "$water" "${placement[@]}"
+  --object "$object" --frames "$FRAMES" "${see_through[@]}" --out "$OUT/cycles")
+render_command=("$TOONWATER" render "$OUT/toonwater")
+povgen_command "$OUT/toonwater"
+toonwater_povgen_command=("${command[@]}")
+text() { printf '%q ' "$@"; }
 
 # run LOG COMMAND...: the command's output into LOG; on failure its last lines and exit 1
 run() {
@@ -83,54 +81,22 @@ run() {
 }
 
 if [[ ! -f $OUT/camera/scene.pov ]] || [[ $(cat "$OUT/camera/.frames" 2>/dev/null) != "$FRAMES" ]]; then
-  run "$OUT/camera.log" povgen "$OUT/camera"
+  povgen_command "$OUT/camera"
+  run "$OUT/camera.log" "${command[@]}"
   echo "$FRAMES" >"$OUT/camera/.frames"
 fi
 
-if [[ -n $one ]]; then
-  run "$OUT/$one.log" "${one}_run"
+if [[ $one == toonwater ]]; then
+  run "$OUT/toonwater.log" "${toonwater_povgen_command[@]}"
+  run "$OUT/toonwater-render.log" "${render_command[@]}"
+  exit 0
+elif [[ $one == cycles ]]; then
+  run "$OUT/cycles.log" "${cycles_command[@]}"
   exit 0
 fi
 
-now() { date +%s.%N; }
-minus() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", a - b }'; }
-divide() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", a / b }'; }
-list() { printf '%s\n' "$@"; }
-# summary [--median]: median (min–max) of the numbers on standard input, or the median alone
-summary() {
-  sort -g | awk -v only="${1:-}" '{ v[NR] = $1 } END {
-    m = (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2
-    if (only != "") printf "%.2f", m; else printf "%.2f (%.2f–%.2f)", m, v[1], v[NR] }'
-}
-
 echo "cycles_vs_toonwater: frames $FRAMES at ${WIDTH}×$HEIGHT, Cycles $LOOK, $RUNS runs each" \
-     "after a warm-up, $(nproc) cores" >&2
-run "$OUT/toonwater.log" toonwater_run
-run "$OUT/cycles.log" cycles_run
-tw_times=() pov_times=() render_times=() cy_times=() ratios=()
-for ((i = 1; i <= RUNS; i++)); do
-  t0=$(now)
-  run "$OUT/toonwater.log" povgen "$OUT/toonwater"
-  t1=$(now)
-  run "$OUT/toonwater-render.log" "$TOONWATER" render "$OUT/toonwater"
-  t2=$(now)
-  run "$OUT/cycles.log" cycles_run
-  t3=$(now)
-  pov_times+=("$(minus "$t1" "$t0")") render_times+=("$(minus "$t2" "$t1")")
-  tw_times+=("$(minus "$t2" "$t0")") cy_times+=("$(minus "$t3" "$t2")")
-  ratios+=("$(divide "${tw_times[-1]}" "${cy_times[-1]}")")
-  echo "run $i: toonwater ${tw_times[-1]} s (povgen ${pov_times[-1]}, render ${render_times[-1]})," \
-       "Cycles ${cy_times[-1]} s, ratio ${ratios[-1]}" >&2
-done
-
-echo "| whole process, wall seconds | median (min–max) |"
-echo "|---|---|"
-echo "| toonwater (povgen + render) | $(list "${tw_times[@]}" | summary) |"
-echo "| toonwater povgen | $(list "${pov_times[@]}" | summary) |"
-echo "| toonwater render | $(list "${render_times[@]}" | summary) |"
-echo "| Blender Cycles toon ($LOOK) | $(list "${cy_times[@]}" | summary) |"
-echo "| ratio toonwater / Cycles, pair by pair | $(list "${ratios[@]}" | summary) |"
-echo "cycles_vs_toonwater: toonwater $(list "${tw_times[@]}" | summary --median) s," \
-     "Cycles $(list "${cy_times[@]}" | summary --median) s," \
-     "ratio $(list "${ratios[@]}" | summary --median) (medians of $RUNS alternating runs," \
-     "frames $FRAMES, ${WIDTH}x$HEIGHT, Cycles $LOOK)"
+     "after a warm-up, $(nproc) cores"
+"$here/../alternate.py" --rounds "$RUNS" --sum "toonwater (povgen + render)=povgen+render" \
+  "Blender Cycles toon ($LOOK)=$(text "${cycles_command[@]}")" \
+  "povgen=$(text "${toonwater_povgen_command[@]}")" "render=$(text "${render_command[@]}")"
