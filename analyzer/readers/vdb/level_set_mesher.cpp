@@ -144,22 +144,18 @@ TriangleMesh mesh_zero_level(Grid& grid, double adaptivity) {
 MeshedLevelSet mesh_level_set(const std::string& path, const std::string& wanted,
                               double adaptivity) {
   initialise_openvdb();
+  MeshedLevelSet out;
+  openvdb::GridBase::Ptr grid;
+  // Only the reading: an allocation that fails there was asked for by the file's bytes.
   try {
     openvdb::io::File file(path);
     file.open(false);
     const openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();
-    MeshedLevelSet out;
     out.grid = choose_grid(*grids, wanted);
     for (const auto& g : *grids)
       if (g && g->getName() == out.grid) check_fits_in_memory(*g);
-    const openvdb::GridBase::Ptr grid = file.readGrid(out.grid);
+    grid = file.readGrid(out.grid);
     file.close();
-    out.voxel_size = grid->voxelSize()[0];
-    if (const auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(grid))
-      out.mesh = mesh_zero_level(*f, adaptivity);
-    else if (const auto d = openvdb::gridPtrCast<openvdb::DoubleGrid>(grid))
-      out.mesh = mesh_zero_level(*d, adaptivity);
-    return out;
   } catch (const openvdb::Exception& e) {
     throw unreadable(e);
   } catch (const std::bad_alloc&) {
@@ -167,6 +163,16 @@ MeshedLevelSet mesh_level_set(const std::string& path, const std::string& wanted
   } catch (const std::length_error&) {
     throw unreadable_size();
   }
+  out.voxel_size = grid->voxelSize()[0];
+  try {
+    if (const auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(grid))
+      out.mesh = mesh_zero_level(*f, adaptivity);
+    else if (const auto d = openvdb::gridPtrCast<openvdb::DoubleGrid>(grid))
+      out.mesh = mesh_zero_level(*d, adaptivity);
+  } catch (const openvdb::Exception& e) {
+    throw std::runtime_error(std::string("OpenVDB cannot mesh it: ") + e.what());
+  }
+  return out;
 }
 
 }  // namespace toonwater
