@@ -79,6 +79,7 @@ def main():
             fail(f"--sum {label}: no command named {', '.join(unknown)}")
         sums.append((label, members))
 
+    load_before = os.getloadavg()[0]  # the machine's, before the commands add their own
     log_dir = os.environ.get("KEEP_LOGS") or tempfile.mkdtemp(prefix="alternate-")
     os.makedirs(log_dir, exist_ok=True)
     for name, command in commands:
@@ -93,7 +94,7 @@ def main():
 
     reference = names[0]
     print(f"{args.rounds} rounds after a warm-up each, {os.cpu_count()} cores, load "
-          f"{os.getloadavg()[0]:.1f}; medians (min–max) in seconds; ratios to {reference}, "
+          f"{load_before:.1f} before them; medians (min–max) in seconds; ratios to {reference}, "
           "round by round")
     print("| command | wall | CPU | wall ratio | CPU ratio |")
     print("|---|---:|---:|---:|---:|")
