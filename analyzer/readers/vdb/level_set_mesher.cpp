@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <new>
 #include <optional>
 
 namespace toonwater {
@@ -146,8 +145,7 @@ MeshedLevelSet mesh_level_set(const std::string& path, const std::string& wanted
   initialise_openvdb();
   MeshedLevelSet out;
   openvdb::GridBase::Ptr grid;
-  // Only the reading: an allocation that fails there was asked for by the file's bytes.
-  try {
+  read_vdb_file([&] {
     openvdb::io::File file(path);
     file.open(false);
     const openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();
@@ -156,13 +154,7 @@ MeshedLevelSet mesh_level_set(const std::string& path, const std::string& wanted
       if (g && g->getName() == out.grid) check_fits_in_memory(*g);
     grid = file.readGrid(out.grid);
     file.close();
-  } catch (const openvdb::Exception& e) {
-    throw unreadable(e);
-  } catch (const std::bad_alloc&) {
-    throw unreadable_size();
-  } catch (const std::length_error&) {
-    throw unreadable_size();
-  }
+  });
   out.voxel_size = grid->voxelSize()[0];
   try {
     if (const auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(grid))

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <new>
 
 namespace toonwater {
 namespace {
@@ -52,19 +51,13 @@ ParticleSet read_point_grid(const std::string& path) {
   initialise_openvdb();
   openvdb::points::PointDataGrid::Ptr grid;
   std::string name;
-  try {
+  read_vdb_file([&] {
     openvdb::io::File file(path);
     file.open(false);
     name = choose_point_grid(*file.readAllGridMetadata());
     grid = openvdb::gridPtrCast<openvdb::points::PointDataGrid>(file.readGrid(name));
     file.close();
-  } catch (const openvdb::Exception& e) {
-    throw unreadable(e);
-  } catch (const std::bad_alloc&) {
-    throw unreadable_size();
-  } catch (const std::length_error&) {
-    throw unreadable_size();
-  }
+  });
   if (!grid) throw std::runtime_error("grid '" + name + "' is not a point grid");
   const std::optional<openvdb::Vec3i> mantaflow = mantaflow_resolution(*grid);
   const double longest =

@@ -4,6 +4,8 @@
 #include <openvdb/points/AttributeArray.h>
 
 #include <mutex>
+#include <new>
+#include <stdexcept>
 #include <string_view>
 
 namespace toonwater {
@@ -34,8 +36,8 @@ std::optional<openvdb::Vec3i> mantaflow_resolution(const openvdb::GridBase& grid
 }
 
 namespace {
+
 const std::string unreadable_prefix = "OpenVDB cannot read it (a truncated or damaged file?): ";
-}  // namespace
 
 std::runtime_error unreadable(const openvdb::Exception& e) {
   constexpr std::size_t longest_reason = 160;
@@ -57,6 +59,20 @@ std::runtime_error unreadable(const openvdb::Exception& e) {
 
 std::runtime_error unreadable_size() {
   return std::runtime_error(unreadable_prefix + "it states a size larger than memory");
+}
+
+}  // namespace
+
+void read_vdb_file(const std::function<void()>& read) {
+  try {
+    read();
+  } catch (const openvdb::Exception& e) {
+    throw unreadable(e);
+  } catch (const std::bad_alloc&) {
+    throw unreadable_size();
+  } catch (const std::length_error&) {
+    throw unreadable_size();
+  }
 }
 
 namespace {

@@ -7,6 +7,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -20,13 +21,11 @@ void initialise_openvdb();
 // metadata Mantaflow writes on every grid it saves), else nothing.
 std::optional<openvdb::Vec3i> mantaflow_resolution(const openvdb::GridBase& grid);
 
-// OpenVDB's reason for a file it cannot read, as one short line: a truncated or damaged file
-// puts what it held where a grid's type name belongs, kilobytes of it, into the message.
-std::runtime_error unreadable(const openvdb::Exception& e);
-
-// A damaged file whose bytes, read as a length, ask for more memory than any machine has
-// (std::bad_alloc or std::length_error from OpenVDB's reading), as one line.
-std::runtime_error unreadable_size();
+// Runs `read`, OpenVDB reading a file, and turns what a truncated or damaged file makes it
+// throw into one short std::runtime_error line: OpenVDB's reason, which can hold kilobytes of
+// the file where a grid's type name belongs, cut short; std::bad_alloc or std::length_error
+// from a length the file's bytes state. Only the reading: a failure after it is not the file's.
+void read_vdb_file(const std::function<void()>& read);
 
 MeshedLevelSet mesh_level_set(const std::string& path, const std::string& grid, double adaptivity);
 ParticleSet read_point_grid(const std::string& path);
