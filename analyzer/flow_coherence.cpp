@@ -1,6 +1,7 @@
 // Temporal coherence of flow regions; the method is stated in flow_coherence.hpp.
 #include "analyzer/flow_coherence.hpp"
 
+#include "analyzer/disjoint_sets.hpp"
 #include "common/parallel.hpp"
 
 #include <algorithm>
@@ -9,6 +10,42 @@
 #include <utility>
 
 namespace toonwater {
+namespace {
+
+// The connected parts of one sign: vertices of the same non-zero sign joined along the edges
+// between them, numbered in vertex order; their areas summed in vertex order, so that they do
+// not depend on the core count.
+struct SignedParts {
+  std::vector<std::int32_t> part;  // per vertex; −1 where the sign is 0
+  std::vector<double> area;
+};
+
+SignedParts signed_parts(const TriangleMesh& mesh, std::span<const std::int8_t> sign,
+                         std::span<const double> vertex_area) {
+  const std::size_t n = sign.size();
+  DisjointSets sets(n);
+  for (const Triangle& t : mesh.triangles)
+    for (int corner = 0; corner < 3; ++corner) {
+      const std::int32_t a = t[corner], b = t[(corner + 1) % 3];
+      if (sign[a] != FlowLabel::none && sign[a] == sign[b]) sets.join(a, b);
+    }
+  SignedParts parts;
+  parts.part.assign(n, -1);
+  std::vector<std::int32_t> part_of_root(n, -1);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (sign[v] == FlowLabel::none) continue;
+    std::int32_t& part = part_of_root[sets.root(static_cast<std::int32_t>(v))];
+    if (part < 0) {
+      part = static_cast<std::int32_t>(parts.area.size());
+      parts.area.push_back(0.0);
+    }
+    parts.part[v] = part;
+    parts.area[part] += vertex_area[v];
+  }
+  return parts;
+}
+
+}  // namespace
 
 FlowFrame flow_frame(const TriangleMesh& surface, const CurvatureField&, const FlowRegions& flow) {
   FlowFrame frame;
@@ -37,8 +74,9 @@ double label_flicker(const FlowFrame& previous, const TriangleMesh& surface,
   return total > 0.0 ? changed / total : 0.0;
 }
 
-void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
-                          std::vector<double>& field, std::vector<Vec3>& shading_normal) {
+void FlowCoherence::blend(const TriangleMesh& surface, std::span<const double> vertex_area,
+                          const FlowRegions& flow, std::vector<double>& field,
+                          std::vector<Vec3>& shading_normal) {
   const std::size_t n = surface.positions.size();
   const bool any_surface = flow.free_surface.size() == n;
   const std::optional<PointGrid> grid =
@@ -67,6 +105,7 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
       normals && previous_.shading_normal.size() == previous_.positions.size();
   pending_.label.resize(chunk_begin.back());
   predecessor_.resize(n);
+  turned_over_.resize(n);
   // The pending frame's bounding box, chunk by chunk, from the positions as they are copied:
   // the next frame's grid needs it, and a pass of its own would read them all again.
   std::vector<Box3> chunk_bounds(workers, Box3::of_no_points());
@@ -74,6 +113,8 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
     if (!any_surface) {
       std::fill(predecessor_.begin() + static_cast<std::ptrdiff_t>(begin),
                 predecessor_.begin() + static_cast<std::ptrdiff_t>(end), -1);
+      std::fill(turned_over_.begin() + static_cast<std::ptrdiff_t>(begin),
+                turned_over_.begin() + static_cast<std::ptrdiff_t>(end), 0);
       return;
     }
     // By plain pointers and values: the search is a call, after which the compiler would load
@@ -81,10 +122,11 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
     const std::uint8_t* const on_surface = flow.free_surface.data();
     const Vec3* const position = surface.positions.data();
     const double* const field_before = previous_.field.data();
+    const std::int8_t* const label_before = previous_.label.data();
     double* const s = field.data();
     std::int32_t* const predecessor = predecessor_.data();
+    std::uint8_t* const turned_over = turned_over_.data();
     Vec3* const next_position = pending_.positions.data();
-    double* const next_field = pending_.field.data();
     const PointGrid* const previous_surface = grid ? &*grid : nullptr;
     const double blend = options_.blend, rise_blend = options_.rise_blend;
     const double normal_blend = options_.normal_blend;
@@ -94,6 +136,7 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
         Box3::of_no_points();  // in a local: in the vector, each update would wait for a store
     for (std::size_t v = begin; v < end; ++v) {
       predecessor[v] = -1;
+      turned_over[v] = 0;
       if (!on_surface[v]) continue;
       const std::int32_t p = previous_surface ? previous_surface->closest(position[v]) : -1;
       predecessor[v] = p;
@@ -104,6 +147,7 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
         // has left.
         const double b = before * now > 0 && std::abs(now) > std::abs(before) ? rise_blend : blend;
         s[v] = (1 - b) * now + b * before;
+        turned_over[v] = before * now < 0 && label_before[p] != FlowLabel::none;
         // Undefined normals (zero) are neither blended nor blended into.
         if (normals_before && normal_change_limit > 0.0 && shading_normal[v].squaredNorm() > 0.5 &&
             previous_.shading_normal[p].squaredNorm() > 0.5) {
@@ -116,7 +160,6 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
         }
       }
       next_position[next] = position[v];
-      next_field[next] = s[v];
       if (normals) pending_.shading_normal[next] = shading_normal[v];
       ++next;
       bounds.add(position[v]);
@@ -125,9 +168,53 @@ void FlowCoherence::blend(const TriangleMesh& surface, const FlowRegions& flow,
   });
   pending_bounds_ = Box3::of_no_points();
   for (const Box3& bounds : chunk_bounds) pending_bounds_.add(bounds);
+  if (grid) hold_dying_regions(surface, vertex_area, flow, field);
+  std::size_t next = 0;
+  for (std::size_t v = 0; v < n && any_surface; ++v)
+    if (flow.free_surface[v]) pending_.field[next++] = field[v];
 }
 
-void FlowCoherence::remember(const CurvatureField& curvature, const FlowRegions& flow) {
+void FlowCoherence::hold_dying_regions(const TriangleMesh& surface,
+                                       std::span<const double> vertex_area,
+                                       const FlowRegions& flow, std::vector<double>& field) {
+  if (std::find(turned_over_.begin(), turned_over_.end(), 1) == turned_over_.end()) return;
+  const std::size_t n = field.size();
+  // This frame's parts as the blend draws them, and the regions of the frame before that each
+  // continues: a part continues a region of its sign that it overlaps (through the vertices'
+  // predecessors), and a region's successors are all the parts that continue it.
+  std::vector<std::int8_t> sign(n, FlowLabel::none);
+  for (std::size_t v = 0; v < n; ++v)
+    if (flow.free_surface[v]) sign[v] = region_sign(field[v]);
+  const SignedParts parts = signed_parts(surface, sign, vertex_area);
+  std::vector<std::pair<std::int32_t, std::int32_t>> continued;  // (part, region before)
+  for (std::size_t v = 0; v < n; ++v) {
+    const std::int32_t p = predecessor_[v];
+    if (parts.part[v] >= 0 && p >= 0 && previous_.region[p] >= 0 && previous_.label[p] == sign[v])
+      continued.emplace_back(parts.part[v], previous_.region[p]);
+  }
+  std::sort(continued.begin(), continued.end());
+  continued.erase(std::unique(continued.begin(), continued.end()), continued.end());
+  std::vector<double> successor_area(previous_.region_area.size(), 0.0);
+  for (const auto& [part, region] : continued) successor_area[region] += parts.area[part];
+
+  // Between b^−(k−1) and b^−k for k = turn_over_frames: a field held at it falls under the
+  // threshold of 1 in the k-th frame after.
+  const double b = options_.blend;
+  const double cap = 0.5 * (std::pow(b, 1.0 - options_.turn_over_frames) +
+                            std::pow(b, -static_cast<double>(options_.turn_over_frames)));
+  for (std::size_t v = 0; v < n; ++v) {
+    if (!turned_over_[v]) continue;
+    const std::int32_t p = predecessor_[v], region = previous_.region[p];
+    if (successor_area[region] >= options_.successor_share * previous_.region_area[region])
+      continue;
+    const double before = previous_.field[p];
+    const double held = std::min(b * std::abs(before), cap);
+    if (std::abs(field[v]) < held || field[v] * before < 0) field[v] = std::copysign(held, before);
+  }
+}
+
+void FlowCoherence::remember(const TriangleMesh& surface, const CurvatureField& curvature,
+                             const FlowRegions& flow) {
   // On one core, the areas summed in vertex order, so that the flicker does not depend on the
   // number of cores.
   double changed = 0.0, total = 0.0;
@@ -140,6 +227,9 @@ void FlowCoherence::remember(const CurvatureField& curvature, const FlowRegions&
     const std::int32_t* const predecessor = predecessor_.data();
     const double* const area = curvature.area.data();
     std::int8_t* const next_label = pending_.label.data();
+    const SignedParts regions = signed_parts(surface, flow.label, curvature.area);
+    pending_.region.resize(pending_.label.size());
+    pending_.region_area = regions.area;
     std::size_t next = 0;
     for (std::size_t v = 0; v < predecessor_.size(); ++v) {
       if (!on_surface[v]) continue;
@@ -147,6 +237,7 @@ void FlowCoherence::remember(const CurvatureField& curvature, const FlowRegions&
       const std::int8_t before = p >= 0 ? label_before[p] : std::int8_t{FlowLabel::none};
       total += area[v];
       if (label[v] != before) changed += area[v];
+      pending_.region[next] = regions.part[v];
       next_label[next++] = label[v];
     }
   }
@@ -171,9 +262,9 @@ void FlowCoherence::apply(const TriangleMesh& surface, const CurvatureField& cur
   std::vector<double> field = flow.smoothed_field;
   field.resize(surface.positions.size(), 0.0);
   const bool first = !has_previous_;
-  blend(surface, flow, field, flow.shading_normal);
+  blend(surface, curvature.area, flow, field, flow.shading_normal);
   if (!first) label_flow_field(surface, curvature.area, std::move(field), flow);
-  remember(curvature, flow);
+  remember(surface, curvature, flow);
 }
 
 }  // namespace toonwater

@@ -10,7 +10,19 @@
 // contours with temporal coherence" (NPAR 2004), who fade lines in and out by strength. A
 // symmetric blend averages a crest that moves a cell or more a frame (the bow wave of a
 // Mantaflow wake does) with the calm water it has left and loses it for frames; following growth
-// faster keeps it, and the slower fading still damps the frame-to-frame noise. The fading and
+// faster keeps it, and the slower fading still damps the frame-to-frame noise.
+//
+// A region can also die by turning over: a crown's ring collapses and the crest becomes a
+// trough. Blended with the other sign, it would vanish in one frame. Regions are therefore
+// tracked: the parts this frame's blended field draws (|s̃| >= 1, one sign, connected) continue
+// the regions of the frame before that they overlap with the same sign, through the vertices'
+// predecessors. A region whose successors cover less than `successor_share` of its area dies;
+// where its field turned over, its sign fades no faster than as if s had gone to 0:
+//   s̃ = sign(s̃_prev) · min(b |s̃_prev|, C),   C = (b^−(k−1) + b^−k) / 2,
+// wherever the blend keeps less. For k = turn_over_frames the cap takes it under the threshold
+// of 1 in frame k + 1, and each frame before keeps the part where it was strongest: the ring
+// shrinks and goes. A region that moves on (a crest running into the trough ahead of it) has its
+// successors and is blended as it is, so it is not held back where it has left. The fading and
 // labels are then taken from s̃ as for a single frame (label_flow_field).
 //
 // Everything stays continuous in time: s̃ moves by a fraction of its change each frame, so a
@@ -40,6 +52,7 @@
 #include "analyzer/point_grid.hpp"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace toonwater {
@@ -47,6 +60,8 @@ namespace toonwater {
 struct CoherenceOptions {
   double blend = 0.8;  // weight of the carried-over (already blended) field: lag b/(1 − b) frames
   double rise_blend = 0.5;    // the same where the field grows (same sign, larger magnitude)
+  int turn_over_frames = 2;   // a dying region whose field turns over fades for this many frames
+  double successor_share = 0.5;  // a region whose successors cover less of its area dies
   double normal_blend = 0.5;  // the same for the shading normals, where they change by noise only
   double normal_noise_multiple = 3.0;  // z: a change of z noise floors is motion, not blended
   double max_distance = 2.0;  // in median edge lengths: farther vertices have no predecessor
@@ -58,6 +73,8 @@ struct FlowFrame {
   std::vector<double> field;         // s̃: blended, before the specks are faded
   std::vector<Vec3> shading_normal;  // blended
   std::vector<std::int8_t> label;
+  std::vector<std::int32_t> region;  // the drawn region (connected, one label); −1: none
+  std::vector<double> region_area;   // per region
   double edge_length = 0.0;
 };
 
@@ -68,9 +85,11 @@ class FlowCoherence {
   // The two halves, around label_flow_field (find_flow_regions calls them when given this):
   // blends `field`, this frame's s before fading, and `shading_normal` with the frames seen
   // before; then, once `flow` is labelled, remembers the frame and measures its flicker.
-  void blend(const TriangleMesh& surface, const FlowRegions& flow, std::vector<double>& field,
+  void blend(const TriangleMesh& surface, std::span<const double> vertex_area,
+             const FlowRegions& flow, std::vector<double>& field,
              std::vector<Vec3>& shading_normal);
-  void remember(const CurvatureField& curvature, const FlowRegions& flow);
+  void remember(const TriangleMesh& surface, const CurvatureField& curvature,
+                const FlowRegions& flow);
 
   // Both, for a frame labelled on its own: replaces flow.field, flow.label and the counts by
   // coherent ones. The first frame's are left as they are.
@@ -86,10 +105,15 @@ class FlowCoherence {
   double last_flicker() const { return last_flicker_; }
 
  private:
+  // The fading of the regions that die by turning over (the header), on the blended `field`.
+  void hold_dying_regions(const TriangleMesh& surface, std::span<const double> vertex_area,
+                          const FlowRegions& flow, std::vector<double>& field);
+
   CoherenceOptions options_;
   FlowFrame previous_, pending_;
   Box3 previous_bounds_, pending_bounds_;  // of the frames' positions, for the grid
   std::vector<std::int32_t> predecessor_;  // per vertex of the pending frame, −1: none
+  std::vector<std::uint8_t> turned_over_;  // per vertex: s has the other sign than a drawn s̃_prev
   bool has_previous_ = false;
   std::vector<double> noise_floors_;
   double last_flicker_ = 0.0;

@@ -50,12 +50,11 @@ int smoothing_steps_for_radius(double radius_in_edge_lengths) {
   return static_cast<int>(std::ceil(3.0 * radius_in_edge_lengths * radius_in_edge_lengths));
 }
 
-namespace {
-
-// The sign of s as a region sees it: ±1 inside a region, 0 outside.
 std::int8_t region_sign(double s) {
   return s >= 1.0 ? FlowLabel::ridge : s <= -1.0 ? FlowLabel::valley : FlowLabel::none;
 }
+
+namespace {
 
 // How much of a region's field survives the fading: the smaller of two factors, each 1 for a
 // region well above the limits and falling to the one that brings the region's peak |s| just
@@ -349,9 +348,9 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topo
     std::fill(field.begin(), field.end(), 0.0);
   }
   flow.smoothed_field = field;
-  if (coherence) coherence->blend(mesh, flow, field, flow.shading_normal);
+  if (coherence) coherence->blend(mesh, curvature.area, flow, field, flow.shading_normal);
   label_flow_field(mesh, curvature.area, std::move(field), flow);
-  if (coherence) coherence->remember(curvature, flow);
+  if (coherence) coherence->remember(mesh, curvature, flow);
   return flow;
 }
 

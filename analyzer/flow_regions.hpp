@@ -104,6 +104,9 @@ struct FlowOptions : FreeSurfaceOptions {
 
 enum FlowLabel : std::int8_t { valley = -1, none = 0, ridge = 1 };
 
+// The label s gives a vertex before fading: ridge at s >= 1, valley at s <= −1, none between.
+std::int8_t region_sign(double s);
+
 struct FlowRegions {
   std::vector<double> field;  // per vertex: s (0 off the free surface); regions at |s| >= 1
   std::vector<double> smoothed_field;  // s after step 1, before coherence and fading

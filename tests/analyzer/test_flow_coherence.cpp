@@ -1,5 +1,5 @@
-// Temporal coherence of flow regions: closest-point carry-over, hysteresis, minimum lifetime,
-// and the flicker measure.
+// Temporal coherence of flow regions: closest-point carry-over, the blend, the fading of a
+// field that turns over, and the flicker measure.
 #include "analyzer/analysis.hpp"
 #include "analyzer/flow_coherence.hpp"
 #include "analyzer/mesh_reader.hpp"
@@ -276,6 +276,56 @@ TEST(FlowCoherence, RisingAndFallingWaveNeverPops) {
   for (int frame = 8; frame < frames - 8; ++frame) EXPECT_GT(areas[frame], 0.0) << frame;
 }
 
+// A ring-shaped crest (a crown's rim) of height `height`: radius 0.4, half-width about 0.1.
+TriangleMesh ring_frame(double height, double width) {
+  return height_field(81, [height, width](double x, double y) {
+    const double from_rim = (std::hypot(x, y) - 0.4) / width;
+    return height * std::exp(-from_rim * from_rim);
+  });
+}
+
+// Drawn area of `label` within `band` of the ring's crest line.
+double area_on_rim(const Analysis& a, std::int8_t label, double band) {
+  double area = 0.0;
+  for (std::size_t v = 0; v < a.surface.positions.size(); ++v) {
+    const Vec3& p = a.surface.positions[v];
+    if (std::abs(std::hypot(p.x(), p.y()) - 0.4) < band && a.flow.label[v] == label)
+      area += a.curvature.area[v];
+  }
+  return area;
+}
+
+// A crown's rim collapses in one frame: the crest turns into a trough, weaker, as deep or
+// deeper. Blended with the trough, a crest's ridge would vanish at once where the trough is the
+// stronger. The ridge shrinks frame by frame, a weak one faster, and is gone by the fourth (it
+// is not drawn for longer over water that is now a trough); the trough's valley follows.
+TEST(FlowCoherence, ACrestThatTurnsIntoATroughShrinksOverAFewFramesAndGoes) {
+  struct Collapse {
+    double crest, trough, width;
+  };
+  for (const Collapse& c : {Collapse{0.02, 0.02, 0.1}, Collapse{0.015, 0.015, 0.06},
+                            Collapse{0.008, 0.03, 0.06}}) {
+    SCOPED_TRACE(testing::Message() << c.crest << " " << c.trough << " " << c.width);
+    FlowCoherence coherence;
+    std::vector<double> ridge, valley;
+    for (int frame = 0; frame < 14; ++frame) {
+      Analysis a = analyze_frame(ring_frame(frame < 4 ? c.crest : -c.trough, c.width));
+      coherence.apply(a.surface, a.curvature, a.flow);
+      ridge.push_back(area_on_rim(a, FlowLabel::ridge, 0.5 * c.width));
+      valley.push_back(area_on_rim(a, FlowLabel::valley, 0.5 * c.width));
+    }
+    ASSERT_GT(ridge[3], 0.0);
+    EXPECT_GT(ridge[4], 0.25 * ridge[3]) << "the ridge vanished when the crest turned over";
+    for (int frame = 4; frame < 7; ++frame) {
+      if (ridge[frame - 1] > 0.0) {
+        EXPECT_LT(ridge[frame], ridge[frame - 1]) << "frame " << frame;
+      }
+    }
+    for (int frame = 7; frame < 14; ++frame) EXPECT_EQ(ridge[frame], 0.0) << "frame " << frame;
+    EXPECT_GT(valley[13], 0.0) << "the trough is never drawn";
+  }
+}
+
 TEST(FlowCoherence, MantaflowWakeFlickerIsNearlyHalvedAndUnderOnePointFivePercent) {
   const std::filesystem::path shared = shared_dir();
   if (shared.empty()) GTEST_SKIP() << "../shared/data is absent: real-data test skipped";
@@ -297,6 +347,43 @@ TEST(FlowCoherence, MantaflowWakeFlickerIsNearlyHalvedAndUnderOnePointFivePercen
   // frame; coherence still takes off nearly half of it, and keeps under 1.5 %.
   EXPECT_LT(coherent_flicker, 0.55 * raw_flicker);
   EXPECT_LT(coherent_flicker / 29, 0.015);
+}
+
+// A straight crest across the pool at x = `crest_x`, and a trough behind it at `trough_x`.
+TriangleMesh crest_and_trough(double crest_x, double trough_x, double trough) {
+  return height_field(81, [=](double x, double y) {
+    const double along = std::exp(-y * y / 0.3);
+    const double c = (x - crest_x) / 0.1, t = (x - trough_x) / 0.1;
+    return along * (0.02 * std::exp(-c * c) - trough * std::exp(-t * t));
+  });
+}
+
+// Ridge area at x in [x_min, x_max).
+double ridge_between(const Analysis& a, double x_min, double x_max) {
+  double area = 0.0;
+  for (std::size_t v = 0; v < a.surface.positions.size(); ++v) {
+    const double x = a.surface.positions[v].x();
+    if (x >= x_min && x < x_max && a.flow.label[v] == FlowLabel::ridge) area += a.curvature.area[v];
+  }
+  return area;
+}
+
+// A crest that moves on, with a trough running in behind it where it was: it has a successor
+// (the moved crest overlaps it), so it does not die and is not held where the trough now is;
+// only a region with no successor is (the test above).
+TEST(FlowCoherence, ACrestThatMovesOnIsNotHeldWhereTheTroughBehindItCame) {
+  FlowCoherence coherence;
+  std::vector<double> left, moved;
+  for (int frame = 0; frame < 5; ++frame) {
+    Analysis a = analyze_frame(frame < 4 ? crest_and_trough(0.0, -0.5, 0.0)
+                                         : crest_and_trough(0.07, -0.09, 0.04));
+    coherence.apply(a.surface, a.curvature, a.flow);
+    left.push_back(ridge_between(a, -0.07, -0.01));
+    moved.push_back(ridge_between(a, 0.02, 0.14));
+  }
+  ASSERT_GT(left[3], 0.0) << "the crest is not drawn where the trough will come";
+  EXPECT_EQ(left[4], 0.0) << "the crest is held where it has left";
+  EXPECT_GT(moved[4], moved[3]) << "the crest is not followed";
 }
 
 }  // namespace
