@@ -5,6 +5,7 @@
 #include "analyzer/readers/readers.hpp"
 #include "analyzer/readers/vdb/vdb_module.hpp"
 #include "common/parallel.hpp"
+#include "common/printable_text.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -32,14 +33,8 @@ void fail_at_line(const SourceFile& file, std::size_t line, std::string_view mes
 }
 
 std::string quote(std::string_view field) {
-  constexpr std::size_t max_shown = 40;
-  std::string text = "'";
-  for (const char c : field.substr(0, max_shown)) {
-    const bool printable = c >= ' ' && c <= '~';
-    text += printable ? c : '?';
-  }
-  if (field.size() > max_shown) text += "...";
-  return text + "'";
+  constexpr std::size_t longest_field_shown = 40;
+  return "'" + printable_text(field, longest_field_shown) + "'";
 }
 
 bool LineReader::next(std::string_view& line) {

@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Whole commands timed side by side: the benchmarks' one way of comparing two or more programs.
 
-    bench/alternate.py [--rounds N] [--sum LABEL=NAME+NAME...] NAME=COMMAND [NAME=COMMAND ...]
+    bench/alternate.py [--rounds N] [--warm-ups N] [--sum LABEL=NAME+NAME...]
+                       NAME=COMMAND [NAME=COMMAND ...]
 
-Each COMMAND (shell text, run by bash) runs once as a warm-up, then ROUNDS times in turn with the
+Each COMMAND (shell text, run by bash) runs WARM_UPS times (1 unless given; more where a program
+fills caches of its own over its first runs, as Blender does), then ROUNDS times in turn with the
 others, A B C A B C ..., so that a change in the machine's load falls on all of them alike. It
 prints, per command, the median (min–max) of its wall and CPU (user + system, its children's
 included) seconds, and the median (min–max) of the rounds' ratios to the first command, the
@@ -62,11 +64,14 @@ def summary(values, digits):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rounds", type=int, default=7)
+    parser.add_argument("--warm-ups", type=int, default=1)
     parser.add_argument("--sum", action="append", default=[], metavar="LABEL=NAME+NAME")
     parser.add_argument("commands", nargs="+", metavar="NAME=COMMAND")
     args = parser.parse_args()
     if not 1 <= args.rounds <= 999:
         fail(f"--rounds is 1-999, not {args.rounds}")
+    if not 0 <= args.warm_ups <= 99:
+        fail(f"--warm-ups is 0-99, not {args.warm_ups}")
     commands = parse_pairs(args.commands, "a command")
     names = [name for name, _ in commands]
     if len(set(names)) != len(names):
@@ -82,8 +87,9 @@ def main():
     load_before = os.getloadavg()[0]  # the machine's, before the commands add their own
     log_dir = os.environ.get("KEEP_LOGS") or tempfile.mkdtemp(prefix="alternate-")
     os.makedirs(log_dir, exist_ok=True)
-    for name, command in commands:
-        run_once(name, command, log_dir)
+    for _ in range(args.warm_ups):
+        for name, command in commands:
+            run_once(name, command, log_dir)
     times = {name: [] for name in names}
     for _ in range(args.rounds):
         for name, command in commands:
@@ -93,7 +99,8 @@ def main():
                         for r in range(args.rounds)]
 
     reference = names[0]
-    print(f"{args.rounds} rounds after a warm-up each, {os.cpu_count()} cores, load "
+    warm_ups = "a warm-up" if args.warm_ups == 1 else f"{args.warm_ups} warm-ups"
+    print(f"{args.rounds} rounds after {warm_ups} each, {os.cpu_count()} cores, load "
           f"{load_before:.1f} before them; medians (min–max) in seconds; ratios to {reference}, "
           "round by round")
     print("| command | wall | CPU | wall ratio | CPU ratio |")

@@ -1,5 +1,6 @@
 #include "cli/progress.hpp"
 
+#include "common/printable_text.hpp"
 #include "render/farm.hpp"
 
 #include <unistd.h>
@@ -27,9 +28,8 @@ void FrameProgress::finish_line() {
 }
 
 std::string printable(const std::string& word) {
-  std::string out;
-  for (const char c : word.substr(0, 400)) out += c >= ' ' && c <= '~' ? c : '?';
-  return word.size() > 400 ? out + "..." : out;
+  constexpr std::size_t longest_word_shown = 400;  // a path
+  return printable_text(word, longest_word_shown);
 }
 
 std::string printable_shell_word(const std::string& word) { return shell_quote(printable(word)); }

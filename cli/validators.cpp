@@ -1,14 +1,15 @@
 #include "cli/validators.hpp"
 
+#include "common/printable_text.hpp"
+
 #include <cmath>
 #include <cstdlib>
 
 namespace toonwater::cli {
 
 std::string printable_value(const std::string& value) {
-  std::string out;
-  for (const char c : value.substr(0, 40)) out += c >= ' ' && c <= '~' ? c : '?';
-  return value.size() > 40 ? out + "..." : out;
+  constexpr std::size_t longest_value_shown = 40;
+  return printable_text(value, longest_value_shown);
 }
 
 namespace {

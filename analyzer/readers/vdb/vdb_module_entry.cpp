@@ -1,5 +1,6 @@
 // The OpenVDB module's entry (vdb_module.hpp) and what its parts share (vdb_parts.hpp).
 #include "analyzer/readers/vdb/vdb_parts.hpp"
+#include "common/printable_text.hpp"
 
 #include <openvdb/points/AttributeArray.h>
 
@@ -40,21 +41,15 @@ namespace {
 const std::string unreadable_prefix = "OpenVDB cannot read it (a truncated or damaged file?): ";
 
 std::runtime_error unreadable(const openvdb::Exception& e) {
-  constexpr std::size_t longest_reason = 160;
+  // OpenVDB's messages can span lines: each run of white space becomes one space.
   std::string reason;
   for (const char c : std::string_view(e.what())) {
-    if (reason.size() > longest_reason) {
-      reason += "...";
-      break;
-    }
-    const bool blank = c == ' ' || (static_cast<unsigned char>(c) < ' ') || c == '\x7f';
-    if (blank) {
-      if (!reason.empty() && reason.back() != ' ') reason += ' ';
-    } else {
-      reason += static_cast<unsigned char>(c) > '~' ? '?' : c;
-    }
+    const bool white = c == ' ' || c == '\n' || c == '\t' || c == '\r';
+    if (!white) reason += c;
+    else if (!reason.empty() && reason.back() != ' ') reason += ' ';
   }
-  return std::runtime_error(unreadable_prefix + reason);
+  constexpr std::size_t longest_reason = 160;
+  return std::runtime_error(unreadable_prefix + printable_text(reason, longest_reason));
 }
 
 std::runtime_error unreadable_size() {
