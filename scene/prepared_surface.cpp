@@ -18,6 +18,18 @@ bool is_closed(const MeshTopology& t) { return t.boundary_edges == 0 && t.nonman
 PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow, WaterShading shading,
                                 WaterNormals normals, StrokePersistence* persistence) {
   PreparedSurface out;
+  const bool toon_flow = flow && flow->enabled && shading == WaterShading::toon;
+  if (toon_flow && flow->style != FlowStyle::regions) {
+    // Before the shading normals are taken for the mesh: the strokes are carried along them.
+    // Strokes taper over 3 % of the scene's size: resolution-free, like the field.
+    const double taper_length = 0.03 * a.flow.scale_length;
+    out.flow_lines = flow_strokes(a.surface, a.flow, taper_length);
+    if (persistence)
+      out.flow_lines =
+          persistence->update(a.surface, a.flow, std::move(out.flow_lines), taper_length);
+    for (FlowLine& line : out.flow_lines)
+      for (Vec3& p : line.points) p = to_povray(p, up);
+  }
   const bool smoothed = flow && !(shading == WaterShading::toon && normals == WaterNormals::mesh);
   // Smoothed: the flow stage's shading normals where it ran (flow_regions.hpp), smoothed over the
   // free surface at the scale of the cells; a curvature view's curvature normals. Otherwise the
@@ -31,16 +43,6 @@ PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow, Wat
   if (!flow) return out;
   if (shading == WaterShading::toon) {
     if (!flow->enabled) return out;  // the bands alone
-    if (flow->style != FlowStyle::regions) {
-      // Strokes taper over 3 % of the scene's size: resolution-free, like the field.
-      const double taper_length = 0.03 * a.flow.scale_length;
-      out.flow_lines = flow_strokes(a.surface, a.flow, taper_length);
-      if (persistence)
-        out.flow_lines =
-            persistence->update(a.surface, a.flow, std::move(out.flow_lines), taper_length);
-      for (FlowLine& line : out.flow_lines)
-        for (Vec3& p : line.points) p = to_povray(p, up);
-    }
     out.flow_field = std::move(a.flow.field);
     out.ridge_vertices = a.flow.ridge_vertices;
     out.valley_vertices = a.flow.valley_vertices;

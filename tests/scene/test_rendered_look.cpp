@@ -373,6 +373,17 @@ TEST(PovgenRender, SpecksOfTheBandsTakeTheColourAroundThem) {
   EXPECT_GT(merged.dark, 100) << "the slope facing away";
 }
 
+// White noise in [-1, 1) per grid point (of spacing `cell`) and frame: splitmix64's finaliser.
+double white_noise(double x, double z, double cell, int frame) {
+  std::uint64_t h = static_cast<std::uint64_t>(std::lround(x / cell) + 1000) * 1000003u +
+                    static_cast<std::uint64_t>(std::lround(z / cell) + 1000) * 7919u +
+                    static_cast<std::uint64_t>(frame) * 0x9e3779b97f4a7c15ULL;
+  h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
+  h ^= h >> 31;
+  return static_cast<double>(h >> 11) * 0x1p-52 - 1.0;
+}
+
 // Settling water: a swell of 2.5 cells creeping 0.03 cells a frame under jitter of 0.1 cells that
 // each frame draws afresh, as a level set meshed anew every frame has it, seen from above. The
 // bands follow the swell, not the jitter: carried from frame to frame with the flow field
@@ -385,15 +396,7 @@ TEST(PovgenRender, SettlingWaterChangesBandOnlyWhereItMoves) {
   for (int f = 1; f <= frames; ++f)
     write_obj(dir / ("water_" + std::to_string(f) + ".obj"),
               make_height_grid(n, 1.0, [&](double x, double z) {
-                // White noise: splitmix64's finaliser of the grid point and the frame.
-                std::uint64_t h =
-                    static_cast<std::uint64_t>(std::lround(x / cell) + 1000) * 1000003u +
-                    static_cast<std::uint64_t>(std::lround(z / cell) + 1000) * 7919u +
-                    static_cast<std::uint64_t>(f) * 0x9e3779b97f4a7c15ULL;
-                h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
-                h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
-                h ^= h >> 31;
-                const double jitter = 0.1 * cell * (static_cast<double>(h >> 11) * 0x1p-52 - 1.0);
+                const double jitter = 0.1 * cell * white_noise(x, z, cell, f);
                 const double swell = 2.5 * cell *
                                      std::sin(2 * std::numbers::pi * (x - 0.03 * cell * f) / 0.5) *
                                      std::cos(2 * std::numbers::pi * z / 0.7);
@@ -459,6 +462,82 @@ TEST(PovgenRender, SettlingWaterChangesBandOnlyWhereItMoves) {
   std::printf("band changes a frame: %.4f frame by frame, %.4f carried\n", frame_by_frame, carried);
   EXPECT_LT(carried, 0.01);
   EXPECT_LT(carried, 0.7 * frame_by_frame);
+}
+
+// A crest that stands still under jitter of 0.1 cells, meshed anew each frame, from above with
+// `flow.style = "lines"`: its stroke persists (stroke_persistence.hpp) through the whole
+// pipeline, so from the third frame on it is drawn at its full width, and nearly every stroke
+// pixel has a stroke pixel within 2 px in the next frame.
+TEST(PovgenRender, AStillCrestKeepsOneFullWidthStrokeUnderJitter) {
+  ScratchDir dir;
+  constexpr int n = 81, frames = 5;
+  constexpr double cell = 2.0 / (n - 1), line_width = 4.0;
+  for (int f = 1; f <= frames; ++f)
+    write_obj(dir / ("water_" + std::to_string(f) + ".obj"),
+              make_height_grid(n, 1.0, [&](double x, double z) {
+                const double crest = 2.0 * cell * std::exp(-x * x / (2 * 1.5 * cell * 1.5 * cell));
+                return crest + 0.1 * cell * white_noise(x, z, cell, f);
+              }));
+  const fs::path out = dir / "strokes";
+  std::vector<std::string> args{"povgen", "--out", out.string(), "--water",
+                                (dir / "water_#.obj").string()};
+  args = args + opaque_flat_water() +
+         std::vector<std::string>{"--set", "flow.enabled=true",
+                                  "--set", "flow.style=\"lines\"",
+                                  "--set", "flow.line_color=[1, 0, 0]",
+                                  "--set", "flow.line_width=" + std::to_string(line_width),
+                                  "--set", "outline.enabled=false",
+                                  "--set", "water.bright=" + color(kMedium),
+                                  "--set", "water.medium=" + color(kMedium),
+                                  "--set", "water.dark=" + color(kMedium),
+                                  "--set", "camera.location=[0, 10, 0.0001]",
+                                  "--set", "camera.look_at=[0, 0, 0]",
+                                  "--set", "camera.angle=11",
+                                  "--set", "render.width=320",
+                                  "--set", "render.height=320"};
+  const CommandResult r = run_toonwater(args);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_EQ(run_povray(out).exit_code, 0);
+  std::vector<std::vector<std::uint8_t>> stroke;
+  int width = 0, height = 0;
+  for (int f = 1; f <= frames; ++f) {
+    const Image img = read_image(out / ("frame_" + std::to_string(f) + ".png"));
+    width = img.width, height = img.height;
+    std::vector<std::uint8_t> red(static_cast<std::size_t>(width * height), 0);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x)
+        red[static_cast<std::size_t>(y * width + x)] = near(img.at(x, y), Rgb8{255, 0, 0}, 1);
+    stroke.push_back(std::move(red));
+  }
+  for (int f = 3; f <= frames; ++f) {
+    const std::vector<std::uint8_t>& now = stroke[f - 1];
+    // The crest runs along z, down the picture: its stroke's pixels in each row it crosses.
+    std::vector<int> across;
+    for (int y = 0; y < height; ++y) {
+      int count = 0;
+      for (int x = 0; x < width; ++x) count += now[static_cast<std::size_t>(y * width + x)];
+      if (count > 0) across.push_back(count);
+    }
+    ASSERT_GT(across.size(), static_cast<std::size_t>(height / 4)) << "frame " << f;
+    std::nth_element(across.begin(), across.begin() + across.size() / 2, across.end());
+    EXPECT_GE(across[across.size() / 2], line_width - 1) << "frame " << f << ": a thin stroke";
+    if (f == frames) break;
+    const std::vector<std::uint8_t>& next = stroke[f];
+    int pixels = 0, lost = 0;
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        if (!now[static_cast<std::size_t>(y * width + x)]) continue;
+        ++pixels;
+        bool kept = false;
+        for (int dy = -2; dy <= 2 && !kept; ++dy)
+          for (int dx = -2; dx <= 2 && !kept; ++dx)
+            kept = dx * dx + dy * dy <= 4 && x + dx >= 0 && x + dx < width && y + dy >= 0 &&
+                   y + dy < height &&
+                   next[static_cast<std::size_t>((y + dy) * width + x + dx)];
+        lost += !kept;
+      }
+    EXPECT_LE(lost, pixels / 20) << "frame " << f << ": stroke pixels lost in the next frame";
+  }
 }
 
 // A reflected ray that misses every object sees the flat sky colour, not the background: on
