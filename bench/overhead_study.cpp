@@ -4,7 +4,10 @@
 // (report/flow_study.hpp). What the tests assert on ../shared/data
 // (tests/report/test_flow_study.cpp), for bakes that are not there (mantaflow_bake.py's ball-drop).
 //
-//   overhead_study WATER CELL X0,Y0,Z0,X1,Y1,Z1 [OBJECT ...]
+//   overhead_study [--frames FIRST-LAST] [--strokes] WATER CELL X0,Y0,Z0,X1,Y1,Z1 [OBJECT ...]
+//
+// --strokes measures issue #29's stroke steadiness instead (run_stroke_study): one line a
+// frame, then the median share of stroke pixels lost from one frame to the next.
 //
 // WATER and OBJECT are file patterns (####: the frame) in one coordinate system, Z up; CELL is
 // the simulation's cell; the box is the tank (its sides across Z are walls, Z1 about the water's
@@ -17,6 +20,7 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -34,34 +38,83 @@ std::size_t median(std::vector<std::size_t> values) {
   return values[values.size() / 2];
 }
 
+double median_share(std::vector<double> values) {
+  if (values.empty()) return 0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+int stroke_study(const std::string& pattern, const toonwater::report::OverheadOptions& options,
+                 const fs::path& work) {
+  const std::vector<toonwater::report::StrokeFrame> frames =
+      toonwater::report::run_stroke_study(pattern, options, work);
+  std::vector<double> lost;
+  std::vector<std::size_t> strokes;
+  std::size_t drawn = 0;
+  std::printf("frame,stroke_pixels,strokes,lost_share\n");
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const toonwater::report::StrokeFrame& f = frames[i];
+    std::printf("%ld,%zu,%zu,%.4f\n", f.frame, f.stroke_pixels, f.strokes, f.lost_share);
+    if (i + 1 < frames.size() && f.stroke_pixels > 0) lost.push_back(f.lost_share);
+    strokes.push_back(f.strokes);
+    drawn += f.stroke_pixels > 0;
+  }
+  std::printf("# %zu frames, strokes drawn in %zu; median share of stroke pixels lost %.3f; "
+              "median strokes %zu\n",
+              frames.size(), drawn, median_share(lost), median(strokes));
+  return 0;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 4) {
-    std::fprintf(stderr, "usage: overhead_study WATER CELL X0,Y0,Z0,X1,Y1,Z1 [OBJECT ...]\n");
+  std::vector<std::string> args(argv + 1, argv + argc);
+  bool strokes = false;
+  std::optional<toonwater::FrameRange> range;
+  while (!args.empty() && args.front().rfind("--", 0) == 0) {
+    if (args.front() == "--strokes") {
+      strokes = true;
+      args.erase(args.begin());
+    } else if (args.front() == "--frames" && args.size() > 1) {
+      range = toonwater::parse_frame_range(args[1], "--frames");
+      args.erase(args.begin(), args.begin() + 2);
+    } else {
+      std::fprintf(stderr, "overhead_study: unknown option %s\n", args.front().c_str());
+      return 2;
+    }
+  }
+  if (args.size() < 3) {
+    std::fprintf(stderr,
+                 "usage: overhead_study [--frames FIRST-LAST] [--strokes] WATER CELL "
+                 "X0,Y0,Z0,X1,Y1,Z1 [OBJECT ...]\n");
     return 2;
   }
   try {
     toonwater::report::OverheadOptions options;
+    options.frames = range;
     options.up = toonwater::Axis::z;
-    options.cell = std::stod(argv[2]);
-    std::istringstream box(argv[3]);
+    options.cell = std::stod(args[1]);
+    std::istringstream box(args[2]);
     double b[6];
     char comma = ',';
     for (int i = 0; i < 6; ++i)
       if (!(box >> b[i]) || (i < 5 && !(box >> comma)) || comma != ',')
-        throw std::invalid_argument("the tank is X0,Y0,Z0,X1,Y1,Z1, not " + std::string(argv[3]));
+        throw std::invalid_argument("the tank is X0,Y0,Z0,X1,Y1,Z1, not " + args[2]);
     options.tank_min = toonwater::Vec3(b[0], b[1], b[2]);
     options.tank_max = toonwater::Vec3(b[3], b[4], b[5]);
-    for (int i = 4; i < argc; ++i) options.objects.emplace_back(argv[i]);
+    for (std::size_t i = 3; i < args.size(); ++i) options.objects.push_back(args[i]);
     const char* keep = std::getenv("TOONWATER_KEEP");
     const fs::path work =
         keep ? fs::path(keep)
              : fs::temp_directory_path() / ("toonwater-overhead-" + std::to_string(::getpid()));
+    if (strokes) {
+      const int status = stroke_study(args[0], options, work);
+      if (!keep) fs::remove_all(work);
+      return status;
+    }
     const std::vector<OverheadFrame> frames =
-        toonwater::report::run_overhead_study(argv[1], options, work);
+        toonwater::report::run_overhead_study(args[0], options, work);
     const std::vector<toonwater::report::SequenceFlowStudy> roughness =
-        toonwater::report::run_sequence_flow_study(argv[1], options.up, work / "roughness",
+        toonwater::report::run_sequence_flow_study(args[0], options.up, work / "roughness",
                                                    work / "roughness", 8.0,
                                                    {toonwater::FlowCriterion::mean});
     if (!keep) fs::remove_all(work);

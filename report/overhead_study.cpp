@@ -55,19 +55,25 @@ std::vector<std::size_t> piece_sizes(const std::vector<std::int8_t>& classes, in
   return of_pixel;
 }
 
-}  // namespace
+// The camera straight above the tank and the pure colours of a study's scene.
+struct OverheadView {
+  SceneConfig config;
+  int u = 0, v = 1;           // the picture's horizontal and vertical input axes
+  double pixel = 0;           // scene units a pixel
+  double left = 0, top = 0;   // the picture's top-left corner, on axes u and v
+};
 
-std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
-                                              const OverheadOptions& options,
-                                              const fs::path& work_dir) {
+OverheadView overhead_view(const OverheadOptions& options) {
+  OverheadView view;
   const int w = static_cast<int>(options.up);
-  const int u = w == 0 ? 1 : 0, v = w == 2 ? 1 : 2;  // the picture's horizontal, vertical axes
+  const int u = w == 0 ? 1 : 0, v = w == 2 ? 1 : 2;
+  view.u = u, view.v = v;
   const double across = options.tank_max[u] - options.tank_min[u];
   const double down = options.tank_max[v] - options.tank_min[v];
   // The tank and a margin of 2 % fill the picture; from 50 times its size away, a pixel is the
   // same size all over the water to 0.2 %.
   const double span = 1.04 * std::max(across, down * options.width / options.height);
-  const double pixel = span / options.width;
+  view.pixel = span / options.width;
   const double distance = 50.0 * span;
   Vec3 centre = 0.5 * (options.tank_min + options.tank_max);
   centre[w] = options.tank_max[w];
@@ -75,8 +81,10 @@ std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
   location[w] += distance;
   location[v] -=
       1e-4 * distance;  // not exactly overhead: POV-Ray's sky vector must not be the view
+  view.left = centre[u] - 0.5 * span;
+  view.top = centre[v] + 0.5 * view.pixel * options.height;
 
-  SceneConfig config;
+  SceneConfig& config = view.config;
   config.camera.location = location;
   config.camera.look_at = centre;
   config.camera.angle = 2.0 * std::atan(0.5 * span / distance) * 180.0 / std::numbers::pi;
@@ -106,10 +114,13 @@ std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
     object.reflection = ReflectionTarget::none;
     config.objects.push_back(object);
   }
+  return view;
+}
 
-  const fs::path scene_dir = work_dir / "overhead";
-  write_and_render(config, pattern, options.up, scene_dir, "overhead study");
-
+// The rendered frames of `pattern` in `scene_dir`, within the options' range.
+std::vector<std::pair<long, fs::path>> rendered_frames(const std::string& pattern,
+                                                       const OverheadOptions& options,
+                                                       const fs::path& scene_dir) {
   Sequence sequence = find_sequence(pattern, fs::current_path());
   if (options.frames)
     std::erase_if(sequence.frames, [&](const auto& f) {
@@ -118,12 +129,30 @@ std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
   SceneLayout layout;
   layout.animation = sequence.frames.size() > 1;
   layout.last_frame = sequence.frames.rbegin()->first;
+  std::vector<std::pair<long, fs::path>> frames;
+  for (const auto& [frame, path] : sequence.frames)
+    frames.emplace_back(frame, scene_dir / frame_image_name(layout, frame));
+  return frames;
+}
+
+}  // namespace
+
+std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
+                                              const OverheadOptions& options,
+                                              const fs::path& work_dir) {
+  const OverheadView view = overhead_view(options);
+  const SceneConfig& config = view.config;
+  const int u = view.u, v = view.v;
+  const double pixel = view.pixel;
+  const fs::path scene_dir = work_dir / "overhead";
+  write_and_render(config, pattern, options.up, scene_dir, "overhead study");
+
   const double cell_pixels = options.cell * options.cell / (pixel * pixel);
-  const double left = centre[u] - 0.5 * span, top = centre[v] + 0.5 * pixel * options.height;
+  const double left = view.left, top = view.top;
   std::vector<OverheadFrame> frames;
   std::vector<std::int8_t> previous;
-  for (const auto& [frame, path] : sequence.frames) {
-    const Image image = read_rgb(scene_dir / frame_image_name(layout, frame));
+  for (const auto& [frame, image_path] : rendered_frames(pattern, options, scene_dir)) {
+    const Image image = read_rgb(image_path);
     const std::vector<std::int8_t> classes = classify(image);
     const std::vector<std::size_t> size = piece_sizes(classes, image.width, image.height);
     OverheadFrame f;
@@ -164,6 +193,71 @@ std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
         f.water_pixels ? static_cast<double>(contrast) / static_cast<double>(f.water_pixels) : 0.0;
     frames.push_back(f);
     previous = classes;
+  }
+  return frames;
+}
+
+std::vector<StrokeFrame> run_stroke_study(const std::string& pattern,
+                                          const OverheadOptions& options,
+                                          const fs::path& work_dir) {
+  constexpr int kReach = 2;  // pixels: a stroke pixel is kept when the next frame has one this near
+  OverheadView view = overhead_view(options);
+  SceneConfig& config = view.config;
+  config.water.bright = config.water.medium = config.water.dark = {0.5, 0.5, 0.5};
+  config.flow.style = FlowStyle::lines;
+  config.flow.line_color = Color{1, 0, 0};
+  const fs::path scene_dir = work_dir / "strokes";
+  write_and_render(config, pattern, options.up, scene_dir, "stroke study");
+
+  std::vector<StrokeFrame> frames;
+  std::vector<std::uint8_t> previous;  // the last frame's stroke pixels
+  int width = 0, height = 0;
+  for (const auto& [frame, image_path] : rendered_frames(pattern, options, scene_dir)) {
+    const Image image = read_rgb(image_path);
+    width = image.width, height = image.height;
+    std::vector<std::uint8_t> stroke(static_cast<std::size_t>(width) * height, 0);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const auto p = image.pixel(x, y);
+        stroke[static_cast<std::size_t>(y) * width + x] =
+            std::abs(p[0] - 1.0f) + p[1] + p[2] < 0.1f;
+      }
+    if (!frames.empty() && frames.back().stroke_pixels > 0) {
+      std::size_t lost = 0;
+      for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+          if (!previous[static_cast<std::size_t>(y) * width + x]) continue;
+          bool kept = false;
+          for (int dy = -kReach; dy <= kReach && !kept; ++dy)
+            for (int dx = -kReach; dx <= kReach && !kept; ++dx) {
+              const int xx = x + dx, yy = y + dy;
+              kept = dx * dx + dy * dy <= kReach * kReach && xx >= 0 && yy >= 0 && xx < width &&
+                     yy < height && stroke[static_cast<std::size_t>(yy) * width + xx];
+            }
+          lost += !kept;
+        }
+      frames.back().lost_share =
+          static_cast<double>(lost) / static_cast<double>(frames.back().stroke_pixels);
+    }
+    StrokeFrame f;
+    f.frame = frame;
+    DisjointSets pieces(stroke.size());
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const auto i = static_cast<std::int32_t>(y * width + x);
+        if (!stroke[i]) continue;
+        ++f.stroke_pixels;
+        for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 1}, {0, 1}, {1, 1}}) {
+          const int xx = x + dx, yy = y + dy;
+          if (xx >= 0 && xx < width && yy < height && stroke[yy * width + xx])
+            pieces.join(i, static_cast<std::int32_t>(yy * width + xx));
+        }
+      }
+    for (std::size_t i = 0; i < stroke.size(); ++i)
+      f.strokes += stroke[i] && pieces.root(static_cast<std::int32_t>(i)) ==
+                                    static_cast<std::int32_t>(i);
+    frames.push_back(f);
+    previous = std::move(stroke);
   }
   return frames;
 }

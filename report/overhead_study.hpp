@@ -8,6 +8,10 @@
 //   - flow pieces of at least one cell² and band specks under one cell² (4-connected);
 //   - the share of the water's pixels in the bright and dark bands together.
 // A "cell" is the simulation's, given by the caller.
+//
+// The stroke study (issue #29) draws the same frames with `flow.style = "lines"`, strokes in
+// pure red on flat grey water, and measures the strokes' steadiness: the share of a frame's
+// stroke pixels with no stroke pixel within 2 px in the next frame.
 #pragma once
 
 #include "analyzer/mesh.hpp"
@@ -43,9 +47,21 @@ struct OverheadFrame {
   }
 };
 
+struct StrokeFrame {
+  long frame = 0;
+  std::size_t stroke_pixels = 0;
+  std::size_t strokes = 0;  // 8-connected pieces of stroke pixels
+  double lost_share = 0;    // of stroke_pixels, none within 2 px in the next frame; 0 for the last
+};
+
 // Scenes and frames go under `work_dir`. Throws std::runtime_error when a frame fails to render.
 std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
                                               const OverheadOptions& options,
                                               const std::filesystem::path& work_dir);
+
+// Scenes and frames go under `work_dir`. Throws std::runtime_error when a frame fails to render.
+std::vector<StrokeFrame> run_stroke_study(const std::string& pattern,
+                                          const OverheadOptions& options,
+                                          const std::filesystem::path& work_dir);
 
 }  // namespace toonwater::report
