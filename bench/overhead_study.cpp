@@ -51,7 +51,7 @@ int stroke_study(const std::string& pattern, const toonwater::report::OverheadOp
   std::vector<double> lost;
   std::vector<std::size_t> strokes;
   std::size_t drawn = 0;
-  std::printf("frame,stroke_pixels,strokes,lost_share\n");
+  std::printf("frame,stroke_pixels,stroke_pieces,lost_share\n");
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const toonwater::report::StrokeFrame& f = frames[i];
     std::printf("%ld,%zu,%zu,%.4f\n", f.frame, f.stroke_pixels, f.strokes, f.lost_share);
@@ -59,9 +59,10 @@ int stroke_study(const std::string& pattern, const toonwater::report::OverheadOp
     strokes.push_back(f.strokes);
     drawn += f.stroke_pixels > 0;
   }
-  std::printf("# %zu frames, strokes drawn in %zu; median share of stroke pixels lost %.3f; "
-              "median strokes %zu\n",
-              frames.size(), drawn, median_share(lost), median(strokes));
+  std::printf(
+      "# %zu frames, strokes drawn in %zu; median share of stroke pixels lost %.3f; "
+      "median stroke pieces %zu\n",
+      frames.size(), drawn, median_share(lost), median(strokes));
   return 0;
 }
 }  // namespace

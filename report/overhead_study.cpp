@@ -58,9 +58,9 @@ std::vector<std::size_t> piece_sizes(const std::vector<std::int8_t>& classes, in
 // The camera straight above the tank and the pure colours of a study's scene.
 struct OverheadView {
   SceneConfig config;
-  int u = 0, v = 1;           // the picture's horizontal and vertical input axes
-  double pixel = 0;           // scene units a pixel
-  double left = 0, top = 0;   // the picture's top-left corner, on axes u and v
+  int u = 0, v = 1;          // the picture's horizontal and vertical input axes
+  double pixel = 0;          // scene units a pixel
+  double left = 0, top = 0;  // the picture's top-left corner, on axes u and v
 };
 
 OverheadView overhead_view(const OverheadOptions& options) {
@@ -254,8 +254,8 @@ std::vector<StrokeFrame> run_stroke_study(const std::string& pattern,
         }
       }
     for (std::size_t i = 0; i < stroke.size(); ++i)
-      f.strokes += stroke[i] && pieces.root(static_cast<std::int32_t>(i)) ==
-                                    static_cast<std::int32_t>(i);
+      f.strokes +=
+          stroke[i] && pieces.root(static_cast<std::int32_t>(i)) == static_cast<std::int32_t>(i);
     frames.push_back(f);
     previous = std::move(stroke);
   }

@@ -34,10 +34,9 @@ PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow, Wat
   // Smoothed: the flow stage's shading normals where it ran (flow_regions.hpp), smoothed over the
   // free surface at the scale of the cells; a curvature view's curvature normals. Otherwise the
   // mesh's own angle-weighted normals.
-  const std::vector<Vec3> n =
-      !smoothed ? angle_weighted_normals(a.surface, a.topology.vertex_faces)
-      : a.flow.shading_normal.empty() ? std::move(a.curvature.normal)
-                                      : std::move(a.flow.shading_normal);
+  const std::vector<Vec3> n = !smoothed ? angle_weighted_normals(a.surface, a.topology.vertex_faces)
+                              : a.flow.shading_normal.empty() ? std::move(a.curvature.normal)
+                                                              : std::move(a.flow.shading_normal);
   out.mesh = make_scene_mesh(a.surface, n, is_closed(a.topology), up);
   if (smoothed) out.normal_noise = a.flow.normal_noise;
   if (!flow) return out;

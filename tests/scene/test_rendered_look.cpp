@@ -532,8 +532,7 @@ TEST(PovgenRender, AStillCrestKeepsOneFullWidthStrokeUnderJitter) {
         for (int dy = -2; dy <= 2 && !kept; ++dy)
           for (int dx = -2; dx <= 2 && !kept; ++dx)
             kept = dx * dx + dy * dy <= 4 && x + dx >= 0 && x + dx < width && y + dy >= 0 &&
-                   y + dy < height &&
-                   next[static_cast<std::size_t>((y + dy) * width + x + dx)];
+                   y + dy < height && next[static_cast<std::size_t>((y + dy) * width + x + dx)];
         lost += !kept;
       }
     EXPECT_LE(lost, pixels / 20) << "frame " << f << ": stroke pixels lost in the next frame";
