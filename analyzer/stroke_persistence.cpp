@@ -129,19 +129,18 @@ std::vector<FlowLine> StrokePersistence::update(const TriangleMesh& mesh, const 
     }
   std::stable_sort(pairs.begin(), pairs.end(),
                    [](const auto& a, const auto& b) { return std::get<0>(a) > std::get<0>(b); });
-  std::vector<std::int64_t> match_of(fresh.size(), -1);
-  std::vector<std::uint8_t> taken(carried.size(), 0);
+  std::vector<std::int64_t> match_of(fresh.size(), -1), successor(carried.size(), -1);
   for (const auto& [shared, i, j] : pairs) {
-    if (match_of[i] >= 0 || taken[j]) continue;
+    if (match_of[i] >= 0 || successor[j] >= 0) continue;
     match_of[i] = static_cast<std::int64_t>(j);
-    taken[j] = 1;
+    successor[j] = static_cast<std::int64_t>(i);
   }
 
   // 3. Hold the matched strokes still where they moved by noise; 4. fade them in.
   std::vector<Stroke> next;
   const double noise = options_.noise_distance * edge;
   for (std::size_t i = 0; i < fresh.size(); ++i) {
-    Stroke s{std::move(fresh[i]), step};
+    Stroke s{std::move(fresh[i]), first_frame_ ? 1.0 : 0.0};
     if (match_of[i] >= 0) {
       const Stroke& before = carried[static_cast<std::size_t>(match_of[i])];
       for (Vec3& q : s.line.points) {
@@ -154,24 +153,31 @@ std::vector<FlowLine> StrokePersistence::update(const TriangleMesh& mesh, const 
     next.push_back(std::move(s));
   }
 
-  // 4. Fade out what this frame's strokes do not cover.
+  // 4. Fade out what this frame's drawn strokes do not cover: a stroke's successor covers it
+  // where they were matched, any other only where it is drawn over it.
+  const double cover = options_.cover_distance * edge;
   const std::size_t drawn = next.size();
-  for (const Stroke& c : carried) {
+  for (std::size_t j = 0; j < carried.size(); ++j) {
+    const Stroke& c = carried[j];
     const double strength = c.strength - step;
     if (strength <= 0.5 * step) continue;
     std::vector<std::uint8_t> uncovered(c.line.points.size(), 1);
     for (std::size_t k = 0; k < c.line.points.size(); ++k)
       for (std::size_t i = 0; i < drawn && uncovered[k]; ++i)
-        if (next[i].line.sign == c.line.sign && near(next[i].line, c.line.points[k], match))
+        if (next[i].strength > 0.0 && next[i].line.sign == c.line.sign &&
+            near(next[i].line, c.line.points[k],
+                 successor[j] == static_cast<std::int64_t>(i) ? match : cover))
           uncovered[k] = 0;
     for (FlowLine& piece : kept_pieces(c.line, uncovered, taper_length))
       next.push_back({std::move(piece), strength});
   }
 
   strokes_ = next;
+  first_frame_ = false;
   std::vector<FlowLine> out;
   out.reserve(next.size());
   for (Stroke& s : next) {
+    if (s.strength <= 0.0) continue;  // fresh: drawn once matched in the next frame
     for (double& t : s.line.taper) t *= s.strength;
     out.push_back(std::move(s.line));
   }

@@ -18,11 +18,15 @@
 //    carried one by b·(c − q), b = hold_blend · max(0, 1 − (|c − q| / (z·e))²), z =
 //    `noise_distance` and e the edge length. A crest traced an edge away by noise stays where
 //    it was drawn; one that moves further, as a travelling wave does, is followed as traced.
-// 4. Fade: a stroke's strength s sets its drawn width (taper · s). A new stroke starts at
-//    1/fade_frames and a matched one gains 1/fade_frames a frame up to 1; the parts of a
-//    carried stroke that no stroke of this frame comes within `match_distance` of are kept
-//    where the water took them, losing 1/fade_frames a frame until they are gone. Strokes thus
-//    thin out where they were rather than disappear, and thicken where they appear.
+// 4. Fade: a stroke's strength s sets its drawn width (taper · s). A fresh stroke that matches
+//    nothing is kept but not drawn (s = 0), so one that the noise traces for a single frame
+//    never shows; matched, it gains 1/fade_frames a frame up to 1. The parts of a carried
+//    stroke that neither its successor (the fresh stroke matched to it) comes within
+//    `match_distance` of nor another drawn stroke within `cover_distance` of stay where they
+//    were, losing 1/fade_frames a frame until they are gone. Strokes thus thin out where they
+//    were rather than disappear, and a stroke drawn nearby does not hide one fading beside it.
+//    The strokes of a sequence's first frame, which has nothing to be coherent with, start at
+//    full strength.
 #pragma once
 
 #include "analyzer/flow_lines.hpp"
@@ -38,6 +42,8 @@ struct StrokePersistenceOptions {
   double match_distance =
       3.0;                  // in median edge lengths: a point this near another stroke is shared
   double min_shared = 0.5;  // share of points near the other stroke for a match
+  double cover_distance = 0.5;  // in median edge lengths: a carried point this near a drawn
+                                // stroke is covered by it; farther, it fades where it was
   double noise_distance = 2.0;  // z: in median edge lengths, a move below z·e is noise
   double hold_blend = 0.9;      // weight of the carried stroke where the move is noise
   int fade_frames = 3;          // frames to fade in or out
@@ -60,6 +66,7 @@ class StrokePersistence {
   };
   StrokePersistenceOptions options_;
   std::vector<Stroke> strokes_;
+  bool first_frame_ = true;
 };
 
 }  // namespace toonwater

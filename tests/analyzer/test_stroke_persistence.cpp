@@ -97,10 +97,14 @@ TEST(StrokePersistence, AStrokeFadesInAndThinsOutWhereItWas) {
   const Water w = flat_water();
   StrokePersistence persistence;
   const int fade = StrokePersistenceOptions{}.fade_frames;
-  for (int frame = 0; frame < fade + 1; ++frame) {
+  EXPECT_TRUE(persistence.update(w.mesh, w.flow, {}, kTaper).empty()) << "a first frame, calm";
+  EXPECT_TRUE(persistence.update(w.mesh, w.flow, {crest(10)}, kTaper).empty())
+      << "a stroke traced in one frame only is never drawn";
+  for (int frame = 1; frame <= fade + 1; ++frame) {
     const std::vector<FlowLine> drawn = persistence.update(w.mesh, w.flow, {crest(10)}, kTaper);
     ASSERT_EQ(drawn.size(), 1u);
-    EXPECT_NEAR(widest(drawn[0]), std::min(1.0, (frame + 1.0) / fade), 1e-12) << "frame " << frame;
+    EXPECT_NEAR(widest(drawn[0]), std::min(1.0, frame / static_cast<double>(fade)), 1e-12)
+        << "frame " << frame;
   }
   for (int gone = 1; gone < fade; ++gone) {
     const std::vector<FlowLine> drawn = persistence.update(w.mesh, w.flow, {}, kTaper);
@@ -110,6 +114,37 @@ TEST(StrokePersistence, AStrokeFadesInAndThinsOutWhereItWas) {
     EXPECT_EQ(drawn[0].points.size(), crest(10).points.size());
   }
   EXPECT_TRUE(persistence.update(w.mesh, w.flow, {}, kTaper).empty());
+}
+
+TEST(StrokePersistence, AStrokeTracedInOneFrameOnlyIsNeverDrawn) {
+  const Water w = flat_water();
+  StrokePersistence persistence;
+  EXPECT_TRUE(persistence.update(w.mesh, w.flow, {}, kTaper).empty());
+  EXPECT_TRUE(persistence.update(w.mesh, w.flow, {crest(10)}, kTaper).empty());
+  EXPECT_TRUE(persistence.update(w.mesh, w.flow, {}, kTaper).empty());
+}
+
+// A fading stroke is hidden only where another is drawn over it (cover_distance), not where
+// one merely passes near: a crest that ends an edge from it leaves it whole.
+TEST(StrokePersistence, AFadingStrokeIsCoveredOnlyWhereAnotherIsDrawnOverIt) {
+  const Water w = flat_water();
+  StrokePersistence persistence;
+  persistence.update(w.mesh, w.flow, {crest(10)}, kTaper);
+  FlowLine across;  // from an edge beside the fading crest, away from it along y
+  across.sign = FlowLabel::ridge;
+  for (double y = 11; y <= 19 + 1e-9; y += 1.0) across.points.emplace_back(20.0, y, 0.0);
+  set_taper(across, kTaper);
+  for (int frame = 1; frame <= 2; ++frame) {
+    const std::vector<FlowLine> drawn = persistence.update(w.mesh, w.flow, {across}, kTaper);
+    const auto fading = std::count_if(drawn.begin(), drawn.end(),
+                                      [](const FlowLine& l) { return mean_y(l) < 10.5; });
+    EXPECT_EQ(fading, 1) << "frame " << frame << ": the crest is cut where the other ends";
+    for (const FlowLine& l : drawn) {
+      if (mean_y(l) < 10.5) {
+        EXPECT_EQ(l.points.size(), crest(10).points.size());
+      }
+    }
+  }
 }
 
 TEST(StrokePersistence, ThePartOfAStrokeItsSuccessorNoLongerCoversFadesOnItsOwn) {
@@ -141,11 +176,17 @@ TEST(StrokePersistence, StrokesOfTheOtherSignAreNeitherMatchedNorCovering) {
   for (int frame = 0; frame < 3; ++frame) persistence.update(w.mesh, w.flow, {crest(10)}, kTaper);
   FlowLine trough = crest(10);
   trough.sign = FlowLabel::valley;
+  const double step = 1.0 / StrokePersistenceOptions{}.fade_frames;
+  const std::vector<FlowLine> first = persistence.update(w.mesh, w.flow, {trough}, kTaper);
+  ASSERT_EQ(first.size(), 1u) << "the trough waits a frame to be drawn";
+  EXPECT_EQ(first[0].sign, FlowLabel::ridge);
+  EXPECT_NEAR(widest(first[0]), 1.0 - step, 1e-12) << "the crest fades: the trough is no match";
   const std::vector<FlowLine> drawn = persistence.update(w.mesh, w.flow, {trough}, kTaper);
   ASSERT_EQ(drawn.size(), 2u);
   EXPECT_EQ(drawn[0].sign, FlowLabel::valley);
-  EXPECT_NEAR(widest(drawn[0]), 1.0 / StrokePersistenceOptions{}.fade_frames, 1e-12);
+  EXPECT_NEAR(widest(drawn[0]), step, 1e-12);
   EXPECT_EQ(drawn[1].sign, FlowLabel::ridge);
+  EXPECT_NEAR(widest(drawn[1]), 1.0 - 2 * step, 1e-12) << "nor does the trough cover it";
 }
 
 }  // namespace
