@@ -49,20 +49,22 @@ int stroke_study(const std::string& pattern, const toonwater::report::OverheadOp
   const std::vector<toonwater::report::StrokeFrame> frames =
       toonwater::report::run_stroke_study(pattern, options, work);
   std::vector<double> lost;
-  std::vector<std::size_t> strokes;
+  std::vector<std::size_t> strokes, pieces;
   std::size_t drawn = 0;
-  std::printf("frame,stroke_pixels,stroke_pieces,lost_share\n");
+  std::printf("frame,stroke_pixels,strokes,stroke_pieces,lost_share\n");
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const toonwater::report::StrokeFrame& f = frames[i];
-    std::printf("%ld,%zu,%zu,%.4f\n", f.frame, f.stroke_pixels, f.strokes, f.lost_share);
+    std::printf("%ld,%zu,%zu,%zu,%.4f\n", f.frame, f.stroke_pixels, f.strokes, f.stroke_pieces,
+                f.lost_share);
     if (i + 1 < frames.size() && f.stroke_pixels > 0) lost.push_back(f.lost_share);
     strokes.push_back(f.strokes);
+    pieces.push_back(f.stroke_pieces);
     drawn += f.stroke_pixels > 0;
   }
   std::printf(
       "# %zu frames, strokes drawn in %zu; median share of stroke pixels lost %.3f; "
-      "median stroke pieces %zu\n",
-      frames.size(), drawn, median_share(lost), median(strokes));
+      "median strokes %zu, in %zu pieces\n",
+      frames.size(), drawn, median_share(lost), median(strokes), median(pieces));
   return 0;
 }
 }  // namespace

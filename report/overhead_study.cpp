@@ -10,6 +10,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
 #include <numbers>
 
 namespace toonwater::report {
@@ -241,6 +244,13 @@ std::vector<StrokeFrame> run_stroke_study(const std::string& pattern,
     }
     StrokeFrame f;
     f.frame = frame;
+    // The strokes the scene draws: the Toon_stroke calls of the frame's water include.
+    std::ifstream file(scene_dir / water_include_name(frame));
+    if (!file) throw std::runtime_error("stroke study: cannot read " + water_include_name(frame));
+    const std::string include{std::istreambuf_iterator<char>(file), {}};
+    for (std::size_t at = include.find("Toon_stroke("); at != std::string::npos;
+         at = include.find("Toon_stroke(", at + 1))
+      ++f.strokes;
     DisjointSets pieces(stroke.size());
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) {
@@ -254,7 +264,7 @@ std::vector<StrokeFrame> run_stroke_study(const std::string& pattern,
         }
       }
     for (std::size_t i = 0; i < stroke.size(); ++i)
-      f.strokes +=
+      f.stroke_pieces +=
           stroke[i] && pieces.root(static_cast<std::int32_t>(i)) == static_cast<std::int32_t>(i);
     frames.push_back(f);
     previous = std::move(stroke);

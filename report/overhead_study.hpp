@@ -50,8 +50,9 @@ struct OverheadFrame {
 struct StrokeFrame {
   long frame = 0;
   std::size_t stroke_pixels = 0;
-  std::size_t strokes = 0;  // 8-connected pieces of stroke pixels
-  double lost_share = 0;    // of stroke_pixels, none within 2 px in the next frame; 0 for the last
+  std::size_t strokes = 0;        // drawn by the scene
+  std::size_t stroke_pieces = 0;  // 8-connected pieces of stroke pixels
+  double lost_share = 0;  // of stroke_pixels, none within 2 px in the next frame; 0 for the last
 };
 
 // Scenes and frames go under `work_dir`. Throws std::runtime_error when a frame fails to render.
