@@ -67,6 +67,7 @@ int stroke_study(const std::string& pattern, const toonwater::report::OverheadOp
       frames.size(), drawn, median_share(lost), median(strokes), median(pieces));
   return 0;
 }
+
 }  // namespace
 
 int main(int argc, char** argv) {

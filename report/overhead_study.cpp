@@ -12,8 +12,8 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
-#include <stdexcept>
 #include <numbers>
+#include <stdexcept>
 
 namespace toonwater::report {
 namespace {
