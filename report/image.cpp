@@ -16,4 +16,23 @@ Image read_rgb(const std::filesystem::path& path) {
   }
 }
 
+std::size_t pixels_without_neighbour(const std::vector<std::uint8_t>& from,
+                                     const std::vector<std::uint8_t>& to, int width, int reach) {
+  const int height = width > 0 ? static_cast<int>(from.size()) / width : 0;
+  std::size_t lost = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      if (!from[static_cast<std::size_t>(y) * width + x]) continue;
+      bool kept = false;
+      for (int dy = -reach; dy <= reach && !kept; ++dy)
+        for (int dx = -reach; dx <= reach && !kept; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          kept = dx * dx + dy * dy <= reach * reach && xx >= 0 && yy >= 0 && xx < width &&
+                 yy < height && to[static_cast<std::size_t>(yy) * width + xx];
+        }
+      lost += !kept;
+    }
+  return lost;
+}
+
 }  // namespace toonwater::report

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <vector>
 
@@ -19,5 +21,11 @@ struct Image {
 
 // Throws std::runtime_error naming the file when it cannot be read or has fewer than 3 channels.
 Image read_rgb(const std::filesystem::path& path);
+
+// How many pixels set in the mask `from` have no pixel set in `to` within `reach` pixels
+// (Euclidean): what a picture loses from one frame to the next. Masks are row-major, `width`
+// wide, 1 where set, and of one size.
+std::size_t pixels_without_neighbour(const std::vector<std::uint8_t>& from,
+                                     const std::vector<std::uint8_t>& to, int width, int reach);
 
 }  // namespace toonwater::report

@@ -225,23 +225,10 @@ std::vector<StrokeFrame> run_stroke_study(const std::string& pattern,
         stroke[static_cast<std::size_t>(y) * width + x] =
             std::abs(p[0] - 1.0f) + p[1] + p[2] < 0.1f;
       }
-    if (!frames.empty() && frames.back().stroke_pixels > 0) {
-      std::size_t lost = 0;
-      for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-          if (!previous[static_cast<std::size_t>(y) * width + x]) continue;
-          bool kept = false;
-          for (int dy = -kReach; dy <= kReach && !kept; ++dy)
-            for (int dx = -kReach; dx <= kReach && !kept; ++dx) {
-              const int xx = x + dx, yy = y + dy;
-              kept = dx * dx + dy * dy <= kReach * kReach && xx >= 0 && yy >= 0 && xx < width &&
-                     yy < height && stroke[static_cast<std::size_t>(yy) * width + xx];
-            }
-          lost += !kept;
-        }
+    if (!frames.empty() && frames.back().stroke_pixels > 0)
       frames.back().lost_share =
-          static_cast<double>(lost) / static_cast<double>(frames.back().stroke_pixels);
-    }
+          static_cast<double>(pixels_without_neighbour(previous, stroke, width, kReach)) /
+          static_cast<double>(frames.back().stroke_pixels);
     StrokeFrame f;
     f.frame = frame;
     // The strokes the scene draws: the Toon_stroke calls of the frame's water include.

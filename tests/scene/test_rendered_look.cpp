@@ -3,11 +3,13 @@
 #include "tests/support/povray_test_util.hpp"
 
 #include "analyzer/colormap.hpp"
+#include "report/image.hpp"
 #include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -522,19 +524,8 @@ TEST(PovgenRender, AStillCrestKeepsOneFullWidthStrokeUnderJitter) {
     std::nth_element(across.begin(), across.begin() + across.size() / 2, across.end());
     EXPECT_GE(across[across.size() / 2], line_width - 1) << "frame " << f << ": a thin stroke";
     if (f == frames) break;
-    const std::vector<std::uint8_t>& next = stroke[f];
-    int pixels = 0, lost = 0;
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) {
-        if (!now[static_cast<std::size_t>(y * width + x)]) continue;
-        ++pixels;
-        bool kept = false;
-        for (int dy = -2; dy <= 2 && !kept; ++dy)
-          for (int dx = -2; dx <= 2 && !kept; ++dx)
-            kept = dx * dx + dy * dy <= 4 && x + dx >= 0 && x + dx < width && y + dy >= 0 &&
-                   y + dy < height && next[static_cast<std::size_t>((y + dy) * width + x + dx)];
-        lost += !kept;
-      }
+    const std::size_t pixels = static_cast<std::size_t>(std::count(now.begin(), now.end(), 1));
+    const std::size_t lost = report::pixels_without_neighbour(now, stroke[f], width, 2);
     EXPECT_LE(lost, pixels / 20) << "frame " << f << ": stroke pixels lost in the next frame";
   }
 }
