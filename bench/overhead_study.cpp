@@ -79,7 +79,12 @@ int main(int argc, char** argv) {
       strokes = true;
       args.erase(args.begin());
     } else if (args.front() == "--frames" && args.size() > 1) {
-      range = toonwater::parse_frame_range(args[1], "--frames");
+      try {
+        range = toonwater::parse_frame_range(args[1], "--frames");
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "overhead_study: %s\n", e.what());
+        return 2;
+      }
       args.erase(args.begin(), args.begin() + 2);
     } else {
       std::fprintf(stderr, "overhead_study: unknown option %s\n", args.front().c_str());
