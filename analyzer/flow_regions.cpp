@@ -307,9 +307,10 @@ FlowRegions find_flow_regions(const TriangleMesh& mesh, const MeshTopology& topo
                    defaults.wall_far * flow.median_edge_length);
   // The shading normals before the field: their smoothing, of vectors, is the analysis's
   // largest allocation, and the field and its copy need not be held beside it.
-  flow.shading_normal =
-      shading_normals(mesh, vertex_faces, curvature, member, wall_weight, options.up,
-                      smoothing_steps_for_radius(defaults.shading_radius), flow.normal_noise);
+  if (options.shading_normals)
+    flow.shading_normal =
+        shading_normals(mesh, vertex_faces, curvature, member, wall_weight, options.up,
+                        smoothing_steps_for_radius(defaults.shading_radius), flow.normal_noise);
 
   // The field's source, smoothed (step 1): H, or the paper's sign(H)·|K|.
   std::vector<double> field(n, 0.0);

@@ -100,6 +100,10 @@ struct FlowOptions : FreeSurfaceOptions {
   // threshold (absolute or relative) is taken as it is, without the noise floor.
   std::optional<int> smoothing_steps;     // Jacobi steps over the free surface
   std::optional<double> min_region_area;  // absolute A_min (scene units²)
+  // The shading normals and their noise floor, which only scenes use: `analyze` writes neither,
+  // and their smoothing, of vectors, is most of the flow stage's time. Nothing else depends on
+  // them.
+  bool shading_normals = true;
 };
 
 enum FlowLabel : std::int8_t { valley = -1, none = 0, ridge = 1 };
@@ -119,7 +123,8 @@ struct FlowRegions {
   double noise_floor = 0.0;           // σ of this frame's smoothed field source (H, or sign(H)|K|)
   double sequence_noise_floor = 0.0;  // σ the threshold was held above (the sequence's)
   std::size_t walls = 0;              // tank walls found (tank_walls.hpp)
-  std::vector<Vec3> shading_normal;   // per vertex: unit normal the toon bands are chosen from
+  std::vector<Vec3> shading_normal;   // per vertex: unit normal the toon bands are chosen from;
+                                      // empty without FlowOptions::shading_normals
   double normal_noise = 0.0;          // noise floor of the shading normals' horizontal parts
   double median_edge_length = 0.0;
   double rest_height = 0.0;

@@ -50,8 +50,7 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
                "  boundary %zu, non-manifold %zu, isolated %zu vertices; degenerate faces "
                "%zu, caps %zu, mollified faces %zu (intrinsic flips %zu), flipped faces %zu;\n"
                "  curvature extrapolated at %zu, undefined at %zu\n"
-               "  flow (%s): T = %.6g (scene length %.6g, noise floor %.6g, %zu tank walls, normal "
-               "noise %.3g), "
+               "  flow (%s): T = %.6g (scene length %.6g, noise floor %.6g, %zu tank walls), "
                "rest height %.6g, free surface %zu "
                "vertices (%zu patches dropped), %zu regions (%zu specks faded below %.6g), "
                "ridge %zu, valley %zu\n"
@@ -63,10 +62,10 @@ void print_summary(const std::string& mesh_path, const Analysis& a, double read_
                a.curvature.mollified_faces, a.curvature.intrinsic_flips, a.flipped_faces,
                a.curvature.extrapolated_vertices, a.curvature.undefined_vertices,
                f.criterion == FlowCriterion::mean ? "mean" : "paper", f.threshold, f.scale_length,
-               f.sequence_noise_floor, f.walls, f.normal_noise, f.rest_height,
-               f.free_surface_vertices, f.free_surface_patches_dropped, f.regions, f.specks_faded,
-               f.min_region_area, f.ridge_vertices, f.valley_vertices, read_seconds, a.times.weld,
-               a.times.topology, a.times.curvature, a.times.flow, write_seconds);
+               f.sequence_noise_floor, f.walls, f.rest_height, f.free_surface_vertices,
+               f.free_surface_patches_dropped, f.regions, f.specks_faded, f.min_region_area,
+               f.ridge_vertices, f.valley_vertices, read_seconds, a.times.weld, a.times.topology,
+               a.times.curvature, a.times.flow, write_seconds);
 }
 
 // Two names of one file: the same existing file (hard links included), or the same file to be
@@ -122,8 +121,9 @@ void run_analyze(const AnalyzeArgs& args) {
   // The PLY repeats the input's faces; nothing else needs the input once it is analysed.
   const std::vector<Triangle> input_triangles =
       args.ply.empty() ? std::vector<Triangle>{} : input.mesh.triangles;
-  const Analysis analysis =
-      analyze_mesh(std::move(input.mesh), analyze_options(args.analysis, args.up));
+  AnalyzeOptions options = analyze_options(args.analysis, args.up);
+  options.flow.shading_normals = false;  // no output of analyze holds them
+  const Analysis analysis = analyze_mesh(std::move(input.mesh), options);
 
   start = Clock::now();
   // The maps directories this run makes are removed again if it fails (they are empty then).

@@ -193,5 +193,26 @@ TEST(FlowRegions, RestHeightOfATankIsItsFreeSurface) {
   EXPECT_EQ(f.regions.label[nearest_vertex(m, 0.0, 0.0)], FlowLabel::ridge);
 }
 
+// `analyze` leaves the shading normals out; what it writes must not change with them.
+TEST(FlowRegions, LeavingTheShadingNormalsOutChangesNothingElse) {
+  const TriangleMesh m = tank(41, [](double x, double y) {
+    return 0.05 * std::sin(5 * x) * std::cos(4 * y) + bump(0.1, 0.3, 0.2, 0.15)(x, y);
+  });
+  const Flow with = flow_of(m);
+  FlowOptions options;
+  options.shading_normals = false;
+  const Flow without = flow_of(m, options);
+  EXPECT_EQ(with.regions.shading_normal.size(), m.positions.size());
+  EXPECT_GT(with.regions.normal_noise, 0.0);
+  EXPECT_TRUE(without.regions.shading_normal.empty());
+  EXPECT_EQ(without.regions.normal_noise, 0.0);
+  EXPECT_GT(with.regions.ridge_vertices + with.regions.valley_vertices, 0u);
+  EXPECT_EQ(without.regions.field, with.regions.field);
+  EXPECT_EQ(without.regions.smoothed_field, with.regions.smoothed_field);
+  EXPECT_EQ(without.regions.label, with.regions.label);
+  EXPECT_EQ(without.regions.threshold, with.regions.threshold);
+  EXPECT_EQ(without.regions.regions, with.regions.regions);
+}
+
 }  // namespace
 }  // namespace toonwater::test
