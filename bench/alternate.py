@@ -1,13 +1,17 @@
 #!/usr/bin/env python3
 """Whole commands timed side by side: the benchmarks' one way of comparing two or more programs.
 
-    bench/alternate.py [--rounds N] [--warm-ups N] [--sum LABEL=NAME+NAME...]
+    bench/alternate.py [--rounds N] [--warm-ups N] [--rotate] [--sum LABEL=NAME+NAME...]
                        NAME=COMMAND [NAME=COMMAND ...]
 
 Each COMMAND (shell text, run by bash) runs WARM_UPS times (1 unless given; more where a program
 fills caches of its own over its first runs, as Blender does), then ROUNDS times in turn with the
-others, A B C A B C ..., so that a change in the machine's load falls on all of them alike. It
-prints, per command, the median (min–max) of its wall and CPU (user + system, its children's
+others, A B C A B C ..., so that a change in the machine's load falls on all of them alike.
+With --rotate each round starts one command later (A B C, B C A, C A B, ...): a program run
+just after another can be slowed by it (a build of toonwater run just after MeshLab took 20-40
+ms more than the same build run after the other), and without rotation the same command would
+always pay for it; not for commands that need the one before them (povgen, then its render).
+It prints, per command, the median (min–max) of its wall and CPU (user + system, its children's
 included) seconds, and the median (min–max) of the rounds' ratios to the first command, the
 reference: a ratio of each round's own times, not of the medians. `--sum LABEL=A+B` adds a row
 for commands that together make one job (povgen and render), its time each round their sum.
@@ -65,6 +69,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rounds", type=int, default=7)
     parser.add_argument("--warm-ups", type=int, default=1)
+    parser.add_argument("--rotate", action="store_true")
     parser.add_argument("--sum", action="append", default=[], metavar="LABEL=NAME+NAME")
     parser.add_argument("commands", nargs="+", metavar="NAME=COMMAND")
     args = parser.parse_args()
@@ -91,8 +96,9 @@ def main():
         for name, command in commands:
             run_once(name, command, log_dir)
     times = {name: [] for name in names}
-    for _ in range(args.rounds):
-        for name, command in commands:
+    for r in range(args.rounds):
+        first = r % len(commands) if args.rotate else 0
+        for name, command in commands[first:] + commands[:first]:
             times[name].append(run_once(name, command, log_dir))
     for label, members in sums:
         times[label] = [tuple(sum(times[m][r][k] for m in members) for k in (0, 1))
@@ -100,7 +106,8 @@ def main():
 
     reference = names[0]
     warm_ups = "a warm-up" if args.warm_ups == 1 else f"{args.warm_ups} warm-ups"
-    print(f"{args.rounds} rounds after {warm_ups} each, {os.cpu_count()} cores, load "
+    order = ", each starting one command later" if args.rotate else ""
+    print(f"{args.rounds} rounds{order} after {warm_ups} each, {os.cpu_count()} cores, load "
           f"{load_before:.1f} before them; medians (min–max) in seconds; ratios to {reference}, "
           "round by round")
     print("| command | wall | CPU | wall ratio | CPU ratio |")

@@ -4,8 +4,10 @@
 # start-up is not counted), and optionally against a second toonwater build, on the
 # bench_analyzer height field z = 0.1 sin 6x cos 6y over [-1, 1]^2 written as a binary PLY of
 # float coordinates at 235^2 (55k) and 1000^2 (1M) vertices. Runs alternate (MeshLab, A, B) in
-# each of PAIRS rounds (bench/alternate.py); prints the medians of wall and CPU (user + system)
-# time and of the rounds' ratios to MeshLab. Neither program writes an output.
+# each of PAIRS rounds, each round starting one program later (bench/alternate.py --rotate: run
+# just after MeshLab, a build took 20-40 ms more at 55k than the same build run after the
+# other); prints the medians of wall and CPU (user + system) time and of the rounds' ratios to
+# MeshLab. Neither program writes an output.
 #
 # Usage: bench/meshlab_compare.sh TOONWATER [OTHER_TOONWATER] [PAIRS]   (PAIRS default 7)
 # Needs: meshlab and xvfb (apt-get install meshlab xvfb), python3.
@@ -62,7 +64,7 @@ for size in 55k 1M; do
   meshlab_name="Gaussian + mean"
   [ "$size" = 1M ] && script=$work/gaussian.mlx meshlab_name=Gaussian
   echo "$size vertices, MeshLab's $meshlab_name:"
-  "$here/alternate.py" --rounds "$pairs" \
+  "$here/alternate.py" --rounds "$pairs" --rotate \
     "MeshLab=$(printf 'meshlabserver -i %q -s %q' "$work/$size.ply" "$script")" \
     "toonwater A=$(analyze "$a")" ${b:+"toonwater B=$(analyze "$b")"}
 done
