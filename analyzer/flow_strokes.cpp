@@ -122,6 +122,10 @@ std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const FlowRegions& 
     const double spine = from_a[b];
     double region_area = 0.0;
     for (std::int32_t v : g.vertices) region_area += area[v];
+    if (region_area < flow.min_region_area) {  // a speck, fading in or out: no stroke
+      for (std::int32_t v : g.vertices) wide[v] = 0.0;
+      continue;
+    }
     if (!(spine * spine >= narrow_aspect * region_area)) continue;  // wide: keeps its contour
 
     auto along_crest = [&](double length, std::int32_t v, std::int32_t w) {

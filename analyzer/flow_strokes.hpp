@@ -2,12 +2,16 @@
 // region (flow_regions.hpp), and the contour (flow_lines.hpp) only around the wide ones, where
 // two strokes along a narrow crest would read as outlined confetti.
 //
-// A region is a connected set of free-surface vertices of one label (ridge or valley). Its
-// spine is found by two sweeps of Dijkstra's algorithm over its edges: the vertex farthest from
-// any vertex of the region is one end, the vertex farthest from that one the other, the ends of
-// (nearly) its longest shortest path. The region is narrow when that path's length ℓ is at
-// least `narrow_aspect` times the region's mean width A/ℓ (A its area): ℓ² >= 3A (a strip three
-// times as long as wide; a disc has ℓ²/A = 4/π).
+// A region is a connected set of free-surface vertices of one label (ridge or valley). One
+// smaller than the flow stage's A_min (`min_region_area`) is a speck that the field fades in as
+// it grows or out as it shrinks (flow_regions.hpp): its fill is faint, and its stroke would be a
+// loop a few pixels across that pops in and out, so it has none.
+//
+// A region's spine is found by two sweeps of Dijkstra's algorithm over its edges: the vertex
+// farthest from any vertex of the region is one end, the vertex farthest from that one the
+// other, the ends of (nearly) its longest shortest path. The region is narrow when that path's
+// length ℓ is at least `narrow_aspect` times the region's mean width A/ℓ (A its area):
+// ℓ² >= 3A (a strip three times as long as wide; a disc has ℓ²/A = 4/π).
 //
 // The stroke runs between the spine's ends along the crest of the field: the path of least
 // Σ |e| / |s̄| over the region's edges (s̄ the mean |s| of an edge's ends, >= 1 inside), so

@@ -101,5 +101,24 @@ TEST(FlowStrokes, ACrestAlongTheSurfacesBorderIsOneStroke) {
   EXPECT_GE(hi, 34.0);
 }
 
+// Regions smaller than A_min are specks fading in or out: neither a short crest nor a small
+// disc among them gets a stroke, while the larger crest and disc keep theirs.
+TEST(FlowStrokes, SpecksBelowTheSmallestRegionDrawnHaveNoStroke) {
+  const Grid g = grid(41, [](double x, double y) {
+    if (x >= 5 && x <= 35 && std::abs(y - 20) <= 1) return 2.0 - std::abs(y - 20);  // area 60
+    if (std::hypot(x - 20, y - 7) <= 4) return -2.0;                                // about 50
+    if (x >= 5 && x <= 8 && std::abs(y - 32) <= 1) return 2.0;                      // 6
+    if (std::hypot(x - 32, y - 32) <= 1.5) return -2.0;                             // about 4
+    return 0.0;
+  });
+  Grid with_limit = g;
+  with_limit.flow.min_region_area = 20.0;
+  EXPECT_EQ(flow_strokes(g.mesh, g.flow, 3.0).size(), 4u) << "without a limit, every region";
+  const std::vector<FlowLine> lines = flow_strokes(with_limit.mesh, with_limit.flow, 3.0);
+  ASSERT_EQ(lines.size(), 2u);
+  for (const FlowLine& line : lines)
+    for (const Vec3& p : line.points) EXPECT_LT(p.y(), 25.0) << "a stroke on a speck";
+}
+
 }  // namespace
 }  // namespace toonwater::test
