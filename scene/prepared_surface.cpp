@@ -39,15 +39,13 @@ PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow, Wat
                                                               : std::move(a.flow.shading_normal);
   out.mesh = make_scene_mesh(a.surface, n, is_closed(a.topology), up);
   if (smoothed) out.normal_noise = a.flow.normal_noise;
-  if (!flow) return out;
-  if (shading == WaterShading::toon) {
-    if (!flow->enabled) return out;  // the bands alone
+  if (toon_flow) {
     out.flow_field = std::move(a.flow.field);
     out.ridge_vertices = a.flow.ridge_vertices;
     out.valley_vertices = a.flow.valley_vertices;
-  } else {
+  } else if (flow && shading != WaterShading::toon) {
     out.view_values = shading == WaterShading::gaussian ? a.curvature.gaussian : a.curvature.mean;
-  }
+  }  // else toon bands alone
   return out;
 }
 
