@@ -114,18 +114,18 @@ std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const FlowRegions& 
   std::vector<FlowLine> lines;
   std::vector<double> wide = flow.field;  // the narrow regions taken out, for the contours
   for (const RegionGraph& g : graphs) {
-    std::vector<std::int32_t> previous;
-    auto length_only = [](double length, std::int32_t, std::int32_t) { return length; };
-    const std::int32_t a = farthest(dijkstra(g, 0, length_only, previous));
-    const std::vector<double> from_a = dijkstra(g, a, length_only, previous);
-    const std::int32_t b = farthest(from_a);
-    const double spine = from_a[b];
     double region_area = 0.0;
     for (std::int32_t v : g.vertices) region_area += area[v];
     if (region_area < flow.min_region_area) {  // a speck, fading in or out: no stroke
       for (std::int32_t v : g.vertices) wide[v] = 0.0;
       continue;
     }
+    std::vector<std::int32_t> previous;
+    auto length_only = [](double length, std::int32_t, std::int32_t) { return length; };
+    const std::int32_t a = farthest(dijkstra(g, 0, length_only, previous));
+    const std::vector<double> from_a = dijkstra(g, a, length_only, previous);
+    const std::int32_t b = farthest(from_a);
+    const double spine = from_a[b];
     if (!(spine * spine >= narrow_aspect * region_area)) continue;  // wide: keeps its contour
 
     auto along_crest = [&](double length, std::int32_t v, std::int32_t w) {
