@@ -8,18 +8,25 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <tuple>
 
 namespace toonwater {
 namespace {
 
-// The closest point to p on the line (its closing segment included when it is closed).
-Vec3 closest_on(const FlowLine& line, const Vec3& p) {
+// The closest point to p on the line (its closing segment included when it is closed). When it
+// is an open end of the line, `outward` points from the line's last segment out past that end.
+struct ClosestPoint {
+  Vec3 point;
+  std::optional<Vec3> outward;
+};
+
+ClosestPoint closest_point(const FlowLine& line, const Vec3& p) {
   const std::vector<Vec3>& q = line.points;
   const std::size_t n = q.size();
-  if (n == 1) return q[0];
+  if (n == 1) return {q[0], std::nullopt};
   const std::size_t segments = line.closed ? n : n - 1;
-  Vec3 best = q[0];
+  ClosestPoint best{q[0], std::nullopt};
   double best_distance2 = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < segments; ++i) {
     const Vec3& a = q[i];
@@ -28,13 +35,32 @@ Vec3 closest_on(const FlowLine& line, const Vec3& p) {
     const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
     const Vec3 c = a + t * ab;
     const double distance2 = (c - p).squaredNorm();
-    if (distance2 < best_distance2) best_distance2 = distance2, best = c;
+    if (distance2 < best_distance2) {
+      best_distance2 = distance2;
+      best = {c, std::nullopt};
+      if (!line.closed && i == 0 && t == 0.0) best.outward = -ab;
+      if (!line.closed && i + 1 == segments && t == 1.0) best.outward = ab;
+    }
   }
   return best;
 }
 
+Vec3 closest_on(const FlowLine& line, const Vec3& p) { return closest_point(line, p).point; }
+
 bool near(const FlowLine& line, const Vec3& p, double distance) {
   return (closest_on(line, p) - p).squaredNorm() <= distance * distance;
+}
+
+// Whether a stroke's successor covers the carried stroke's point p: it passes within `match`
+// of p, and p lies no further than `beyond` past one of its open ends. A successor that has
+// moved sideways covers the whole stroke, which it replaces; one that has grown shorter does
+// not cover the part past its end, which fades where it was instead of vanishing.
+bool covered_by_successor(const FlowLine& successor, const Vec3& p, double match, double beyond) {
+  const ClosestPoint c = closest_point(successor, p);
+  if ((c.point - p).squaredNorm() > match * match) return false;
+  if (!c.outward) return true;
+  const double length = c.outward->norm();
+  return !(length > 0.0) || (p - c.point).dot(*c.outward) / length <= beyond;
 }
 
 // The share of a's points within `distance` of b.
@@ -163,11 +189,14 @@ std::vector<FlowLine> StrokePersistence::update(const TriangleMesh& mesh, const 
     if (strength <= 0.5 * step) continue;
     std::vector<std::uint8_t> uncovered(c.line.points.size(), 1);
     for (std::size_t k = 0; k < c.line.points.size(); ++k)
-      for (std::size_t i = 0; i < drawn && uncovered[k]; ++i)
-        if (next[i].strength > 0.0 && next[i].line.sign == c.line.sign &&
-            near(next[i].line, c.line.points[k],
-                 successor[j] == static_cast<std::int64_t>(i) ? match : cover))
+      for (std::size_t i = 0; i < drawn && uncovered[k]; ++i) {
+        if (!(next[i].strength > 0.0) || next[i].line.sign != c.line.sign) continue;
+        const Vec3& p = c.line.points[k];
+        if (successor[j] == static_cast<std::int64_t>(i)
+                ? covered_by_successor(next[i].line, p, match, cover)
+                : near(next[i].line, p, cover))
           uncovered[k] = 0;
+      }
     for (FlowLine& piece : kept_pieces(c.line, uncovered, taper_length))
       next.push_back({std::move(piece), strength});
   }

@@ -21,10 +21,13 @@
 // 4. Fade: a stroke's strength s sets its drawn width (taper · s). A fresh stroke that matches
 //    nothing is kept but not drawn (s = 0), so one that the noise traces for a single frame
 //    never shows; matched, it gains 1/fade_frames a frame up to 1. The parts of a carried
-//    stroke that neither its successor (the fresh stroke matched to it) comes within
-//    `match_distance` of nor another drawn stroke within `cover_distance` of stay where they
-//    were, losing 1/fade_frames a frame until they are gone. Strokes thus thin out where they
-//    were rather than disappear, and a stroke drawn nearby does not hide one fading beside it.
+//    stroke that neither its successor (the fresh stroke matched to it) covers nor another
+//    drawn stroke comes within `cover_distance` of stay where they were, losing 1/fade_frames
+//    a frame until they are gone. The successor covers the points it passes within
+//    `match_distance` of, but for those more than `cover_distance` past one of its open ends:
+//    moved sideways, it replaces the whole stroke; grown shorter, it leaves the part past its
+//    end to fade. Strokes thus thin out where they were rather than disappear or snap back, and
+//    a stroke drawn nearby does not hide one fading beside it.
 //    The strokes of a sequence's first frame, which has nothing to be coherent with, start at
 //    full strength.
 #pragma once

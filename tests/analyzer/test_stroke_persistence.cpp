@@ -157,9 +157,31 @@ TEST(StrokePersistence, ThePartOfAStrokeItsSuccessorNoLongerCoversFadesOnItsOwn)
   EXPECT_NEAR(widest(drawn[0]), 1.0, 1e-12);
   const FlowLine& rest = drawn[1];
   EXPECT_NEAR(widest(rest), 1.0 - 1.0 / StrokePersistenceOptions{}.fade_frames, 1e-12);
-  EXPECT_GT(rest.points.front().x(), 20.0 + StrokePersistenceOptions{}.match_distance - 1e-9);
+  // From the first point more than cover_distance past the successor's end (the points lie an
+  // edge apart) to the stroke's own end: not snapped back to where the successor ends.
+  const double cover = StrokePersistenceOptions{}.cover_distance;
+  EXPECT_GT(rest.points.front().x(), 20.0 + cover);
+  EXPECT_LE(rest.points.front().x(), 20.0 + cover + 1.0);
   EXPECT_NEAR(rest.points.back().x(), 35.0, 1e-12);
   EXPECT_EQ(rest.taper.front(), 0.0) << "the cut end tapers";
+}
+
+TEST(StrokePersistence, ASuccessorMovedSidewaysAndShorterLeavesOnlyThePartPastItsEndToFade) {
+  const Water w = flat_water();
+  StrokePersistence persistence;
+  for (int frame = 0; frame < 3; ++frame) persistence.update(w.mesh, w.flow, {crest(10)}, kTaper);
+  const StrokePersistenceOptions options;
+  const double moved = 0.5 * (options.noise_distance + options.match_distance);  // followed
+  const std::vector<FlowLine> drawn =
+      persistence.update(w.mesh, w.flow, {crest(10 + moved, 5, 20)}, kTaper);
+  ASSERT_EQ(drawn.size(), 2u) << "the successor and one fading piece, no trail beside it";
+  EXPECT_NEAR(mean_y(drawn[0]), 10 + moved, 1e-12);
+  const FlowLine& rest = drawn[1];
+  EXPECT_NEAR(mean_y(rest), 10.0, 1e-12) << "fades where it was";
+  // From the first point (an edge apart) more than cover_distance past the successor's end.
+  EXPECT_GT(rest.points.front().x(), 20.0 + options.cover_distance);
+  EXPECT_LE(rest.points.front().x(), 20.0 + options.cover_distance + 1.0);
+  EXPECT_NEAR(rest.points.back().x(), 35.0, 1e-12);
 }
 
 TEST(StrokePersistence, AStrokeWhoseWaterHasGoneIsNotKept) {
