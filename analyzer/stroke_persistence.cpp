@@ -15,7 +15,7 @@ namespace toonwater {
 namespace {
 
 // The closest point to p on the line (its closing segment included when it is closed). When it
-// is an open end of the line, `outward` points from the line's last segment out past that end.
+// is an open end of the line, `outward` points along the segment at that end, out past it.
 struct ClosestPoint {
   Vec3 point;
   std::optional<Vec3> outward;
@@ -188,15 +188,16 @@ std::vector<FlowLine> StrokePersistence::update(const TriangleMesh& mesh, const 
     const double strength = c.strength - step;
     if (strength <= 0.5 * step) continue;
     std::vector<std::uint8_t> uncovered(c.line.points.size(), 1);
-    for (std::size_t k = 0; k < c.line.points.size(); ++k)
+    for (std::size_t k = 0; k < c.line.points.size(); ++k) {
+      const Vec3& p = c.line.points[k];
       for (std::size_t i = 0; i < drawn && uncovered[k]; ++i) {
         if (!(next[i].strength > 0.0) || next[i].line.sign != c.line.sign) continue;
-        const Vec3& p = c.line.points[k];
         if (successor[j] == static_cast<std::int64_t>(i)
                 ? covered_by_successor(next[i].line, p, match, cover)
                 : near(next[i].line, p, cover))
           uncovered[k] = 0;
       }
+    }
     for (FlowLine& piece : kept_pieces(c.line, uncovered, taper_length))
       next.push_back({std::move(piece), strength});
   }
