@@ -7,7 +7,7 @@
 #include <benchmark/benchmark.h>
 
 int main(int argc, char** argv) {
-  toonwater::keep_large_arrays_in_the_heap();
+  toonwater::set_up_heap_for_large_arrays();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
   toonwater::remove_temporaries_on_signals();  // an interrupted run leaves no temporary file
   // A closed standard error or output is a failed write, not an end (cli/stop_signals.hpp).
   std::signal(SIGPIPE, SIG_IGN);
-  toonwater::keep_large_arrays_in_the_heap();  // analyze and every povgen frame reuse pages
+  toonwater::set_up_heap_for_large_arrays();  // analyze and every povgen frame reuse pages
   CLI::App app{"toonwater: cartoon water from fluid-simulation meshes, rendered with POV-Ray"};
   app.name("toonwater");
   app.require_subcommand(1);
