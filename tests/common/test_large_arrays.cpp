@@ -62,7 +62,8 @@ TEST(LargeArrays, ArraysOfTensOfMegabytesLieInTheHeapOnPagesAdvisedForHugePages)
   set_up_heap_for_large_arrays();
   constexpr std::size_t bytes = std::size_t{64} << 20;  // above glibc's default 32 MB ceiling
   for (int array = 0; array < 2; ++array) {
-    const auto block = std::make_unique<char[]>(bytes);
+    const auto block =
+        std::make_unique_for_overwrite<char[]>(bytes);  // untouched: the map holds it
     for (const char* inside : {block.get(), block.get() + bytes - 1}) {
       const std::optional<Mapping> mapping = mapping_of(inside);
       ASSERT_TRUE(mapping) << "no mapping holds the array";
