@@ -1,5 +1,7 @@
 #include "scene/simplify.hpp"
 
+#include "analyzer/closest_point.hpp"
+
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 // After the mesh: QuadricT.hh uses OpenMesh's vector traits without including them.
@@ -57,28 +59,6 @@ bool straddles(double lo, double hi, const std::vector<double>& levels) {
   for (double level : levels)
     if (lo < hi && lo <= level && level <= hi) return true;
   return false;
-}
-
-// Squared distance from p to the triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
-double point_triangle_squared(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return ap.squaredNorm();
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return bp.squaredNorm();
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).squaredNorm();
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return cp.squaredNorm();
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).squaredNorm();
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).squaredNorm();
-  const double denom = 1.0 / (va + vb + vc);
-  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).squaredNorm();
 }
 
 // A triangle's height over its longest edge, divided by that edge: 1/aspect ratio, 0 when flat.
@@ -309,7 +289,7 @@ class Decimation {
           break;
         }
         new_inverse_aspect = std::min(new_inverse_aspect, inverse_aspect(p1, a, b));
-        nearest2 = std::min(nearest2, point_triangle_squared(p_[v0], p1, a, b));
+        nearest2 = std::min(nearest2, closest_point_on_triangle(p_[v0], p1, a, b).distance2);
       }
       if (!legal || nearest2 > allowed2) continue;
       if (!(new_inverse_aspect > old_inverse_aspect || new_inverse_aspect > 1.0 / max_aspect_ratio))
