@@ -1,11 +1,14 @@
 // Temporal coherence of flow regions; the method is stated in flow_coherence.hpp.
 #include "analyzer/flow_coherence.hpp"
 
+#include "analyzer/closest_point.hpp"
 #include "analyzer/disjoint_sets.hpp"
 #include "common/parallel.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <utility>
 
@@ -45,17 +48,63 @@ SignedParts signed_parts(const TriangleMesh& mesh, std::span<const std::int8_t> 
   return parts;
 }
 
+// Where the previous frame's values are carried from for a vertex at x whose predecessor is p:
+// the point of p's faces closest to x, as its corners and their weights; p alone where it has
+// no face.
+struct CarriedPoint {
+  Triangle corner;
+  Vec3 weight;
+};
+
+CarriedPoint closest_on_faces_around(const FlowFrame& frame, std::int32_t p, const Vec3& x) {
+  CarriedPoint carried{{p, p, p}, Vec3(1, 0, 0)};
+  double closest2 = std::numeric_limits<double>::infinity();
+  for (const std::int32_t f : frame.vertex_faces.of(p)) {
+    const Triangle& t = frame.triangles[static_cast<std::size_t>(f)];
+    const TrianglePoint q = closest_point_on_triangle(x, frame.positions[t[0]],
+                                                      frame.positions[t[1]], frame.positions[t[2]]);
+    if (q.distance2 < closest2) {
+      closest2 = q.distance2;
+      carried = {t, q.weights};
+    }
+  }
+  return carried;
+}
+
+double carried_value(const double* values, const CarriedPoint& from) {
+  return from.weight[0] * values[from.corner[0]] + from.weight[1] * values[from.corner[1]] +
+         from.weight[2] * values[from.corner[2]];
+}
+
+// The free surface's faces in its own numbering (`surface_index`, −1 off it): those with every
+// corner on it.
+std::vector<Triangle> free_surface_faces(const TriangleMesh& mesh,
+                                         std::span<const std::int32_t> surface_index) {
+  std::vector<Triangle> faces;
+  for (const Triangle& t : mesh.triangles) {
+    if (has_repeated_corner(t)) continue;
+    const Triangle face{surface_index[t[0]], surface_index[t[1]], surface_index[t[2]]};
+    if (face[0] >= 0 && face[1] >= 0 && face[2] >= 0) faces.push_back(face);
+  }
+  return faces;
+}
+
 }  // namespace
 
 FlowFrame flow_frame(const TriangleMesh& surface, const CurvatureField&, const FlowRegions& flow) {
   FlowFrame frame;
   frame.edge_length = flow.median_edge_length;
+  std::vector<std::int32_t> surface_index(surface.positions.size(), -1);
   for (std::size_t v = 0; v < surface.positions.size(); ++v) {
     if (flow.free_surface.empty() || !flow.free_surface[v]) continue;
+    surface_index[v] = static_cast<std::int32_t>(frame.positions.size());
     frame.positions.push_back(surface.positions[v]);
     frame.field.push_back(flow.smoothed_field.empty() ? 0.0 : flow.smoothed_field[v]);
+    frame.drawn_field.push_back(flow.field[v]);
     frame.label.push_back(flow.label[v]);
   }
+  frame.triangles = free_surface_faces(surface, surface_index);
+  frame.vertex_faces = build_vertex_faces(frame.positions.size(), frame.triangles);
   return frame;
 }
 
@@ -67,7 +116,11 @@ double label_flicker(const FlowFrame& previous, const TriangleMesh& surface,
   for (std::size_t v = 0; v < surface.positions.size(); ++v) {
     if (flow.free_surface.empty() || !flow.free_surface[v]) continue;
     const std::int32_t p = grid.closest(surface.positions[v]);
-    const std::int8_t before = p >= 0 ? previous.label[p] : std::int8_t{FlowLabel::none};
+    const std::int8_t before =
+        p >= 0
+            ? region_sign(carried_value(previous.drawn_field.data(),
+                                        closest_on_faces_around(previous, p, surface.positions[v])))
+            : std::int8_t{FlowLabel::none};
     total += curvature.area[v];
     if (before != flow.label[v]) changed += curvature.area[v];
   }
@@ -105,6 +158,8 @@ void FlowCoherence::blend(const TriangleMesh& surface, std::span<const double> v
       normals && previous_.shading_normal.size() == previous_.positions.size();
   pending_.label.resize(chunk_begin.back());
   predecessor_.resize(n);
+  carried_label_.resize(n);
+  surface_index_.resize(n);
   turned_over_.resize(n);
   // The pending frame's bounding box, chunk by chunk, from the positions as they are copied:
   // the next frame's grid needs it, and a pass of its own would read them all again.
@@ -113,6 +168,8 @@ void FlowCoherence::blend(const TriangleMesh& surface, std::span<const double> v
     if (!any_surface) {
       std::fill(predecessor_.begin() + static_cast<std::ptrdiff_t>(begin),
                 predecessor_.begin() + static_cast<std::ptrdiff_t>(end), -1);
+      std::fill(surface_index_.begin() + static_cast<std::ptrdiff_t>(begin),
+                surface_index_.begin() + static_cast<std::ptrdiff_t>(end), -1);
       std::fill(turned_over_.begin() + static_cast<std::ptrdiff_t>(begin),
                 turned_over_.begin() + static_cast<std::ptrdiff_t>(end), 0);
       return;
@@ -122,9 +179,13 @@ void FlowCoherence::blend(const TriangleMesh& surface, std::span<const double> v
     const std::uint8_t* const on_surface = flow.free_surface.data();
     const Vec3* const position = surface.positions.data();
     const double* const field_before = previous_.field.data();
+    const double* const drawn_before = previous_.drawn_field.data();
+    const Vec3* const normal_before = previous_.shading_normal.data();
     const std::int8_t* const label_before = previous_.label.data();
     double* const s = field.data();
     std::int32_t* const predecessor = predecessor_.data();
+    std::int8_t* const carried_label = carried_label_.data();
+    std::int32_t* const surface_index = surface_index_.data();
     std::uint8_t* const turned_over = turned_over_.data();
     Vec3* const next_position = pending_.positions.data();
     const PointGrid* const previous_surface = grid ? &*grid : nullptr;
@@ -136,12 +197,17 @@ void FlowCoherence::blend(const TriangleMesh& surface, std::span<const double> v
         Box3::of_no_points();  // in a local: in the vector, each update would wait for a store
     for (std::size_t v = begin; v < end; ++v) {
       predecessor[v] = -1;
+      carried_label[v] = FlowLabel::none;
+      surface_index[v] = -1;
       turned_over[v] = 0;
       if (!on_surface[v]) continue;
       const std::int32_t p = previous_surface ? previous_surface->closest(position[v]) : -1;
       predecessor[v] = p;
       if (p >= 0) {
-        const double now = s[v], before = field_before[p];
+        const CarriedPoint from = closest_on_faces_around(previous_, p, position[v]);
+        const double before = carried_value(field_before, from);
+        carried_label[v] = region_sign(carried_value(drawn_before, from));
+        const double now = s[v];
         // A field that grows (same sign, larger) is followed faster than one that fades, so a
         // crest that moves a cell or more a frame is not averaged away with the calm water it
         // has left.
@@ -149,16 +215,23 @@ void FlowCoherence::blend(const TriangleMesh& surface, std::span<const double> v
         s[v] = (1 - b) * now + b * before;
         turned_over[v] = before * now < 0 && label_before[p] != FlowLabel::none;
         // Undefined normals (zero) are neither blended nor blended into.
+        const auto& [a, b_, c] = from.corner;
         if (normals_before && normal_change_limit > 0.0 && shading_normal[v].squaredNorm() > 0.5 &&
-            previous_.shading_normal[p].squaredNorm() > 0.5) {
-          const Vec3& normal_before = previous_.shading_normal[p];
-          const double change = (shading_normal[v] - normal_before).norm() / normal_change_limit;
-          const double normal_weight = normal_blend * std::max(0.0, 1.0 - change * change);
-          const Vec3 mixed =
-              (1 - normal_weight) * shading_normal[v] + normal_weight * normal_before;
-          if (mixed.squaredNorm() > 0.0) shading_normal[v] = mixed.normalized();
+            normal_before[a].squaredNorm() > 0.5 && normal_before[b_].squaredNorm() > 0.5 &&
+            normal_before[c].squaredNorm() > 0.5) {
+          const Vec3 carried = from.weight[0] * normal_before[a] +
+                               from.weight[1] * normal_before[b_] +
+                               from.weight[2] * normal_before[c];
+          if (carried.squaredNorm() > 0.0) {
+            const Vec3 normal = carried.normalized();
+            const double change = (shading_normal[v] - normal).norm() / normal_change_limit;
+            const double normal_weight = normal_blend * std::max(0.0, 1.0 - change * change);
+            const Vec3 mixed = (1 - normal_weight) * shading_normal[v] + normal_weight * normal;
+            if (mixed.squaredNorm() > 0.0) shading_normal[v] = mixed.normalized();
+          }
         }
       }
+      surface_index[v] = static_cast<std::int32_t>(next);
       next_position[next] = position[v];
       if (normals) pending_.shading_normal[next] = shading_normal[v];
       ++next;
@@ -168,6 +241,9 @@ void FlowCoherence::blend(const TriangleMesh& surface, std::span<const double> v
   });
   pending_bounds_ = Box3::of_no_points();
   for (const Box3& bounds : chunk_bounds) pending_bounds_.add(bounds);
+  // The next frame carries its values from this frame's free surface.
+  pending_.triangles = free_surface_faces(surface, surface_index_);
+  pending_.vertex_faces = build_vertex_faces(pending_.positions.size(), pending_.triangles);
   if (grid) hold_dying_regions(surface, vertex_area, flow, field);
   std::size_t next = 0;
   for (std::size_t v = 0; v < n && any_surface; ++v)
@@ -175,8 +251,8 @@ void FlowCoherence::blend(const TriangleMesh& surface, std::span<const double> v
 }
 
 void FlowCoherence::hold_dying_regions(const TriangleMesh& surface,
-                                       std::span<const double> vertex_area,
-                                       const FlowRegions& flow, std::vector<double>& field) {
+                                       std::span<const double> vertex_area, const FlowRegions& flow,
+                                       std::vector<double>& field) {
   if (std::find(turned_over_.begin(), turned_over_.end(), 1) == turned_over_.end()) return;
   const std::size_t n = field.size();
   // This frame's parts as the blend draws them, and the regions of the frame before that each
@@ -222,22 +298,20 @@ void FlowCoherence::remember(const TriangleMesh& surface, const CurvatureField& 
     // By plain pointers: after the labels' byte stores the compiler would load every vector's
     // address again.
     const std::uint8_t* const on_surface = flow.free_surface.data();
-    const std::int8_t *const label = flow.label.data(), *const label_before =
-                                                            previous_.label.data();
-    const std::int32_t* const predecessor = predecessor_.data();
+    const std::int8_t *const label = flow.label.data(), *const before = carried_label_.data();
     const double* const area = curvature.area.data();
     std::int8_t* const next_label = pending_.label.data();
     const SignedParts regions = signed_parts(surface, flow.label, curvature.area);
     pending_.region.resize(pending_.label.size());
     pending_.region_area = regions.area;
+    pending_.drawn_field.resize(pending_.label.size());
     std::size_t next = 0;
     for (std::size_t v = 0; v < predecessor_.size(); ++v) {
       if (!on_surface[v]) continue;
-      const std::int32_t p = predecessor[v];
-      const std::int8_t before = p >= 0 ? label_before[p] : std::int8_t{FlowLabel::none};
       total += area[v];
-      if (label[v] != before) changed += area[v];
+      if (label[v] != before[v]) changed += area[v];
       pending_.region[next] = regions.part[v];
+      pending_.drawn_field[next] = flow.field[v];
       next_label[next++] = label[v];
     }
   }

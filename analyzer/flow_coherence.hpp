@@ -3,7 +3,12 @@
 // Simulation meshes change topology every frame (marching cubes), so the field of one frame
 // cannot simply be compared with the last one's vertex by vertex. Each frame's free-surface
 // vertices find their closest free-surface vertex of the previous frame within `max_distance`
-// edge lengths (point_grid.hpp) and blend the flow field s (flow_regions.hpp) with it,
+// edge lengths (point_grid.hpp), their predecessor, and carry the previous frame's values from
+// the closest point of the faces around it, interpolated linearly there (closest_point.hpp):
+// the previous surface's own field, sampled where the vertex lies. The predecessor's value alone
+// would snap the field to the previous frame's vertices, and carried frame after frame, with a
+// weight of b, it draws a region's edge as saw teeth a cell deep wherever the water moves. The
+// flow field s (flow_regions.hpp) is blended with the carried one,
 //   s̃ = (1 − b) s + b s̃_prev                      (exponential blend),
 // with b = rise_blend where the field grows (s has s̃_prev's sign and a larger magnitude) and
 // b = blend elsewhere, in the spirit of DeCarlo et al., "Interactive rendering of suggestive
@@ -19,11 +24,14 @@
 // predecessors. A region whose successors cover less than `successor_share` of its area dies;
 // where its field turned over, its sign fades no faster than as if s had gone to 0:
 //   s̃ = sign(s̃_prev) · min(b |s̃_prev|, C),   C = (b^−(k−1) + b^−k) / 2,
-// wherever the blend keeps less. For k = turn_over_frames the cap takes it under the threshold
-// of 1 in frame k + 1, and each frame before keeps the part where it was strongest: the ring
-// shrinks and goes. A region that moves on (a crest running into the trough ahead of it) has its
-// successors and is blended as it is, so it is not held back where it has left. The fading and
-// labels are then taken from s̃ as for a single frame (label_flow_field).
+// wherever the blend keeps less, s̃_prev here the predecessor's own: the region fades where it
+// was, and the water that turned over rose or fell there (a crest a cell high becomes a trough
+// in one frame), which moves the closest point of the surface it left off the crest line. For k =
+// turn_over_frames the cap takes it under the threshold of 1 in frame k + 1, and each frame before
+// keeps the part where it was strongest: the ring shrinks and goes. A region that moves on (a crest
+// running into the trough ahead of it) has its successors and is blended as it is, so it is not
+// held back where it has left. The fading and labels are then taken from s̃ as for a single frame
+// (label_flow_field).
 //
 // Everything stays continuous in time: s̃ moves by a fraction of its change each frame, so a
 // region boundary (the iso-line s̃ = ±1 inside the triangles) slides and never jumps; a region
@@ -33,9 +41,9 @@
 // with a continuous field a value hovering at the threshold moves a boundary by a fraction of a
 // triangle, not a label by a vertex.
 //
-// The shading normals that choose the toon bands (flow_regions.hpp) are blended the same way
-// where they change by no more than the noise, and normalised: ñ = (1 − b) n + b ñ_prev with
-// b = normal_blend · max(0, 1 − (|n − ñ_prev| / (z σ))²), σ the frame's normal noise floor and
+// The shading normals that choose the toon bands (flow_regions.hpp) are carried and blended the
+// same way where they change by no more than the noise, and normalised: ñ = (1 − b) n + b ñ_prev
+// with b = normal_blend · max(0, 1 − (|n − ñ_prev| / (z σ))²), σ the frame's normal noise floor and
 // z = normal_noise_multiple. A band edge on settling water then moves with the water rather
 // than with the mesh's sub-cell noise, which each frame draws afresh (for b = 0.5 the noise's
 // spread falls by sqrt((1 − b)/(1 + b)) = 0.58), while a wave that moves, turning the normals by
@@ -43,13 +51,17 @@
 // averaged with the calm water it runs into.
 //
 // Flicker is measured as the share of free-surface area (mixed Voronoi areas) whose label
-// differs from its closest predecessor's.
+// differs from the one the previous frame drew where the vertex lies: the label of its drawn
+// field, carried as above. The label of the closest vertex instead would favour the snapping
+// the carrying avoids (a field copied from the closest vertex keeps that vertex's label,
+// wherever the region's edge is drawn).
 #pragma once
 
 #include "analyzer/curvature.hpp"
 #include "analyzer/flow_regions.hpp"
 #include "analyzer/mesh.hpp"
 #include "analyzer/point_grid.hpp"
+#include "analyzer/topology.hpp"
 
 #include <cstdint>
 #include <span>
@@ -59,8 +71,8 @@ namespace toonwater {
 
 struct CoherenceOptions {
   double blend = 0.8;  // weight of the carried-over (already blended) field: lag b/(1 − b) frames
-  double rise_blend = 0.5;    // the same where the field grows (same sign, larger magnitude)
-  int turn_over_frames = 2;   // a dying region whose field turns over fades for this many frames
+  double rise_blend = 0.5;       // the same where the field grows (same sign, larger magnitude)
+  int turn_over_frames = 2;      // a dying region whose field turns over fades for this many frames
   double successor_share = 0.5;  // a region whose successors cover less of its area dies
   double normal_blend = 0.5;  // the same for the shading normals, where they change by noise only
   double normal_noise_multiple = 3.0;  // z: a change of z noise floors is motion, not blended
@@ -71,7 +83,10 @@ struct CoherenceOptions {
 struct FlowFrame {
   std::vector<Vec3> positions;
   std::vector<double> field;         // s̃: blended, before the specks are faded
+  std::vector<double> drawn_field;   // s as drawn: after the fading, regions where |s| >= 1
   std::vector<Vec3> shading_normal;  // blended
+  std::vector<Triangle> triangles;   // faces with every corner on the free surface
+  VertexFaces vertex_faces;          // of `triangles`
   std::vector<std::int8_t> label;
   std::vector<std::int32_t> region;  // the drawn region (connected, one label); −1: none
   std::vector<double> region_area;   // per region
@@ -111,8 +126,10 @@ class FlowCoherence {
 
   CoherenceOptions options_;
   FlowFrame previous_, pending_;
-  Box3 previous_bounds_, pending_bounds_;  // of the frames' positions, for the grid
-  std::vector<std::int32_t> predecessor_;  // per vertex of the pending frame, −1: none
+  Box3 previous_bounds_, pending_bounds_;   // of the frames' positions, for the grid
+  std::vector<std::int32_t> predecessor_;   // per vertex of the pending frame, −1: none
+  std::vector<std::int8_t> carried_label_;  // per vertex: the label drawn there in the frame before
+  std::vector<std::int32_t> surface_index_;  // per vertex: its place in pending_, −1: none
   std::vector<std::uint8_t> turned_over_;  // per vertex: s has the other sign than a drawn s̃_prev
   bool has_previous_ = false;
   std::vector<double> noise_floors_;
@@ -120,7 +137,7 @@ class FlowCoherence {
 };
 
 // Flicker between two labelled frames without coherence: the share of `current`'s free-surface
-// area whose label differs from its closest free-surface vertex's in `previous`.
+// area whose label differs from the one `previous` drew where its vertex lies (the header).
 double label_flicker(const FlowFrame& previous, const TriangleMesh& surface,
                      const CurvatureField& curvature, const FlowRegions& flow);
 

@@ -115,6 +115,58 @@ Analysis analyze_frame(const TriangleMesh& mesh) {
   return analyze_mesh(mesh, options);
 }
 
+// A flat free surface of n × n vertices over [−1, 1]², moved by (dx, dy), with a field f on it,
+// labelled nowhere: the input blend() and remember() take.
+struct PlainFrame {
+  TriangleMesh mesh;
+  CurvatureField curvature;
+  FlowRegions flow;
+};
+
+PlainFrame plain_frame(int n, double dx, double dy, const HeightFunction& f) {
+  PlainFrame frame;
+  frame.mesh = height_field(n, [](double, double) { return 0.0; });
+  const std::size_t vertices = frame.mesh.positions.size();
+  for (Vec3& p : frame.mesh.positions) p += Vec3(dx, dy, 0.0);
+  frame.curvature.area.assign(vertices, 1.0);
+  frame.flow.free_surface.assign(vertices, 1);
+  frame.flow.label.assign(vertices, FlowLabel::none);
+  frame.flow.median_edge_length = 2.0 / (n - 1);
+  for (const Vec3& p : frame.mesh.positions) frame.flow.field.push_back(f(p.x(), p.y()));
+  return frame;
+}
+
+// The field carried from the previous frame is that frame's own field where each vertex now lies,
+// interpolated over its faces, not the value of its closest vertex: a field linear in space,
+// sampled on a mesh that moved by a fraction of an edge, is carried exactly. Carrying the
+// closest vertex's value would be off by up to half an edge times the field's slope, and, frame
+// after frame, would draw the regions' edges as saw teeth along the vertices.
+TEST(FlowCoherence, CarriesThePreviousFieldFromWhereTheVertexLiesNotFromItsClosestVertex) {
+  const HeightFunction linear = [](double x, double y) { return -5.0 + 0.3 * x + 0.2 * y; };
+  const int n = 41;
+  const double edge = 2.0 / (n - 1);
+  FlowCoherence coherence;
+  PlainFrame first = plain_frame(n, 0.0, 0.0, linear);
+  std::vector<double> field = first.flow.field;
+  std::vector<Vec3> no_normals;
+  coherence.blend(first.mesh, first.curvature.area, first.flow, field, no_normals);
+  coherence.remember(first.mesh, first.curvature, first.flow);
+
+  PlainFrame moved = plain_frame(n, 0.37 * edge, 0.21 * edge, linear);
+  field = moved.flow.field;
+  coherence.blend(moved.mesh, moved.curvature.area, moved.flow, field, no_normals);
+  double largest_error = 0.0;
+  int inside = 0;
+  for (std::size_t v = 0; v < field.size(); ++v) {
+    const Vec3& p = moved.mesh.positions[v];
+    if (std::abs(p.x()) > 0.9 || std::abs(p.y()) > 0.9) continue;  // beyond the first frame
+    largest_error = std::max(largest_error, std::abs(field[v] - moved.flow.field[v]));
+    ++inside;
+  }
+  ASSERT_GT(inside, 1000);
+  EXPECT_LT(largest_error, 1e-12);
+}
+
 // A row of three swells along y at x = x0, with small per-frame noise standing in for the
 // simulator's frame-to-frame jitter.
 TriangleMesh wave_frame(int n, double x0, double noise, unsigned seed) {
@@ -303,8 +355,8 @@ TEST(FlowCoherence, ACrestThatTurnsIntoATroughShrinksOverAFewFramesAndGoes) {
   struct Collapse {
     double crest, trough, width;
   };
-  for (const Collapse& c : {Collapse{0.02, 0.02, 0.1}, Collapse{0.015, 0.015, 0.06},
-                            Collapse{0.008, 0.03, 0.06}}) {
+  for (const Collapse& c :
+       {Collapse{0.02, 0.02, 0.1}, Collapse{0.015, 0.015, 0.06}, Collapse{0.008, 0.03, 0.06}}) {
     SCOPED_TRACE(testing::Message() << c.crest << " " << c.trough << " " << c.width);
     FlowCoherence coherence;
     std::vector<double> ridge, valley;
