@@ -2,7 +2,9 @@
 // "Real-Time Collision Detection", 2005, section 5.1.5): the point's projection on the
 // triangle's plane when it falls inside the triangle, else the closest point of the edge or
 // corner whose Voronoi region holds it. Weights are non-negative and sum to 1, so a value
-// interpolated with them lies within the corners' values.
+// interpolated with them lies within the corners' values. A triangle with two corners at one
+// place may give weights that are not numbers, and then a distance that is none either: a caller
+// that keeps the face of least distance (`<`) passes over it.
 #pragma once
 
 #include "analyzer/mesh.hpp"
