@@ -6,7 +6,6 @@
 #include "common/parallel.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
