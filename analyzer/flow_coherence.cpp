@@ -70,7 +70,9 @@ CarriedPoint closest_on_faces_around(const FlowFrame& frame, std::int32_t p, con
   return carried;
 }
 
-double carried_value(const double* values, const CarriedPoint& from) {
+// A per-vertex value (the field, a normal) of the previous frame at the carried point.
+template <class Value>
+Value carried_value(const Value* values, const CarriedPoint& from) {
   return from.weight[0] * values[from.corner[0]] + from.weight[1] * values[from.corner[1]] +
          from.weight[2] * values[from.corner[2]];
 }
@@ -218,9 +220,7 @@ void FlowCoherence::blend(const TriangleMesh& surface, std::span<const double> v
         if (normals_before && normal_change_limit > 0.0 && shading_normal[v].squaredNorm() > 0.5 &&
             normal_before[a].squaredNorm() > 0.5 && normal_before[b_].squaredNorm() > 0.5 &&
             normal_before[c].squaredNorm() > 0.5) {
-          const Vec3 carried = from.weight[0] * normal_before[a] +
-                               from.weight[1] * normal_before[b_] +
-                               from.weight[2] * normal_before[c];
+          const Vec3 carried = carried_value(normal_before, from);
           if (carried.squaredNorm() > 0.0) {
             const Vec3 normal = carried.normalized();
             const double change = (shading_normal[v] - normal).norm() / normal_change_limit;
