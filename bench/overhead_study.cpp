@@ -7,7 +7,8 @@
 //   overhead_study [--frames FIRST-LAST] [--strokes] WATER CELL X0,Y0,Z0,X1,Y1,Z1 [OBJECT ...]
 //
 // --strokes measures issue #29's stroke steadiness instead (run_stroke_study): one line a
-// frame, then the median share of stroke pixels lost from one frame to the next.
+// frame, then the median shares of stroke pixels lost (none within 2 px in the next frame) and
+// gone (none within a cell).
 //
 // WATER and OBJECT are file patterns (####: the frame) in one coordinate system, Z up; CELL is
 // the simulation's cell; the box is the tank (its sides across Z are walls, Z1 about the water's
@@ -48,23 +49,27 @@ int stroke_study(const std::string& pattern, const toonwater::report::OverheadOp
                  const fs::path& work) {
   const std::vector<toonwater::report::StrokeFrame> frames =
       toonwater::report::run_stroke_study(pattern, options, work);
-  std::vector<double> lost;
+  std::vector<double> lost, gone;
   std::vector<std::size_t> strokes, pieces;
   std::size_t drawn = 0;
-  std::printf("frame,stroke_pixels,strokes,stroke_pieces,lost_share\n");
+  std::printf("frame,stroke_pixels,strokes,stroke_pieces,lost_share,gone_share\n");
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const toonwater::report::StrokeFrame& f = frames[i];
-    std::printf("%ld,%zu,%zu,%zu,%.4f\n", f.frame, f.stroke_pixels, f.strokes, f.stroke_pieces,
-                f.lost_share);
-    if (i + 1 < frames.size() && f.stroke_pixels > 0) lost.push_back(f.lost_share);
+    std::printf("%ld,%zu,%zu,%zu,%.4f,%.4f\n", f.frame, f.stroke_pixels, f.strokes, f.stroke_pieces,
+                f.lost_share, f.gone_share);
+    if (i + 1 < frames.size() && f.stroke_pixels > 0) {
+      lost.push_back(f.lost_share);
+      gone.push_back(f.gone_share);
+    }
     strokes.push_back(f.strokes);
     pieces.push_back(f.stroke_pieces);
     drawn += f.stroke_pixels > 0;
   }
   std::printf(
-      "# %zu frames, strokes drawn in %zu; median share of stroke pixels lost %.3f; "
-      "median strokes %zu, in %zu pieces\n",
-      frames.size(), drawn, median_share(lost), median(strokes), median(pieces));
+      "# %zu frames, strokes drawn in %zu; median share of stroke pixels lost %.3f, gone "
+      "%.3f; median strokes %zu, in %zu pieces\n",
+      frames.size(), drawn, median_share(lost), median_share(gone), median(strokes),
+      median(pieces));
   return 0;
 }
 

@@ -217,6 +217,9 @@ std::vector<StrokeFrame> run_stroke_study(const std::string& pattern,
                                           const fs::path& work_dir) {
   constexpr int kReach = 2;  // pixels: a stroke pixel is kept when the next frame has one this near
   OverheadView view = overhead_view(options);
+  // A stroke that moves with the water by up to a cell a frame is still there; one with no
+  // stroke pixel within a cell in the next frame has gone.
+  const int cell_reach = std::max(kReach, static_cast<int>(std::lround(options.cell / view.pixel)));
   SceneConfig& config = view.config;
   config.water.bright = config.water.medium = config.water.dark = {0.5, 0.5, 0.5};
   config.flow.style = FlowStyle::lines;
@@ -237,10 +240,14 @@ std::vector<StrokeFrame> run_stroke_study(const std::string& pattern,
         stroke[static_cast<std::size_t>(y) * width + x] =
             std::abs(p[0] - 1.0f) + p[1] + p[2] < 0.1f;
       }
-    if (!frames.empty() && frames.back().stroke_pixels > 0)
+    if (!frames.empty() && frames.back().stroke_pixels > 0) {
+      const auto pixels = static_cast<double>(frames.back().stroke_pixels);
       frames.back().lost_share =
-          static_cast<double>(pixels_without_neighbour(previous, stroke, width, kReach)) /
-          static_cast<double>(frames.back().stroke_pixels);
+          static_cast<double>(pixels_without_neighbour(previous, stroke, width, kReach)) / pixels;
+      frames.back().gone_share =
+          static_cast<double>(pixels_without_neighbour(previous, stroke, width, cell_reach)) /
+          pixels;
+    }
     StrokeFrame f;
     f.frame = frame;
     // The strokes the scene draws: the Toon_stroke calls of the frame's water include.

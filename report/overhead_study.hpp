@@ -11,7 +11,8 @@
 //
 // The stroke study (issue #29) draws the same frames with `flow.style = "lines"`, strokes in
 // pure red on flat grey water, and measures the strokes' steadiness: the share of a frame's
-// stroke pixels with no stroke pixel within 2 px in the next frame.
+// stroke pixels with no stroke pixel within 2 px in the next frame (lost), and within one cell
+// (gone: a stroke that moves with the water by up to a cell a frame is lost, not gone).
 #pragma once
 
 #include "analyzer/mesh.hpp"
@@ -53,6 +54,7 @@ struct StrokeFrame {
   std::size_t strokes = 0;        // drawn by the scene
   std::size_t stroke_pieces = 0;  // 8-connected pieces of stroke pixels
   double lost_share = 0;  // of stroke_pixels, none within 2 px in the next frame; 0 for the last
+  double gone_share = 0;  // of stroke_pixels, none within a cell in the next frame; 0 for the last
 };
 
 // Scenes and frames go under `work_dir`. Throws std::runtime_error when a frame fails to render.
