@@ -106,7 +106,7 @@ const std::vector<std::string>& scenario_names() {
   return names;
 }
 
-int default_resolution(const std::string& scenario) { return scenario == "refraction" ? 96 : 128; }
+int default_resolution(const std::string& scenario) { return scenario == "refraction" ? 96 : 256; }
 
 std::string frame_file_name(const std::string& stem, int frame) {
   std::string number = std::to_string(frame);
