@@ -52,15 +52,21 @@ bool near(const FlowLine& line, const Vec3& p, double distance) {
 }
 
 // Whether a stroke's successor covers the carried stroke's point p: it passes within `match`
-// of p, and p lies no further than `beyond` past one of its open ends. A successor that has
-// moved sideways covers the whole stroke, which it replaces; one that has grown shorter does
-// not cover the part past its end, which fades where it was instead of vanishing.
-bool covered_by_successor(const FlowLine& successor, const Vec3& p, double match, double beyond) {
+// of p, and where p lies past one of its open ends E, p is no further than `beyond` past E along
+// the successor and no further from E, by more than `beyond`, than E is from the carried stroke.
+// A successor that has moved sideways covers the whole stroke, which it replaces; one that has
+// grown shorter, or no longer follows a bend past its end, does not cover the part past its end,
+// which fades where it was instead of vanishing.
+bool covered_by_successor(const FlowLine& successor, const FlowLine& carried, const Vec3& p,
+                          double match, double beyond) {
   const ClosestPoint c = closest_point(successor, p);
   if ((c.point - p).squaredNorm() > match * match) return false;
   if (!c.outward) return true;
   const double length = c.outward->norm();
-  return !(length > 0.0) || (p - c.point).dot(*c.outward) / length <= beyond;
+  if (!(length > 0.0)) return true;
+  const double end_shift = (closest_on(carried, c.point) - c.point).norm();
+  return (p - c.point).dot(*c.outward) / length <= beyond &&
+         (p - c.point).norm() <= end_shift + beyond;
 }
 
 // The share of a's points within `distance` of b.
@@ -193,7 +199,7 @@ std::vector<FlowLine> StrokePersistence::update(const TriangleMesh& mesh, const 
       for (std::size_t i = 0; i < drawn && uncovered[k]; ++i) {
         if (!(next[i].strength > 0.0) || next[i].line.sign != c.line.sign) continue;
         if (successor[j] == static_cast<std::int64_t>(i)
-                ? covered_by_successor(next[i].line, p, match, cover)
+                ? covered_by_successor(next[i].line, c.line, p, match, cover)
                 : near(next[i].line, p, cover))
           uncovered[k] = 0;
       }

@@ -24,12 +24,13 @@
 //    stroke that neither its successor (the fresh stroke matched to it) covers nor another
 //    drawn stroke comes within `cover_distance` of stay where they were, losing 1/fade_frames
 //    a frame until they are gone. The successor covers the points it passes within
-//    `match_distance` of, but for those more than `cover_distance` past one of its open ends:
-//    moved sideways, it replaces the whole stroke; grown shorter, it leaves the part past its
-//    end to fade. Strokes thus thin out where they were rather than disappear or snap back, and
-//    a stroke drawn nearby does not hide one fading beside it.
-//    The strokes of a sequence's first frame, which has nothing to be coherent with, start at
-//    full strength.
+//    `match_distance` of, but for those past one of its open ends by more than
+//    `cover_distance`, along it or in distance beyond the end's own distance from the carried
+//    stroke: moved sideways, it replaces the whole stroke; grown shorter, or no longer
+//    following a bend past its end, it leaves the part past its end to fade. Strokes thus thin out
+//    where they were rather than disappear or snap back, and a stroke drawn nearby does not hide
+//    one fading beside it. The strokes of a sequence's first frame, which has nothing to be
+//    coherent with, start at full strength.
 #pragma once
 
 #include "analyzer/flow_lines.hpp"

@@ -184,6 +184,25 @@ TEST(StrokePersistence, ASuccessorMovedSidewaysAndShorterLeavesOnlyThePartPastIt
   EXPECT_NEAR(rest.points.back().x(), 35.0, 1e-12);
 }
 
+TEST(StrokePersistence, ABendPastTheSuccessorsEndFadesOnItsOwn) {
+  const Water w = flat_water();
+  FlowLine hook = crest(10, 5, 20);  // along x, then bending away along y at x = 20
+  for (double y = 11; y <= 18 + 1e-9; y += 1.0) hook.points.emplace_back(20.0, y, 0.0);
+  set_taper(hook, kTaper);
+  StrokePersistence persistence;
+  for (int frame = 0; frame < 3; ++frame) persistence.update(w.mesh, w.flow, {hook}, kTaper);
+  const std::vector<FlowLine> drawn =
+      persistence.update(w.mesh, w.flow, {crest(10, 5, 20)}, kTaper);
+  ASSERT_EQ(drawn.size(), 2u) << "the successor and the bend, which it does not follow";
+  const FlowLine& bend = drawn[1];
+  EXPECT_NEAR(widest(bend), 1.0 - 1.0 / StrokePersistenceOptions{}.fade_frames, 1e-12);
+  // From the first point more than cover_distance from the successor's end to the hook's end.
+  const double cover = StrokePersistenceOptions{}.cover_distance;
+  EXPECT_GT(bend.points.front().y(), 10.0 + cover);
+  EXPECT_LE(bend.points.front().y(), 10.0 + cover + 1.0);
+  EXPECT_NEAR(bend.points.back().y(), 18.0, 1e-12);
+}
+
 TEST(StrokePersistence, AStrokeWhoseWaterHasGoneIsNotKept) {
   StrokePersistence persistence;
   const Water here = flat_water(), elsewhere = flat_water(100.0);
