@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace toonwater::readers {
@@ -338,6 +339,31 @@ class AsciiReader {
 
 // ---- binary: fixed-size scalars in the file's byte order ------------------------------------
 
+// fn.template operator()<T>() with T the C++ type of a PLY type (float64 after the switch, so
+// that every path returns).
+template <class Fn>
+auto dispatch(PlyType type, Fn&& fn) {
+  switch (type) {
+    case PlyType::int8:
+      return fn.template operator()<std::int8_t>();
+    case PlyType::uint8:
+      return fn.template operator()<std::uint8_t>();
+    case PlyType::int16:
+      return fn.template operator()<std::int16_t>();
+    case PlyType::uint16:
+      return fn.template operator()<std::uint16_t>();
+    case PlyType::int32:
+      return fn.template operator()<std::int32_t>();
+    case PlyType::uint32:
+      return fn.template operator()<std::uint32_t>();
+    case PlyType::float32:
+      return fn.template operator()<float>();
+    case PlyType::float64:
+      break;
+  }
+  return fn.template operator()<double>();
+}
+
 class BinaryReader {
  public:
   BinaryReader(const SourceFile& file, std::string_view body, bool big_endian,
@@ -406,55 +432,23 @@ class BinaryReader {
   template <class T>
   T read_raw() {
     if (static_cast<std::size_t>(end_ - position_) < sizeof(T)) truncated();
-    std::array<char, sizeof(T)> bytes;
-    std::memcpy(bytes.data(), position_, sizeof(T));
-    if (swap_bytes_) std::reverse(bytes.begin(), bytes.end());
+    const T value = load<T>(position_);
     position_ += sizeof(T);
-    return std::bit_cast<T>(bytes);
+    return value;
   }
 
   double read_number(PlyType type) {
-    switch (type) {
-      case PlyType::int8:
-        return read_raw<std::int8_t>();
-      case PlyType::uint8:
-        return read_raw<std::uint8_t>();
-      case PlyType::int16:
-        return read_raw<std::int16_t>();
-      case PlyType::uint16:
-        return read_raw<std::uint16_t>();
-      case PlyType::int32:
-        return read_raw<std::int32_t>();
-      case PlyType::uint32:
-        return read_raw<std::uint32_t>();
-      case PlyType::float32:
-        return read_raw<float>();
-      case PlyType::float64:
-        return read_raw<double>();
-    }
-    return 0;
+    return dispatch(type, [&]<class T>() { return static_cast<double>(read_raw<T>()); });
   }
 
   // Counts and indices, which the header check guarantees to be of an integer type.
   std::int64_t read_integer(PlyType type) {
-    switch (type) {
-      case PlyType::int8:
-        return read_raw<std::int8_t>();
-      case PlyType::uint8:
-        return read_raw<std::uint8_t>();
-      case PlyType::int16:
-        return read_raw<std::int16_t>();
-      case PlyType::uint16:
-        return read_raw<std::uint16_t>();
-      case PlyType::int32:
-        return read_raw<std::int32_t>();
-      case PlyType::uint32:
-        return read_raw<std::uint32_t>();
-      case PlyType::float32:
-      case PlyType::float64:
-        break;
-    }
-    return 0;
+    return dispatch(type, [&]<class T>() -> std::int64_t {
+      if constexpr (std::is_integral_v<T>)
+        return read_raw<T>();
+      else
+        return 0;
+    });
   }
 
   std::int64_t list_count(const PlyProperty& property) {
@@ -490,54 +484,17 @@ class BinaryReader {
     return std::bit_cast<T>(bytes);
   }
 
-  // Calls fn.template operator()<T>() with the C++ type of an integer PLY type.
+  // dispatch for an integer PLY type; a float type, which the header check excludes where this
+  // is called, calls nothing.
   template <class Fn>
   static void dispatch_integer(PlyType type, Fn&& fn) {
-    switch (type) {
-      case PlyType::int8:
-        fn.template operator()<std::int8_t>();
-        return;
-      case PlyType::uint8:
-        fn.template operator()<std::uint8_t>();
-        return;
-      case PlyType::int16:
-        fn.template operator()<std::int16_t>();
-        return;
-      case PlyType::uint16:
-        fn.template operator()<std::uint16_t>();
-        return;
-      case PlyType::int32:
-        fn.template operator()<std::int32_t>();
-        return;
-      case PlyType::uint32:
-        fn.template operator()<std::uint32_t>();
-        return;
-      case PlyType::float32:
-      case PlyType::float64:
-        break;
-    }
+    dispatch(type, [&]<class T>() {
+      if constexpr (std::is_integral_v<T>) fn.template operator()<T>();
+    });
   }
 
   double load_number(PlyType type, const char* at) const {
-    switch (type) {
-      case PlyType::int8:
-        return load<std::int8_t>(at);
-      case PlyType::uint8:
-        return load<std::uint8_t>(at);
-      case PlyType::int16:
-        return load<std::int16_t>(at);
-      case PlyType::uint16:
-        return load<std::uint16_t>(at);
-      case PlyType::int32:
-        return load<std::int32_t>(at);
-      case PlyType::uint32:
-        return load<std::uint32_t>(at);
-      case PlyType::float32:
-        return load<float>(at);
-      case PlyType::float64:
-        return load<double>(at);
-    }
-    return 0;
+    return dispatch(type, [&]<class T>() { return static_cast<double>(load<T>(at)); });
   }
 
   // Vertex records of fixed size (no list property): straight into the position array. The
