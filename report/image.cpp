@@ -1,5 +1,6 @@
 #include "report/image.hpp"
 
+#include "analyzer/disjoint_sets.hpp"
 #include "images/image_codec.hpp"
 
 #include <stdexcept>
@@ -33,6 +34,25 @@ std::size_t pixels_without_neighbour(const std::vector<std::uint8_t>& from,
       lost += !kept;
     }
   return lost;
+}
+
+std::size_t pieces_of(const std::vector<std::uint8_t>& mask, int width) {
+  const int height = width > 0 ? static_cast<int>(mask.size()) / width : 0;
+  DisjointSets pieces(mask.size());
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const auto i = static_cast<std::int32_t>(y * width + x);
+      if (!mask[i]) continue;
+      for (const auto& [dx, dy] : {std::pair{1, 0}, {0, 1}, {-1, 1}, {1, 1}}) {
+        const int xx = x + dx, yy = y + dy;
+        const auto j = static_cast<std::int32_t>(yy * width + xx);
+        if (xx >= 0 && xx < width && yy < height && mask[j]) pieces.join(i, j);
+      }
+    }
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    count += mask[i] && pieces.root(static_cast<std::int32_t>(i)) == static_cast<std::int32_t>(i);
+  return count;
 }
 
 }  // namespace toonwater::report

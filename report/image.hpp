@@ -28,4 +28,8 @@ Image read_rgb(const std::filesystem::path& path);
 std::size_t pixels_without_neighbour(const std::vector<std::uint8_t>& from,
                                      const std::vector<std::uint8_t>& to, int width, int reach);
 
+// How many pieces the pixels set in `mask` (row-major, `width` wide) make, joined across their
+// sides and corners (8-connected).
+std::size_t pieces_of(const std::vector<std::uint8_t>& mask, int width);
+
 }  // namespace toonwater::report

@@ -38,20 +38,17 @@ std::vector<std::int8_t> classify(const Image& image) {
   return classes;
 }
 
-// The pieces of pixels of one class (not `other`), joined across their sides, and across their
-// corners too when `corners`.
-DisjointSets join_pieces(const std::vector<std::int8_t>& classes, int width, int height,
-                         bool corners) {
+// The pieces of pixels of one class (not `other`), joined across their sides.
+DisjointSets join_pieces(const std::vector<std::int8_t>& classes, int width, int height) {
   DisjointSets pieces(classes.size());
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const auto i = static_cast<std::int32_t>(y * width + x);
       if (classes[i] == other) continue;
-      for (const auto& [dx, dy] : {std::pair{1, 0}, {0, 1}, {-1, 1}, {1, 1}}) {
-        if (!corners && dx != 0 && dy != 0) continue;
+      for (const auto& [dx, dy] : {std::pair{1, 0}, {0, 1}}) {
         const int xx = x + dx, yy = y + dy;
         const auto j = static_cast<std::int32_t>(yy * width + xx);
-        if (xx >= 0 && xx < width && yy < height && classes[j] == classes[i]) pieces.join(i, j);
+        if (xx < width && yy < height && classes[j] == classes[i]) pieces.join(i, j);
       }
     }
   return pieces;
@@ -61,7 +58,7 @@ DisjointSets join_pieces(const std::vector<std::int8_t>& classes, int width, int
 std::vector<std::size_t> piece_sizes(const std::vector<std::int8_t>& classes, int width,
                                      int height) {
   const std::size_t n = classes.size();
-  DisjointSets pieces = join_pieces(classes, width, height, false);
+  DisjointSets pieces = join_pieces(classes, width, height);
   std::vector<std::size_t> size(n, 0), of_pixel(n, 0);
   for (std::size_t i = 0; i < n; ++i)
     if (classes[i] != other) ++size[pieces.root(static_cast<std::int32_t>(i))];
@@ -257,13 +254,8 @@ std::vector<StrokeFrame> run_stroke_study(const std::string& pattern,
     for (std::size_t at = include.find("Toon_stroke("); at != std::string::npos;
          at = include.find("Toon_stroke(", at + 1))
       ++f.strokes;
-    std::vector<std::int8_t> classes(stroke.size(), other);
-    for (std::size_t i = 0; i < stroke.size(); ++i)
-      if (stroke[i]) classes[i] = ridge, ++f.stroke_pixels;  // one class for every stroke
-    DisjointSets pieces = join_pieces(classes, width, height, true);
-    for (std::size_t i = 0; i < stroke.size(); ++i)
-      f.stroke_pieces +=
-          stroke[i] && pieces.root(static_cast<std::int32_t>(i)) == static_cast<std::int32_t>(i);
+    f.stroke_pixels = static_cast<std::size_t>(std::count(stroke.begin(), stroke.end(), 1));
+    f.stroke_pieces = pieces_of(stroke, width);
     frames.push_back(f);
     previous = std::move(stroke);
   }
