@@ -3,6 +3,8 @@
 
 #include "analyzer/disjoint_sets.hpp"
 
+#include <Eigen/Cholesky>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -64,6 +66,34 @@ void smooth_in_tangent_planes(std::vector<Vec3>& points, const std::vector<Vec3>
   }
 }
 
+// How far across the crest, along `across`, the field's crest lies from vertex v: the peak of
+// the parabola f(s) = a + b·s + c·s² fitted by least squares to sign·field over v and its
+// one-ring, s the offset along `across`, when it opens downwards; held within half the ring's
+// reach on the peak's side, beyond which a neighbour is the crest's vertex.
+double crest_offset(const TriangleMesh& mesh, const std::vector<double>& field, double sign,
+                    std::int32_t v, const std::vector<std::int32_t>& ring, const Vec3& across) {
+  Eigen::Matrix3d normal_matrix = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d right = Eigen::Vector3d::Zero();
+  double reach_below = 0.0, reach_above = 0.0;
+  auto add = [&](double offset, double value) {
+    const Eigen::Vector3d row(1.0, offset, offset * offset);
+    normal_matrix += row * row.transpose();
+    right += row * value;
+  };
+  add(0.0, sign * field[v]);
+  for (std::int32_t w : ring) {
+    const double offset = (mesh.positions[w] - mesh.positions[v]).dot(across);
+    add(offset, sign * field[w]);
+    reach_below = std::min(reach_below, offset);
+    reach_above = std::max(reach_above, offset);
+  }
+  if (!(reach_below < 0.0 && reach_above > 0.0)) return 0.0;  // no neighbour on one side
+  const Eigen::Vector3d abc = normal_matrix.ldlt().solve(right);
+  if (!abc.allFinite() || !(abc[2] < 0.0)) return 0.0;
+  const double peak = -abc[1] / (2.0 * abc[2]);
+  return std::isfinite(peak) ? std::clamp(peak, 0.5 * reach_below, 0.5 * reach_above) : 0.0;
+}
+
 }  // namespace
 
 std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const FlowRegions& flow,
@@ -111,6 +141,12 @@ std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const FlowRegions& 
   // An edge inside the mesh is met from both its faces and is listed twice: the duplicate
   // neighbours do no harm to the shortest paths, and an edge on the mesh's border is met once.
 
+  // The narrow regions' crests: the vertices each stroke runs through.
+  struct Crest {
+    std::int8_t sign;  // FlowLabel
+    std::vector<std::int32_t> path;
+  };
+  std::vector<Crest> crests;
   std::vector<FlowLine> lines;
   std::vector<double> wide = flow.field;  // the narrow regions taken out, for the contours
   for (const RegionGraph& g : graphs) {
@@ -141,16 +177,46 @@ std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const FlowRegions& 
     std::size_t first = 0, last = path.size();
     while (last - first > 2 && strength(path[first]) < strength(path[first + 1])) ++first;
     while (last - first > 2 && strength(path[last - 1]) < strength(path[last - 2])) --last;
-    FlowLine line;
-    line.sign = flow.label[g.vertices[a]];
-    std::vector<Vec3> normal;
-    for (std::size_t i = first; i < last; ++i) {
-      line.points.push_back(mesh.positions[path[i]]);
-      normal.push_back(flow.shading_normal.size() == n ? flow.shading_normal[path[i]]
-                                                       : Vec3::Zero());
-    }
     for (std::int32_t v : g.vertices) wide[v] = 0.0;
-    if (line.points.size() < 2) continue;
+    if (last - first < 2) continue;
+    crests.push_back(Crest{flow.label[g.vertices[a]],
+                           std::vector<std::int32_t>(path.begin() + first, path.begin() + last)});
+  }
+
+  // The one-rings of the crests' vertices, to place each point on the crest between them.
+  std::vector<std::int32_t> ring_of(crests.empty() ? 0 : n, -1);
+  std::vector<std::vector<std::int32_t>> ring;
+  for (const Crest& crest : crests)
+    for (std::int32_t v : crest.path)
+      if (ring_of[v] < 0) ring_of[v] = static_cast<std::int32_t>(ring.size()), ring.emplace_back();
+  for (const Triangle& t : mesh.triangles)
+    for (int c = 0; c < 3 && !ring.empty(); ++c)
+      if (ring_of[t[c]] >= 0)
+        for (int k = 1; k < 3; ++k) ring[ring_of[t[c]]].push_back(t[(c + k) % 3]);
+  for (std::vector<std::int32_t>& r : ring) {  // an edge inside the mesh is met from both faces
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+  }
+  for (const Crest& crest : crests) {
+    FlowLine line;
+    line.sign = crest.sign;
+    const double sign = crest.sign == FlowLabel::valley ? -1.0 : 1.0;
+    std::vector<Vec3> normal;
+    const std::size_t count = crest.path.size();
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::int32_t v = crest.path[i];
+      const Vec3 n_v = flow.shading_normal.size() == n ? flow.shading_normal[v] : Vec3::Zero();
+      const Vec3 along = mesh.positions[crest.path[std::min(i + 1, count - 1)]] -
+                         mesh.positions[crest.path[i > 0 ? i - 1 : 0]];
+      Vec3 across = n_v.cross(along);
+      Vec3 point = mesh.positions[v];
+      if (across.norm() > 0.0) {
+        across.normalize();
+        point += crest_offset(mesh, flow.field, sign, v, ring[ring_of[v]], across) * across;
+      }
+      line.points.push_back(point);
+      normal.push_back(n_v);
+    }
     smooth_in_tangent_planes(line.points, normal);
     set_taper(line, taper_length);
     lines.push_back(std::move(line));

@@ -17,10 +17,14 @@
 // Σ |e| / |s̄| over the region's edges (s̄ the mean |s| of an edge's ends, >= 1 inside), so
 // it keeps to where the field is strongest rather than cutting corners; from each end it
 // drops the vertices that climb towards the crest (an end of the spine is often a corner of
-// the region beside the crest). It is smoothed by
-// umbrella steps with its ends held, each step's move kept in the surface's tangent plane (the
-// shading normal), so that a convex crest's stroke does not sink under the water, and tapers
-// to a point at each end (set_taper, flow_lines.hpp).
+// the region beside the crest). Each of its points then moves across the crest, in the tangent
+// plane, to the peak of the parabola fitted by least squares to the field over its vertex and
+// one-ring (held within half the ring's reach), as a sub-pixel peak is found in an image: the
+// stroke lies where the crest lies between the vertices, and glides with a moving crest instead
+// of stepping an edge at a time. It is smoothed by umbrella steps with its ends held, each
+// step's move kept in the surface's tangent plane (the shading normal), so that a convex crest's
+// stroke does not sink under the water, and tapers to a point at each end (set_taper,
+// flow_lines.hpp).
 #pragma once
 
 #include "analyzer/flow_lines.hpp"

@@ -84,6 +84,18 @@ TEST(FlowStrokes, TheStrokeFollowsWhereTheFieldIsStrongest) {
   EXPECT_GE(on_crest, 0.8 * static_cast<double>(lines[0].points.size()));
 }
 
+// A crest whose peak lies between two rows of vertices, at y = 20.3: the stroke lies on it,
+// not on the row of vertices nearest to it.
+TEST(FlowStrokes, TheStrokeLiesWhereTheCrestPeaksBetweenTheVertices) {
+  const Grid g = grid(41, [](double x, double y) {
+    const double v = 3.0 - (y - 20.3) * (y - 20.3);
+    return x >= 5 && x <= 35 && v >= 1.0 ? v : 0.0;
+  });
+  const std::vector<FlowLine> lines = flow_strokes(g.mesh, g.flow, 3.0);
+  ASSERT_EQ(lines.size(), 1u);
+  for (const Vec3& p : lines[0].points) EXPECT_NEAR(p.y(), 20.3, 0.05) << "at x = " << p.x();
+}
+
 // A crest one vertex wide along the border of an open surface: its edges belong to one face
 // each, and still join it into one stroke.
 TEST(FlowStrokes, ACrestAlongTheSurfacesBorderIsOneStroke) {

@@ -530,6 +530,92 @@ TEST(PovgenRender, AStillCrestKeepsOneFullWidthStrokeUnderJitter) {
   }
 }
 
+// A crest travelling 0.4 cells a frame under jitter of 0.1 cells, meshed anew each frame, from
+// above with `flow.style = "lines"`: its stroke glides with it as one unbroken stroke at its full
+// width, placed between the vertices where the crest lies (flow_strokes.hpp). Nearly every
+// stroke pixel has a stroke pixel within 2 px in the next frame (the crest moves 1.7 px a
+// frame). The field that draws it is carried from frame to frame (flow_coherence.hpp) and
+// follows a moving crest a cell behind; from the fourth frame on, the stroke keeps the crest's
+// pace.
+TEST(PovgenRender, ATravellingCrestsStrokeMovesWithItWithoutBreaking) {
+  ScratchDir dir;
+  constexpr int n = 81, frames = 8, image_size = 320;
+  constexpr double cell = 2.0 / (n - 1), line_width = 4.0, speed = 0.4 * cell, angle = 11.0;
+  auto crest_at = [&](int f) { return -0.5 + speed * f; };
+  for (int f = 1; f <= frames; ++f)
+    write_obj(dir / ("water_" + std::to_string(f) + ".obj"),
+              make_height_grid(n, 1.0, [&](double x, double z) {
+                const double d = x - crest_at(f);
+                const double crest = 2.0 * cell * std::exp(-d * d / (2 * 1.5 * cell * 1.5 * cell));
+                return crest + 0.1 * cell * white_noise(x, z, cell, f);
+              }));
+  const fs::path out = dir / "strokes";
+  std::vector<std::string> args{"povgen", "--out", out.string(), "--water",
+                                (dir / "water_#.obj").string()};
+  args = args + opaque_flat_water() +
+         std::vector<std::string>{"--set", "flow.enabled=true",
+                                  "--set", "flow.style=\"lines\"",
+                                  "--set", "flow.line_color=[1, 0, 0]",
+                                  "--set", "flow.line_width=" + std::to_string(line_width),
+                                  "--set", "outline.enabled=false",
+                                  "--set", "water.bright=" + color(kMedium),
+                                  "--set", "water.medium=" + color(kMedium),
+                                  "--set", "water.dark=" + color(kMedium),
+                                  "--set", "camera.location=[0, 10, 0.0001]",
+                                  "--set", "camera.look_at=[0, 0, 0]",
+                                  "--set", "camera.angle=" + std::to_string(angle),
+                                  "--set", "render.width=" + std::to_string(image_size),
+                                  "--set", "render.height=" + std::to_string(image_size)};
+  const CommandResult r = run_toonwater(args);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_EQ(run_povray(out).exit_code, 0);
+  // Pixels a unit of length at the water, 10 below the camera.
+  const double scale = image_size / (2 * 10 * std::tan(angle / 2 * std::numbers::pi / 180));
+  std::vector<std::vector<std::uint8_t>> stroke;
+  std::vector<double> centre;  // the stroke pixels' mean column
+  for (int f = 1; f <= frames; ++f) {
+    const Image img = read_image(out / ("frame_" + std::to_string(f) + ".png"));
+    ASSERT_EQ(img.width, image_size);
+    std::vector<std::uint8_t> red(static_cast<std::size_t>(image_size * image_size), 0);
+    double columns = 0, pixels = 0;
+    for (int y = 0; y < image_size; ++y)
+      for (int x = 0; x < image_size; ++x)
+        if (near(img.at(x, y), Rgb8{255, 0, 0}, 1))
+          red[static_cast<std::size_t>(y * image_size + x)] = 1, columns += x, ++pixels;
+    ASSERT_GT(pixels, image_size) << "frame " << f << ": no stroke along the crest";
+    centre.push_back(columns / pixels);
+    stroke.push_back(std::move(red));
+  }
+  // The crest runs along z, down the picture; which way x runs across it is the camera's
+  // business, so the stroke's travel is measured from the first frame, where it is traced.
+  const double direction = centre.back() > centre.front() ? 1.0 : -1.0;
+  auto travelled = [&](int f) { return direction * (centre[f - 1] - centre[0]) / scale; };
+  auto crest_travelled = [&](int f) { return crest_at(f) - crest_at(1); };
+  for (int f = 2; f <= frames; ++f) {
+    const std::vector<std::uint8_t>& now = stroke[f - 1];
+    EXPECT_EQ(report::pieces_of(now, image_size), 1u) << "frame " << f << ": a broken stroke";
+    std::vector<int> across;
+    for (int y = 0; y < image_size; ++y) {
+      int count = 0;
+      for (int x = 0; x < image_size; ++x)
+        count += now[static_cast<std::size_t>(y * image_size + x)];
+      if (count > 0) across.push_back(count);
+    }
+    std::nth_element(across.begin(), across.begin() + across.size() / 2, across.end());
+    EXPECT_GE(across[across.size() / 2], line_width - 1) << "frame " << f << ": a thin stroke";
+    EXPECT_LE(travelled(f), crest_travelled(f) + 0.25 * cell) << "frame " << f << ": ahead";
+    EXPECT_GE(travelled(f), crest_travelled(f) - 1.5 * cell) << "frame " << f << ": left behind";
+    const std::vector<std::uint8_t>& before = stroke[f - 2];
+    const auto pixels = static_cast<std::size_t>(std::count(before.begin(), before.end(), 1));
+    EXPECT_LE(report::pixels_without_neighbour(before, now, image_size, 2), pixels / 20)
+        << "frames " << f - 1 << "-" << f << ": stroke pixels lost";
+  }
+  const double pace =
+      (travelled(frames) - travelled(4)) / (crest_travelled(frames) - crest_travelled(4));
+  EXPECT_GT(pace, 0.75) << "the stroke falls behind the crest";
+  EXPECT_LT(pace, 1.25) << "the stroke runs ahead of the crest";
+}
+
 // A reflected ray that misses every object sees the flat sky colour, not the background: on
 // black water that reflects fully, the water shows the sky everywhere but where it reflects
 // the ball.
