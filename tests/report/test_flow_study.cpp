@@ -5,10 +5,12 @@
 #include "report/overhead_study.hpp"
 
 #include "analyzer/obj_writer.hpp"
+#include "tests/support/povray_test_util.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -175,6 +177,54 @@ TEST(FlowStudy, MantaflowDambreakFromAbove) {
   // 300-odd specks over the 36 frames, 0 to 35 a frame: the median moves by one with any change
   // to how the frames are carried.
   EXPECT_LE(specks[18], 7u) << "median band specks";
+}
+
+// The stroke study's measures on a crest that stands still for three frames and then subsides
+// into flat water: while it stands, its strokes (the crest's and its flanks') keep their pixels;
+// the field that draws them fades over several frames (flow_coherence.hpp), and the last frame
+// that draws them has lost them all, within 2 px and within a cell alike.
+TEST(StrokeStudy, AStillCrestKeepsItsStrokePixelsAndOneThatSubsidesLosesThemAll) {
+  test::ScratchDir dir;
+  constexpr int n = 81, crest_frames = 3, frames = 16;
+  constexpr double cell = 2.0 / (n - 1);
+  for (int f = 1; f <= frames; ++f)
+    write_obj(dir / ("water_" + std::to_string(f) + ".obj"),
+              test::make_height_grid(n, 1.0, [&](double x, double) {
+                const double sigma = 1.5 * cell;
+                return f <= crest_frames ? 2.0 * cell * std::exp(-x * x / (2 * sigma * sigma))
+                                         : 0.0;
+              }));
+  OverheadOptions options;
+  options.up = Axis::y;
+  options.cell = cell;
+  options.tank_min = Vec3(-1.0, -0.2, -1.0);
+  options.tank_max = Vec3(1.0, 0.0, 1.0);
+  const std::vector<StrokeFrame> study =
+      run_stroke_study((dir / "water_#.obj").string(), options, dir / "study");
+  ASSERT_EQ(study.size(), static_cast<std::size_t>(frames));
+  long last_drawn = 0;
+  for (const StrokeFrame& f : study) {
+    std::printf("frame %ld: %zu stroke pixels, %zu strokes in %zu pieces, lost %.3f, gone %.3f\n",
+                f.frame, f.stroke_pixels, f.strokes, f.stroke_pieces, f.lost_share, f.gone_share);
+    EXPECT_LE(f.gone_share, f.lost_share) << "frame " << f.frame;
+    if (f.stroke_pixels == 0) {
+      EXPECT_EQ(f.stroke_pieces, 0u);
+      EXPECT_EQ(f.lost_share, 0.0);
+      continue;
+    }
+    last_drawn = f.frame;
+    EXPECT_GE(f.strokes, 1u) << "frame " << f.frame;
+    EXPECT_GE(f.stroke_pieces, 1u) << "frame " << f.frame;
+  }
+  for (int f = 1; f < crest_frames; ++f) {
+    EXPECT_GT(study[f - 1].stroke_pixels, 200u) << "frame " << f << ": the crest's strokes";
+    EXPECT_EQ(study[f - 1].stroke_pieces, study[f - 1].strokes) << "frame " << f << ": unbroken";
+    EXPECT_LE(study[f - 1].lost_share, 0.05) << "frame " << f;
+  }
+  ASSERT_GT(last_drawn, crest_frames) << "the stroke fades out after the crest subsides";
+  ASSERT_LT(last_drawn, frames) << "the stroke is gone by the last frame";
+  EXPECT_EQ(study[last_drawn - 1].lost_share, 1.0);
+  EXPECT_EQ(study[last_drawn - 1].gone_share, 1.0);
 }
 
 }  // namespace
