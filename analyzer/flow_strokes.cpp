@@ -66,6 +66,18 @@ void smooth_in_tangent_planes(std::vector<Vec3>& points, const std::vector<Vec3>
   }
 }
 
+// The vertices that share a face with v, each once.
+std::vector<std::int32_t> one_ring(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
+                                   std::int32_t v) {
+  std::vector<std::int32_t> ring;
+  for (std::int32_t f : vertex_faces.of(v))
+    for (std::int32_t w : mesh.triangles[f])
+      if (w != v) ring.push_back(w);
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  return ring;
+}
+
 // How far across the crest, along `across`, the field's crest lies from vertex v: the peak of
 // the parabola f(s) = a + b·s + c·s² fitted by least squares to sign·field over v and its
 // one-ring, s the offset along `across`, when it opens downwards; held within half the ring's
@@ -96,8 +108,8 @@ double crest_offset(const TriangleMesh& mesh, const std::vector<double>& field, 
 
 }  // namespace
 
-std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const FlowRegions& flow,
-                                   double taper_length) {
+std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
+                                   const FlowRegions& flow, double taper_length) {
   const std::size_t n = mesh.positions.size();
   if (flow.field.size() != n || flow.label.size() != n || flow.free_surface.size() != n) return {};
 
@@ -141,12 +153,6 @@ std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const FlowRegions& 
   // An edge inside the mesh is met from both its faces and is listed twice: the duplicate
   // neighbours do no harm to the shortest paths, and an edge on the mesh's border is met once.
 
-  // The narrow regions' crests: the vertices each stroke runs through.
-  struct Crest {
-    std::int8_t sign;  // FlowLabel
-    std::vector<std::int32_t> path;
-  };
-  std::vector<Crest> crests;
   std::vector<FlowLine> lines;
   std::vector<double> wide = flow.field;  // the narrow regions taken out, for the contours
   for (const RegionGraph& g : graphs) {
@@ -179,40 +185,21 @@ std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const FlowRegions& 
     while (last - first > 2 && strength(path[last - 1]) < strength(path[last - 2])) --last;
     for (std::int32_t v : g.vertices) wide[v] = 0.0;
     if (last - first < 2) continue;
-    crests.push_back(Crest{flow.label[g.vertices[a]],
-                           std::vector<std::int32_t>(path.begin() + first, path.begin() + last)});
-  }
-
-  // The one-rings of the crests' vertices, to place each point on the crest between them.
-  std::vector<std::int32_t> ring_of(crests.empty() ? 0 : n, -1);
-  std::vector<std::vector<std::int32_t>> ring;
-  for (const Crest& crest : crests)
-    for (std::int32_t v : crest.path)
-      if (ring_of[v] < 0) ring_of[v] = static_cast<std::int32_t>(ring.size()), ring.emplace_back();
-  for (const Triangle& t : mesh.triangles)
-    for (int c = 0; c < 3 && !ring.empty(); ++c)
-      if (ring_of[t[c]] >= 0)
-        for (int k = 1; k < 3; ++k) ring[ring_of[t[c]]].push_back(t[(c + k) % 3]);
-  for (std::vector<std::int32_t>& r : ring) {  // an edge inside the mesh is met from both faces
-    std::sort(r.begin(), r.end());
-    r.erase(std::unique(r.begin(), r.end()), r.end());
-  }
-  for (const Crest& crest : crests) {
     FlowLine line;
-    line.sign = crest.sign;
-    const double sign = crest.sign == FlowLabel::valley ? -1.0 : 1.0;
+    line.sign = flow.label[g.vertices[a]];
+    const double sign = line.sign == FlowLabel::valley ? -1.0 : 1.0;
     std::vector<Vec3> normal;
-    const std::size_t count = crest.path.size();
-    for (std::size_t i = 0; i < count; ++i) {
-      const std::int32_t v = crest.path[i];
+    for (std::size_t i = first; i < last; ++i) {
+      const std::int32_t v = path[i];
       const Vec3 n_v = flow.shading_normal.size() == n ? flow.shading_normal[v] : Vec3::Zero();
-      const Vec3 along = mesh.positions[crest.path[std::min(i + 1, count - 1)]] -
-                         mesh.positions[crest.path[i > 0 ? i - 1 : 0]];
+      const Vec3 along = mesh.positions[path[std::min(i + 1, last - 1)]] -
+                         mesh.positions[path[std::max(i, first + 1) - 1]];
       Vec3 across = n_v.cross(along);
       Vec3 point = mesh.positions[v];
       if (across.norm() > 0.0) {
         across.normalize();
-        point += crest_offset(mesh, flow.field, sign, v, ring[ring_of[v]], across) * across;
+        point += crest_offset(mesh, flow.field, sign, v, one_ring(mesh, vertex_faces, v), across) *
+                 across;
       }
       line.points.push_back(point);
       normal.push_back(n_v);

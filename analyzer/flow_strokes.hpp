@@ -30,6 +30,7 @@
 #include "analyzer/flow_lines.hpp"
 #include "analyzer/flow_regions.hpp"
 #include "analyzer/mesh.hpp"
+#include "analyzer/topology.hpp"
 
 #include <vector>
 
@@ -38,8 +39,9 @@ namespace toonwater {
 inline constexpr double narrow_aspect = 3.0;      // ℓ / (A / ℓ) at least this: a narrow region
 inline constexpr int stroke_smoothing_steps = 4;  // umbrella steps, weight 1/2, ends held
 
-// A stroke along each narrow region's crest, and the contours of the wide ones.
-std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const FlowRegions& flow,
-                                   double taper_length);
+// A stroke along each narrow region's crest, and the contours of the wide ones. `vertex_faces`
+// is the mesh's (topology.hpp).
+std::vector<FlowLine> flow_strokes(const TriangleMesh& mesh, const VertexFaces& vertex_faces,
+                                   const FlowRegions& flow, double taper_length);
 
 }  // namespace toonwater

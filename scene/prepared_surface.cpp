@@ -23,7 +23,7 @@ PreparedSurface prepare_surface(Analysis a, Axis up, const FlowConfig* flow, Wat
     // Before the shading normals are taken for the mesh: the strokes are carried along them.
     // Strokes taper over 3 % of the scene's size: resolution-free, like the field.
     const double taper_length = 0.03 * a.flow.scale_length;
-    out.flow_lines = flow_strokes(a.surface, a.flow, taper_length);
+    out.flow_lines = flow_strokes(a.surface, a.topology.vertex_faces, a.flow, taper_length);
     if (persistence)
       out.flow_lines =
           persistence->update(a.surface, a.flow, std::move(out.flow_lines), taper_length);

@@ -12,6 +12,7 @@ namespace {
 // A flat n × n grid of unit cells in z = 0, with a flow field s(x, y) on every vertex.
 struct Grid {
   TriangleMesh mesh;
+  VertexFaces vertex_faces;
   FlowRegions flow;
 };
 Grid grid(int n, const std::function<double(double, double)>& s) {
@@ -33,6 +34,7 @@ Grid grid(int n, const std::function<double(double, double)>& s) {
       g.mesh.triangles.push_back({a, b, d});
       g.mesh.triangles.push_back({a, d, c});
     }
+  g.vertex_faces = build_vertex_faces(g.mesh.positions.size(), g.mesh.triangles);
   return g;
 }
 
@@ -43,7 +45,7 @@ TEST(FlowStrokes, ANarrowCrestIsOneTaperedStrokeAlongItsMiddleAndAWideRegionKeep
     if (std::hypot(x - 20, y - 7) <= 4) return -2.0;
     return 0.0;
   });
-  const std::vector<FlowLine> lines = flow_strokes(g.mesh, g.flow, 3.0);
+  const std::vector<FlowLine> lines = flow_strokes(g.mesh, g.vertex_faces, g.flow, 3.0);
   ASSERT_EQ(lines.size(), 2u);
   int strokes = 0, contours = 0;
   for (const FlowLine& line : lines) {
@@ -77,7 +79,7 @@ TEST(FlowStrokes, TheStrokeFollowsWhereTheFieldIsStrongest) {
     if (x >= 5 && x <= 35 && y >= 19 && y <= 21) return y == 21 ? 4.0 : 1.2;
     return 0.0;
   });
-  const std::vector<FlowLine> lines = flow_strokes(g.mesh, g.flow, 3.0);
+  const std::vector<FlowLine> lines = flow_strokes(g.mesh, g.vertex_faces, g.flow, 3.0);
   ASSERT_EQ(lines.size(), 1u);
   int on_crest = 0;
   for (const Vec3& p : lines[0].points) on_crest += std::abs(p.y() - 21.0) < 0.5;
@@ -91,7 +93,7 @@ TEST(FlowStrokes, TheStrokeLiesWhereTheCrestPeaksBetweenTheVertices) {
     const double v = 3.0 - (y - 20.3) * (y - 20.3);
     return x >= 5 && x <= 35 && v >= 1.0 ? v : 0.0;
   });
-  const std::vector<FlowLine> lines = flow_strokes(g.mesh, g.flow, 3.0);
+  const std::vector<FlowLine> lines = flow_strokes(g.mesh, g.vertex_faces, g.flow, 3.0);
   ASSERT_EQ(lines.size(), 1u);
   for (const Vec3& p : lines[0].points) EXPECT_NEAR(p.y(), 20.3, 0.05) << "at x = " << p.x();
 }
@@ -101,7 +103,7 @@ TEST(FlowStrokes, TheStrokeLiesWhereTheCrestPeaksBetweenTheVertices) {
 TEST(FlowStrokes, ACrestAlongTheSurfacesBorderIsOneStroke) {
   const Grid g =
       grid(41, [](double x, double y) { return y == 40 && x >= 5 && x <= 35 ? 2.0 : 0.0; });
-  const std::vector<FlowLine> lines = flow_strokes(g.mesh, g.flow, 3.0);
+  const std::vector<FlowLine> lines = flow_strokes(g.mesh, g.vertex_faces, g.flow, 3.0);
   ASSERT_EQ(lines.size(), 1u);
   EXPECT_FALSE(lines[0].closed);
   double lo = 1e9, hi = -1e9;
@@ -125,8 +127,10 @@ TEST(FlowStrokes, SpecksBelowTheSmallestRegionDrawnHaveNoStroke) {
   });
   Grid with_limit = g;
   with_limit.flow.min_region_area = 20.0;
-  EXPECT_EQ(flow_strokes(g.mesh, g.flow, 3.0).size(), 4u) << "without a limit, every region";
-  const std::vector<FlowLine> lines = flow_strokes(with_limit.mesh, with_limit.flow, 3.0);
+  EXPECT_EQ(flow_strokes(g.mesh, g.vertex_faces, g.flow, 3.0).size(), 4u)
+      << "without a limit, every region";
+  const std::vector<FlowLine> lines =
+      flow_strokes(with_limit.mesh, with_limit.vertex_faces, with_limit.flow, 3.0);
   ASSERT_EQ(lines.size(), 2u);
   for (const FlowLine& line : lines)
     for (const Vec3& p : line.points) EXPECT_LT(p.y(), 25.0) << "a stroke on a speck";
