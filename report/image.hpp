@@ -2,6 +2,8 @@
 // measurements on rendered pixels.
 #pragma once
 
+#include "analyzer/disjoint_sets.hpp"
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -27,6 +29,11 @@ Image read_rgb(const std::filesystem::path& path);
 // wide, 1 where set, and of one size.
 std::size_t pixels_without_neighbour(const std::vector<std::uint8_t>& from,
                                      const std::vector<std::uint8_t>& to, int width, int reach);
+
+// The pieces of equal values other than `unset` in a row-major grid `width` wide, joined across
+// their sides, and across their corners too when `corners` (for int8_t and uint8_t values).
+template <class T>
+DisjointSets join_pieces(const std::vector<T>& values, int width, T unset, bool corners);
 
 // How many pieces the pixels set in `mask` (row-major, `width` wide) make, joined across their
 // sides and corners (8-connected).

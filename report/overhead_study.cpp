@@ -38,27 +38,10 @@ std::vector<std::int8_t> classify(const Image& image) {
   return classes;
 }
 
-// The pieces of pixels of one class (not `other`), joined across their sides.
-DisjointSets join_pieces(const std::vector<std::int8_t>& classes, int width, int height) {
-  DisjointSets pieces(classes.size());
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const auto i = static_cast<std::int32_t>(y * width + x);
-      if (classes[i] == other) continue;
-      for (const auto& [dx, dy] : {std::pair{1, 0}, {0, 1}}) {
-        const int xx = x + dx, yy = y + dy;
-        const auto j = static_cast<std::int32_t>(yy * width + xx);
-        if (xx < width && yy < height && classes[j] == classes[i]) pieces.join(i, j);
-      }
-    }
-  return pieces;
-}
-
 // The sizes of the 4-connected pieces of each class, per pixel (0 for `other`).
-std::vector<std::size_t> piece_sizes(const std::vector<std::int8_t>& classes, int width,
-                                     int height) {
+std::vector<std::size_t> piece_sizes(const std::vector<std::int8_t>& classes, int width) {
   const std::size_t n = classes.size();
-  DisjointSets pieces = join_pieces(classes, width, height);
+  DisjointSets pieces = join_pieces<std::int8_t>(classes, width, other, false);
   std::vector<std::size_t> size(n, 0), of_pixel(n, 0);
   for (std::size_t i = 0; i < n; ++i)
     if (classes[i] != other) ++size[pieces.root(static_cast<std::int32_t>(i))];
@@ -166,7 +149,7 @@ std::vector<OverheadFrame> run_overhead_study(const std::string& pattern,
   for (const auto& [frame, image_path] : rendered_frames(pattern, options, scene_dir)) {
     const Image image = read_rgb(image_path);
     const std::vector<std::int8_t> classes = classify(image);
-    const std::vector<std::size_t> size = piece_sizes(classes, image.width, image.height);
+    const std::vector<std::size_t> size = piece_sizes(classes, image.width);
     OverheadFrame f;
     f.frame = frame;
     std::size_t changed = 0, contrast = 0;
