@@ -5,7 +5,7 @@
 #                                      (slurm.conf, state, spool, logs, sockets); waits until
 #                                      `sinfo` shows the node idle
 #   scripts/slurm-local.sh stop DIR    stops the three daemons started in DIR
-# After `start`, DIR/env holds the environment the Slurm commands need (SLURM_CONF=...): source it.
+# After `start`, DIR/env exports the environment the Slurm commands need (SLURM_CONF): source it.
 # When this machine cannot run Slurm (packages missing, a daemon does not come up), `start` stops
 # whatever it started, writes the reason to DIR/unavailable, prints it and exits 0, so that the
 # tests that need the cluster skip with that reason instead of failing. Any other failure exits 1.
@@ -113,7 +113,7 @@ NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=$memory State=UNKNOWN
 PartitionName=local Nodes=$host Default=YES MaxTime=INFINITE State=UP
 CONF
 export SLURM_CONF="$dir/slurm.conf"
-echo "SLURM_CONF=$SLURM_CONF" >"$dir/env.tmp"
+printf 'export SLURM_CONF=%q\n' "$SLURM_CONF" >"$dir/env.tmp"
 
 slurmctld -c </dev/null >"$dir/logs/slurmctld.out" 2>&1 ||
   unavailable "slurmctld did not start: $(tail -n 1 "$dir/logs/slurmctld.out")"
