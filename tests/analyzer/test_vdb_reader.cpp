@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -149,6 +150,33 @@ TEST(VdbReader, ATruncatedFileIsOneShortLine) {
       EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     }
   }
+}
+
+// A level set holds distances: a NaN or infinite one (a damaged file, a solver that blew up),
+// in a voxel or in the background, is refused with one line naming the file and where it is.
+TEST(VdbReader, ANonFiniteDistanceIsAnErrorNamingWhereItIs) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  for (const float bad : {nan, inf, -inf})
+    for (const bool background : {false, true}) {
+      SCOPED_TRACE(std::to_string(bad) + (background ? " background" : " voxel"));
+      ScratchDir dir;
+      auto grid = sphere("surface", 1.0, {0, 0, 0}, 0.1);
+      if (background)
+        grid->tree().root().setBackground(bad, true);
+      else
+        grid->tree().setValue(openvdb::Coord(10, 0, 0), bad);  // on the surface, x = 1
+      write_vdb(dir / "bad.vdb", {grid});
+      try {
+        read_mesh(dir / "bad.vdb");
+        FAIL() << "a level set with a non-finite distance was read";
+      } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("bad.vdb: grid 'surface' "), std::string::npos) << message;
+        if (!background) EXPECT_NE(message.find("voxel (10, 0, 0)"), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+      }
+    }
 }
 
 // OpenVDB states each grid's size in memory in the file: one larger than the machine (a dense

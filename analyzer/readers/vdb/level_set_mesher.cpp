@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 
@@ -110,8 +111,26 @@ void close_at_domain_walls(Grid& grid, const openvdb::Vec3i& resolution) {
   }
 }
 
+// A level set holds distances: a NaN one (a damaged file, a solver that blew up) has no zero
+// crossing to mesh, and OpenVDB's mesher refuses NaN and -inf but meshes +inf. Every value,
+// the background and inactive ones included (the mesher reads neighbours), must be finite.
+template <class Grid>
+void check_finite(const Grid& grid) {
+  if (!std::isfinite(grid.background()))
+    throw std::runtime_error("grid '" + grid.getName() + "' has a non-finite background distance");
+  for (auto value = grid.cbeginValueAll(); value; ++value)
+    if (!std::isfinite(*value)) {
+      const openvdb::Coord ijk = value.getCoord();
+      throw std::runtime_error(
+          "grid '" + grid.getName() + "' holds a NaN or infinite distance at " +
+          (value.isVoxelValue() ? "voxel (" : "the tile at (") + std::to_string(ijk.x()) + ", " +
+          std::to_string(ijk.y()) + ", " + std::to_string(ijk.z()) + ")");
+    }
+}
+
 template <class Grid>
 TriangleMesh mesh_zero_level(Grid& grid, double adaptivity) {
+  check_finite(grid);
   const std::optional<openvdb::Vec3i> mantaflow = mantaflow_resolution(grid);
   if (mantaflow) close_at_domain_walls(grid, *mantaflow);
   std::vector<openvdb::Vec3s> points;
