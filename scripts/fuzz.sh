@@ -17,7 +17,7 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${FUZZ_BUILD_DIR:-$root/build-fuzz}
 seconds=${FUZZ_SECONDS:-60}
 parallel=${FUZZ_PARALLEL:-$(nproc)}
-all_targets=(obj off ply stl vtk bobj flip_bobj analyze config)
+all_targets=(obj off ply stl vtk bobj flip_bobj wwp analyze config)
 targets=("${@:-${all_targets[@]}}")
 
 build() {
