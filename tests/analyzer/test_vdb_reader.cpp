@@ -52,6 +52,17 @@ double signed_volume(const TriangleMesh& mesh) {
   return six_v / 6.0;
 }
 
+// The message of the InputError that reading `path` throws; a test failure when it reads.
+std::string read_error(const fs::path& path, const LevelSetOptions& options = {}) {
+  try {
+    read_mesh(path, options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << path << " was read";
+  return {};
+}
+
 TEST(VdbReader, ASphereLevelSetIsItsZeroSurfaceFacingOut) {
   ScratchDir dir;
   const openvdb::Vec3f centre(0.3f, -0.2f, 0.5f);
@@ -89,35 +100,21 @@ TEST(VdbReader, AGridNamedIsMeshedAndAdaptivityMergesFlatCells) {
   // Merged cells cut the sphere's corners, but the faces still turn outward.
   EXPECT_GT(signed_volume(coarse.mesh), 0.8 * 4.0 / 3.0 * std::numbers::pi);
   for (const std::string wrong : {"c", "density"}) {
-    try {
-      read_mesh(dir / "two.vdb", {wrong, 0.0});
-      FAIL() << wrong << " was meshed";
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("two.vdb: "), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("'" + wrong + "'"), std::string::npos) << e.what();
-    }
+    const std::string message = read_error(dir / "two.vdb", {wrong, 0.0});
+    EXPECT_NE(message.find("two.vdb: "), std::string::npos) << message;
+    EXPECT_NE(message.find("'" + wrong + "'"), std::string::npos) << message;
   }
 }
 
 TEST(VdbReader, NoLevelSetOrTwoAreErrorsNamingTheGrids) {
   ScratchDir dir;
   write_vdb(dir / "fog.vdb", {fog("density")});
-  try {
-    read_mesh(dir / "fog.vdb");
-    FAIL() << "a fog volume was meshed";
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("fog.vdb: no level-set grid"), std::string::npos) << message;
-    EXPECT_NE(message.find("'density' (float, fog volume)"), std::string::npos) << message;
-  }
+  const std::string fog_error = read_error(dir / "fog.vdb");
+  EXPECT_NE(fog_error.find("fog.vdb: no level-set grid"), std::string::npos) << fog_error;
+  EXPECT_NE(fog_error.find("'density' (float, fog volume)"), std::string::npos) << fog_error;
   write_vdb(dir / "two.vdb", {sphere("a", 1.0, {0, 0, 0}, 0.1), sphere("b", 1.0, {0, 0, 0}, 0.1)});
-  try {
-    read_mesh(dir / "two.vdb");
-    FAIL() << "one of two level sets was chosen";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("more than one level-set grid"), std::string::npos)
-        << e.what();
-  }
+  const std::string two_error = read_error(dir / "two.vdb");
+  EXPECT_NE(two_error.find("more than one level-set grid"), std::string::npos) << two_error;
   write_text(dir / "text.vdb", "not a vdb file\n");
   EXPECT_THROW(read_mesh(dir / "text.vdb"), InputError);
   // A level set without a zero crossing holds no surface: an empty frame.
@@ -140,15 +137,10 @@ TEST(VdbReader, ATruncatedFileIsOneShortLine) {
     SCOPED_TRACE(kept);
     const auto length = static_cast<std::size_t>(kept * static_cast<double>(bytes.size()));
     write_text(dir / "cut.vdb", bytes.substr(0, length));
-    try {
-      read_mesh(dir / "cut.vdb");
-      FAIL() << "a truncated file was read";
-    } catch (const InputError& e) {
-      const std::string message = e.what();
-      EXPECT_NE(message.find("cut.vdb: "), std::string::npos) << message;
-      EXPECT_LT(message.size(), 400u) << message;
-      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    }
+    const std::string message = read_error(dir / "cut.vdb");
+    EXPECT_NE(message.find("cut.vdb: "), std::string::npos) << message;
+    EXPECT_LT(message.size(), 400u) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
   }
 }
 
@@ -167,15 +159,10 @@ TEST(VdbReader, ANonFiniteDistanceIsAnErrorNamingWhereItIs) {
       else
         grid->tree().setValue(openvdb::Coord(10, 0, 0), bad);  // on the surface, x = 1
       write_vdb(dir / "bad.vdb", {grid});
-      try {
-        read_mesh(dir / "bad.vdb");
-        FAIL() << "a level set with a non-finite distance was read";
-      } catch (const InputError& e) {
-        const std::string message = e.what();
-        EXPECT_NE(message.find("bad.vdb: grid 'surface' "), std::string::npos) << message;
-        if (!background) EXPECT_NE(message.find("voxel (10, 0, 0)"), std::string::npos) << message;
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-      }
+      const std::string message = read_error(dir / "bad.vdb");
+      EXPECT_NE(message.find("bad.vdb: grid 'surface' "), std::string::npos) << message;
+      if (!background) EXPECT_NE(message.find("voxel (10, 0, 0)"), std::string::npos) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     }
 }
 
@@ -195,16 +182,10 @@ TEST(VdbReader, AGridLargerThanTheMachinesMemoryIsRefusedBeforeItIsRead) {
   const std::int64_t petabyte = std::int64_t{1} << 50;
   std::memcpy(&bytes[value], &petabyte, sizeof petabyte);
   write_text(dir / "huge.vdb", bytes);
-  try {
-    read_mesh(dir / "huge.vdb");
-    FAIL() << "a grid of a petabyte was read";
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("huge.vdb: grid 'surface' takes 1048576 GiB in memory"),
-              std::string::npos)
-        << message;
-    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  }
+  const std::string message = read_error(dir / "huge.vdb");
+  EXPECT_NE(message.find("huge.vdb: grid 'surface' takes 1048576 GiB in memory"), std::string::npos)
+      << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
 }  // namespace
