@@ -6,7 +6,7 @@
 // level along an edge, at x = xᵢ + t (xⱼ − xᵢ) with t = (λ − sᵢ)/(sⱼ − sᵢ), the same point for
 // both faces of the edge, so the segments of neighbouring faces chain into polylines with no
 // gap. Only faces whose three corners are on the free surface are traced: a contour that
-// reaches the free surface's border ends there, and such an open stroke tapers to a point over
+// reaches the free surface's border ends there, and such an open stroke tapers over
 // `taper_length` at each end; a closed one (a region inside the water) has no end.
 //
 // The same field draws the filled regions, so lines and regions agree to the pixel; both move

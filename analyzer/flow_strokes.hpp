@@ -23,7 +23,7 @@
 // stroke lies where the crest lies between the vertices, and glides with a moving crest instead
 // of stepping an edge at a time. It is smoothed by umbrella steps with its ends held, each
 // step's move kept in the surface's tangent plane (the shading normal), so that a convex crest's
-// stroke does not sink under the water, and tapers to a point at each end (set_taper,
+// stroke does not sink under the water, and tapers towards each end (set_taper,
 // flow_lines.hpp).
 #pragma once
 
