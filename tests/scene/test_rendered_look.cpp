@@ -509,11 +509,8 @@ std::vector<std::vector<std::uint8_t>> crest_strokes(const fs::path& dir, int fr
     const Image img = read_image(out / ("frame_" + std::to_string(f) + ".png"));
     EXPECT_EQ(img.width, kCrestImage);
     EXPECT_EQ(img.height, kCrestImage);
-    std::vector<std::uint8_t> red(static_cast<std::size_t>(kCrestImage * kCrestImage), 0);
-    for (int y = 0; y < kCrestImage && y < img.height; ++y)
-      for (int x = 0; x < kCrestImage && x < img.width; ++x)
-        red[static_cast<std::size_t>(y * kCrestImage + x)] = near(img.at(x, y), Rgb8{255, 0, 0}, 1);
-    stroke.push_back(std::move(red));
+    if (img.width != kCrestImage || img.height != kCrestImage) return {};
+    stroke.push_back(mask_of(img, Rgb8{255, 0, 0}));
   }
   return stroke;
 }

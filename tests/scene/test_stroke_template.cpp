@@ -30,9 +30,10 @@ std::vector<std::uint8_t> render_stroke(const std::filesystem::path& dir, double
   for (int i = 0; i < kPoints; ++i) {
     const double s = static_cast<double>(i) / (kPoints - 1);
     const double t = std::min(1.0, std::min(i, kPoints - 1 - i) / double{kTaperPoints});
-    points += (i ? "," : "") + std::string("<") + std::to_string(-4 + 8 * s) + ",0," +
-              std::to_string(-2.5 + 5 * s) + ">";
-    taper += (i ? "," : "") + std::to_string(strength * t);
+    const char* separator = i ? "," : "";
+    points.append(separator).append("<").append(std::to_string(-4 + 8 * s)).append(",0,");
+    points.append(std::to_string(-2.5 + 5 * s)).append(">");
+    taper.append(separator).append(std::to_string(strength * t));
   }
   write_text(dir / "toon.inc", std::string(toon_template()));
   write_text(dir / "scene.pov",
@@ -61,11 +62,8 @@ std::vector<std::uint8_t> render_stroke(const std::filesystem::path& dir, double
   const Image img = read_image(dir / "frame.png");
   EXPECT_EQ(img.width, kImage);
   EXPECT_EQ(img.height, kImage);
-  std::vector<std::uint8_t> red(static_cast<std::size_t>(kImage) * kImage, 0);
-  for (int y = 0; y < kImage && y < img.height; ++y)
-    for (int x = 0; x < kImage && x < img.width; ++x)
-      red[static_cast<std::size_t>(y) * kImage + x] = near(img.at(x, y), Rgb8{255, 0, 0}, 1);
-  return red;
+  if (img.width != kImage || img.height != kImage) return {};
+  return mask_of(img, Rgb8{255, 0, 0});
 }
 
 // The stroke's pixels in each column it crosses, from one end to the other.

@@ -94,4 +94,12 @@ bool near(const Rgb8& a, const Rgb8& b, int tolerance) {
   return true;
 }
 
+std::vector<std::uint8_t> mask_of(const Image& image, const Rgb8& colour, int tolerance) {
+  std::vector<std::uint8_t> mask(static_cast<std::size_t>(image.width) * image.height, 0);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      mask[static_cast<std::size_t>(y) * image.width + x] = near(image.at(x, y), colour, tolerance);
+  return mask;
+}
+
 }  // namespace toonwater::test

@@ -46,4 +46,7 @@ Image read_image(const std::filesystem::path& path);
 
 bool near(const Rgb8& a, const Rgb8& b, int tolerance = 1);
 
+// 1 where the image's pixel is within `tolerance` of `colour`, else 0; row-major, its width wide.
+std::vector<std::uint8_t> mask_of(const Image& image, const Rgb8& colour, int tolerance = 1);
+
 }  // namespace toonwater::test
