@@ -18,19 +18,19 @@
 //    carried one by b·(c − q), b = hold_blend · max(0, 1 − (|c − q| / (z·e))²), z =
 //    `noise_distance` and e the edge length. A crest traced an edge away by noise stays where
 //    it was drawn; one that moves further, as a travelling wave does, is followed as traced.
-// 4. Fade: a stroke's strength s sets its drawn width (taper · s). A fresh stroke that matches
-//    nothing is kept but not drawn (s = 0), so one that the noise traces for a single frame
-//    never shows; matched, it gains 1/fade_frames a frame up to 1. The parts of a carried
-//    stroke that neither its successor (the fresh stroke matched to it) covers nor another
-//    drawn stroke comes within `cover_distance` of stay where they were, losing 1/fade_frames
-//    a frame until they are gone. The successor covers the points it passes within
-//    `match_distance` of, but for those past one of its open ends by more than
+// 4. Fade: a stroke's strength s sets its drawn width (taper · s; `Toon_stroke` draws no part of it
+//    under a pixel wide). A fresh stroke that matches nothing is kept but not drawn (s = 0), so one
+//    that the noise traces for a single frame never shows; matched, it gains 1/fade_frames a frame
+//    up to 1. The parts of a carried stroke that neither its successor (the fresh stroke matched to
+//    it) covers nor another drawn stroke comes within `cover_distance` of stay where they were,
+//    losing 1/fade_frames a frame until they are gone. The successor covers the points it passes
+//    within `match_distance` of, but for those past one of its open ends by more than
 //    `cover_distance`, along it or in distance beyond the end's own distance from the carried
-//    stroke: moved sideways, it replaces the whole stroke; grown shorter, or no longer
-//    following a bend past its end, it leaves the part past its end to fade. Strokes thus thin out
-//    where they were rather than disappear or snap back, and a stroke drawn nearby does not hide
-//    one fading beside it. The strokes of a sequence's first frame, which has nothing to be
-//    coherent with, start at full strength.
+//    stroke: moved sideways, it replaces the whole stroke; grown shorter, or no longer following a
+//    bend past its end, it leaves the part past its end to fade. Strokes thus thin out where they
+//    were rather than disappear or snap back, and a stroke drawn nearby does not hide one fading
+//    beside it. The strokes of a sequence's first frame, which has nothing to be coherent with,
+//    start at full strength.
 #pragma once
 
 #include "analyzer/flow_lines.hpp"
