@@ -83,6 +83,13 @@ int median(std::vector<int> v) {
   return v[v.size() / 2];
 }
 
+// The counts of the stroke's middle third, away from its tapered ends.
+std::vector<int> middle_third(const std::vector<int>& columns) {
+  const std::size_t n = columns.size();
+  return {columns.begin() + static_cast<long>(n / 3),
+          columns.begin() + static_cast<long>(2 * n / 3)};
+}
+
 TEST(StrokeTemplate, ATaperedStrokeIsOnePieceNarrowerAtItsEnds) {
   for (const double width : {2.0, 3.0, 5.0}) {
     SCOPED_TRACE(width);
@@ -96,8 +103,7 @@ TEST(StrokeTemplate, ATaperedStrokeIsOnePieceNarrowerAtItsEnds) {
     // The taper's first half at each end against the stroke's middle third.
     const std::size_t n = columns.size(), tip = n * kTaperPoints / (2 * (kPoints - 1));
     const std::vector<int> ends{columns.begin(), columns.begin() + static_cast<long>(tip)};
-    const std::vector<int> middle{columns.begin() + static_cast<long>(n / 3),
-                                  columns.begin() + static_cast<long>(2 * n / 3)};
+    const std::vector<int> middle = middle_third(columns);
     EXPECT_LT(median(ends), median(middle)) << "the stroke does not taper";
     EXPECT_LT(*std::max_element(ends.begin(), ends.end()),
               *std::max_element(middle.begin(), middle.end()));
@@ -119,11 +125,7 @@ TEST(StrokeTemplate, AFadingStrokeIsNarrowerButStillOnePiece) {
     const std::vector<int> columns = column_counts(fading);
     ASSERT_GT(columns.size(), static_cast<std::size_t>(kImage / 2)) << "no stroke across";
     EXPECT_EQ(std::count(columns.begin(), columns.end(), 0), 0) << "a gap in the stroke";
-    const auto middle_third = [](const std::vector<int>& c) {
-      return median({c.begin() + static_cast<long>(c.size() / 3),
-                     c.begin() + static_cast<long>(2 * c.size() / 3)});
-    };
-    EXPECT_LT(middle_third(columns), middle_third(full_columns)) << "not narrower";
+    EXPECT_LT(median(middle_third(columns)), median(middle_third(full_columns))) << "not narrower";
   }
 }
 
