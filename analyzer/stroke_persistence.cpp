@@ -112,6 +112,29 @@ std::vector<FlowLine> kept_pieces(const FlowLine& line, const std::vector<std::u
   return pieces;
 }
 
+// The median, over the line's points, of sign·s at the closest free-surface vertex: how strongly
+// the crest under a carried stroke still stands, 1 at a region's edge. 0 without a field.
+double crest_under(const FlowLine& line, const PointGrid& grid,
+                   const std::vector<std::int32_t>& vertex, const std::vector<double>& field) {
+  std::vector<double> along;
+  for (const Vec3& p : line.points) {
+    const std::int32_t c = grid.closest(p);
+    const std::size_t v = c < 0 ? field.size() : static_cast<std::size_t>(vertex[c]);
+    along.push_back(v < field.size() ? line.sign * field[v] : 0.0);
+  }
+  if (along.empty()) return 0.0;
+  std::nth_element(along.begin(), along.begin() + along.size() / 2, along.end());
+  return along[along.size() / 2];
+}
+
+// The length of the line's polyline (its closing segment left out).
+double line_length(const FlowLine& line) {
+  double sum = 0.0;
+  for (std::size_t i = 1; i < line.points.size(); ++i)
+    sum += (line.points[i] - line.points[i - 1]).norm();
+  return sum;
+}
+
 }  // namespace
 
 std::vector<FlowLine> StrokePersistence::update(const TriangleMesh& mesh, const FlowRegions& flow,
@@ -143,8 +166,10 @@ std::vector<FlowLine> StrokePersistence::update(const TriangleMesh& mesh, const 
           const Vec3& normal = flow.shading_normal[vertex[c]];
           moved.points[i] -= normal * (moved.points[i] - x).dot(normal);
         }
-        for (FlowLine& piece : kept_pieces(moved, keep, taper_length))
-          carried.push_back({std::move(piece), s.strength});
+        for (FlowLine& piece : kept_pieces(moved, keep, taper_length)) {
+          const double crest = crest_under(piece, grid, vertex, flow.field);
+          carried.push_back({std::move(piece), s.strength, crest});
+        }
       }
     }
   }
@@ -185,13 +210,16 @@ std::vector<FlowLine> StrokePersistence::update(const TriangleMesh& mesh, const 
     next.push_back(std::move(s));
   }
 
-  // 4. Fade out what this frame's drawn strokes do not cover: a stroke's successor covers it
-  // where they were matched, any other only where it is drawn over it.
+  // 4. Fade out what this frame's drawn strokes do not cover, but for the strokes held (5): a
+  // stroke's successor covers it where they were matched, any other only where it is drawn over
+  // it.
   const double cover = options_.cover_distance * edge;
   const std::size_t drawn = next.size();
+  const std::vector<std::uint8_t> held =
+      held_strokes(carried, next, drawn, match, flow.max_regions);
   for (std::size_t j = 0; j < carried.size(); ++j) {
     const Stroke& c = carried[j];
-    const double strength = c.strength - step;
+    const double strength = held[j] ? c.strength : c.strength - step;
     if (strength <= 0.5 * step) continue;
     std::vector<std::uint8_t> uncovered(c.line.points.size(), 1);
     for (std::size_t k = 0; k < c.line.points.size(); ++k) {
@@ -218,6 +246,36 @@ std::vector<FlowLine> StrokePersistence::update(const TriangleMesh& mesh, const 
     out.push_back(std::move(s.line));
   }
   return out;
+}
+
+// 5. Hold: the carried strokes, drawn, whose crest still stands (crest >= hold_field) and
+// beside which no drawn stroke of their sign runs, the most salient first (crest times length),
+// as many as the salience limit leaves room for beside this frame's drawn strokes.
+std::vector<std::uint8_t> StrokePersistence::held_strokes(const std::vector<Stroke>& carried,
+                                                          const std::vector<Stroke>& next,
+                                                          std::size_t drawn, double match,
+                                                          std::size_t max_strokes) const {
+  std::vector<std::pair<double, std::size_t>> candidates;  // (salience, carried)
+  for (std::size_t j = 0; j < carried.size(); ++j) {
+    const Stroke& c = carried[j];
+    if (!(c.strength > 0.0) || !(c.crest >= options_.hold_field)) continue;
+    bool beside_drawn = false;
+    for (std::size_t i = 0; i < drawn && !beside_drawn; ++i)
+      beside_drawn = next[i].strength > 0.0 && next[i].line.sign == c.line.sign &&
+                     share_near(c.line, next[i].line, match) >= options_.min_shared;
+    if (!beside_drawn) candidates.emplace_back(c.crest * line_length(c.line), j);
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::size_t room = candidates.size();
+  if (max_strokes > 0) {
+    std::size_t fresh_drawn = 0;
+    for (std::size_t i = 0; i < drawn; ++i) fresh_drawn += next[i].strength > 0.0;
+    room = std::min(room, max_strokes > fresh_drawn ? max_strokes - fresh_drawn : 0);
+  }
+  std::vector<std::uint8_t> held(carried.size(), 0);
+  for (std::size_t k = 0; k < room; ++k) held[candidates[k].second] = 1;
+  return held;
 }
 
 }  // namespace toonwater

@@ -23,20 +23,31 @@
 //    that the noise traces for a single frame never shows; matched, it gains 1/fade_frames a frame
 //    up to 1. The parts of a carried stroke that neither its successor (the fresh stroke matched to
 //    it) covers nor another drawn stroke comes within `cover_distance` of stay where they were,
-//    losing 1/fade_frames a frame until they are gone. The successor covers the points it passes
-//    within `match_distance` of, but for those past one of its open ends by more than
-//    `cover_distance`, along it or in distance beyond the end's own distance from the carried
+//    losing 1/fade_frames a frame until they are gone, unless held (5). The successor covers the
+//    points it passes within `match_distance` of, but for those past one of its open ends by more
+//    than `cover_distance`, along it or in distance beyond the end's own distance from the carried
 //    stroke: moved sideways, it replaces the whole stroke; grown shorter, or no longer following a
 //    bend past its end, it leaves the part past its end to fade. Strokes thus thin out where they
 //    were rather than disappear or snap back, and a stroke drawn nearby does not hide one fading
 //    beside it. The strokes of a sequence's first frame, which has nothing to be coherent with,
 //    start at full strength.
+// 5. Hold: a carried stroke is born where its region's field s reaches 1, but it lives while
+//    the crest under it stands at half that, as an edge does in Canny's hysteresis ("A
+//    computational approach to edge detection", PAMI 1986). One whose crest (the median of
+//    sign·s at its points' closest vertices) is at least `hold_field` keeps its strength instead
+//    of fading, when no drawn stroke of its sign runs beside it (within `match_distance` of
+//    `min_shared` of its points: the crest is drawn already) and the salience limit
+//    (FlowRegions::max_regions) has room for it beside this frame's drawn strokes, the largest
+//    crest · length first. A crest that dips under the region threshold for a few frames, as
+//    settling water's do, keeps its stroke instead of popping it out and in again.
 #pragma once
 
 #include "analyzer/flow_lines.hpp"
 #include "analyzer/flow_regions.hpp"
 #include "analyzer/mesh.hpp"
 
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace toonwater {
@@ -51,6 +62,7 @@ struct StrokePersistenceOptions {
   double noise_distance = 2.0;  // z: in median edge lengths, a move below z·e is noise
   double hold_blend = 0.9;      // weight of the carried stroke where the move is noise
   int fade_frames = 3;          // frames to fade in or out
+  double hold_field = 0.5;      // s under a carried stroke at which it is held rather than faded
 };
 
 class StrokePersistence {
@@ -67,7 +79,11 @@ class StrokePersistence {
   struct Stroke {
     FlowLine line;  // its taper: the shape at full strength
     double strength = 0.0;
+    double crest = 0.0;  // carried: the median of sign·s at its points' closest vertices
   };
+  std::vector<std::uint8_t> held_strokes(const std::vector<Stroke>& carried,
+                                         const std::vector<Stroke>& next, std::size_t drawn,
+                                         double match, std::size_t max_strokes) const;
   StrokePersistenceOptions options_;
   std::vector<Stroke> strokes_;
   bool first_frame_ = true;

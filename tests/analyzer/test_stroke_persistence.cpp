@@ -230,5 +230,68 @@ TEST(StrokePersistence, StrokesOfTheOtherSignAreNeitherMatchedNorCovering) {
   EXPECT_NEAR(widest(drawn[1]), 1.0 - 2 * step, 1e-12) << "nor does the trough cover it";
 }
 
+// The water's field s, the same at every vertex: how high the crest under a stroke stands.
+void set_field(Water& w, double s) { w.flow.field.assign(w.mesh.positions.size(), s); }
+
+TEST(StrokePersistence, AStrokeLivesWhileItsCrestStandsAtHalfTheRegionThreshold) {
+  Water w = flat_water();
+  const StrokePersistenceOptions options;
+  const double step = 1.0 / options.fade_frames;
+  StrokePersistence persistence;
+  set_field(w, 1.2);
+  for (int frame = 0; frame < 3; ++frame) persistence.update(w.mesh, w.flow, {crest(10)}, kTaper);
+  set_field(w, options.hold_field + 0.1);  // under the region, so nothing is traced
+  for (int frame = 0; frame < 8; ++frame) {
+    const std::vector<FlowLine> drawn = persistence.update(w.mesh, w.flow, {}, kTaper);
+    ASSERT_EQ(drawn.size(), 1u) << "frame " << frame;
+    EXPECT_NEAR(widest(drawn[0]), 1.0, 1e-12) << "frame " << frame << ": held, not faded";
+    EXPECT_NEAR(mean_y(drawn[0]), 10.0, 1e-12);
+  }
+  set_field(w, options.hold_field - 0.1);  // the crest has gone: the stroke fades
+  for (int gone = 1; gone < options.fade_frames; ++gone) {
+    const std::vector<FlowLine> drawn = persistence.update(w.mesh, w.flow, {}, kTaper);
+    ASSERT_EQ(drawn.size(), 1u);
+    EXPECT_NEAR(widest(drawn[0]), 1.0 - gone * step, 1e-12);
+  }
+  EXPECT_TRUE(persistence.update(w.mesh, w.flow, {}, kTaper).empty());
+}
+
+// Two edges apart: beside each other (within match_distance), not over each other (beyond
+// cover_distance).
+TEST(StrokePersistence, AStrokeIsNotHeldBesideADrawnStrokeOfItsCrest) {
+  Water w = flat_water();
+  const double step = 1.0 / StrokePersistenceOptions{}.fade_frames;
+  StrokePersistence persistence;
+  set_field(w, 1.2);
+  for (int frame = 0; frame < 3; ++frame)
+    persistence.update(w.mesh, w.flow, {crest(12), crest(10)}, kTaper);
+  set_field(w, 0.9);
+  const std::vector<FlowLine> drawn = persistence.update(w.mesh, w.flow, {crest(12)}, kTaper);
+  ASSERT_EQ(drawn.size(), 2u);
+  EXPECT_NEAR(mean_y(drawn[0]), 12.0, 1e-12);
+  EXPECT_NEAR(widest(drawn[0]), 1.0, 1e-12) << "the one traced";
+  EXPECT_NEAR(mean_y(drawn[1]), 10.0, 1e-12);
+  EXPECT_NEAR(widest(drawn[1]), 1.0 - step, 1e-12) << "the one beside it fades";
+}
+
+TEST(StrokePersistence, StrokesAreHeldOnlyAsFarAsTheSalienceLimitLeavesRoom) {
+  Water w = flat_water();
+  w.flow.max_regions = 2;
+  const double step = 1.0 / StrokePersistenceOptions{}.fade_frames;
+  StrokePersistence persistence;
+  set_field(w, 1.2);
+  const std::vector<FlowLine> crests{crest(3), crest(10, 5, 15), crest(17)};  // 31, 11, 31 points
+  for (int frame = 0; frame < 3; ++frame) persistence.update(w.mesh, w.flow, crests, kTaper);
+  set_field(w, 0.9);
+  const std::vector<FlowLine> drawn = persistence.update(w.mesh, w.flow, {crest(17)}, kTaper);
+  ASSERT_EQ(drawn.size(), 3u);
+  EXPECT_NEAR(mean_y(drawn[0]), 17.0, 1e-12);
+  EXPECT_NEAR(widest(drawn[0]), 1.0, 1e-12) << "traced";
+  for (const FlowLine& line : {drawn[1], drawn[2]}) {
+    EXPECT_NEAR(widest(line), mean_y(line) < 5 ? 1.0 : 1.0 - step, 1e-12)
+        << "at y = " << mean_y(line) << ": room for one more, the longer";
+  }
+}
+
 }  // namespace
 }  // namespace toonwater::test
