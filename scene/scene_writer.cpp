@@ -295,19 +295,10 @@ ToonLimits water_toon_limits(const SceneLayout& l) {
   return limits;
 }
 
-namespace {
-
-// The pigment of a line under the water, as dark as its colour where the brightest band shows
-// above it.
-Color line_under_water(const SceneConfig& c, const WaterSurfaceLook& look) {
-  return seen_through_water(linear_from_srgb(c.outline.color), {1, 1, 1}, look.brightest, look);
-}
-
-}  // namespace
-
 std::string scene_pov(const SceneLayout& l) {
   const SceneConfig& c = *l.config;
   const WaterConfig& w = c.water;
+  const WaterSurfaceLook look = water_surface_look(c);
   // A curvature view is opaque and flat: it shows the curvature, not the water's optics.
   const bool curvature_view = w.shading != WaterShading::toon;
   const bool refracts = !curvature_view && w.transmit > 0;
@@ -339,6 +330,9 @@ std::string scene_pov(const SceneLayout& l) {
                             num(t_bright) + ", " + num(t_medium);
   const std::string two_bands =
       rgb(w.bright) + ", " + rgb(w.dark) + ", " + num(t_bright) + ", " + num(t_medium);
+  // What the bands pass of what lies behind them: kt, and less in the dark band
+  // (seen_through_water.hpp).
+  const std::string transmits = num(w.transmit) + ", " + num(look.dark.transmit);
   // The bands (of three, or of two where dark meets bright: band_crossings.hpp) under the flow
   // regions, when they are drawn.
   auto water_pigment = [&](const std::string& band_pigment) {
@@ -350,17 +344,18 @@ std::string scene_pov(const SceneLayout& l) {
     const std::string surface_finish = finish(c, true);
     s += "// The water's textures: its own, and for faces where dark meets bright, two bands\n";
     s += std::string("#declare ") + kWaterSurfaceTexture + " = texture {\n  " +
-         water_pigment("Toon_bands(" + bands + ", " + num(w.transmit) + ")") + "\n  " +
-         surface_finish + "\n}\n";
+         water_pigment("Toon_bands(" + bands + ", " + transmits + ")") + "\n  " + surface_finish +
+         "\n}\n";
     s += std::string("#declare ") + kWaterSurfaceTwoBandTexture + " = texture {\n  " +
-         water_pigment("Toon_two_bands(" + two_bands + ", " + num(w.transmit) + ")") + "\n  " +
+         water_pigment("Toon_two_bands(" + two_bands + ", " + transmits + ")") + "\n  " +
          surface_finish + "\n}\n";
     if (flow_regions) {
       s += "// Faces across a flow region's edge whose other corners lie in one band: that band\n";
       const std::array<Color, 3> colours{w.dark, w.medium, w.bright};
+      const std::array<double, 3> passed{look.dark.transmit, w.transmit, w.transmit};
       for (std::size_t b = 0; b < colours.size(); ++b)
         s += std::string("#declare ") + kWaterOneBandTextures[b] + " = texture {\n  " +
-             water_pigment("pigment { color " + rgb(colours[b]) + " transmit " + num(w.transmit) +
+             water_pigment("pigment { color " + rgb(colours[b]) + " transmit " + num(passed[b]) +
                            " }") +
              "\n  " + surface_finish + "\n}\n";
     }
@@ -371,9 +366,9 @@ std::string scene_pov(const SceneLayout& l) {
       const std::string body_finish = flat_shading(c) + " }";
       s += "// The closed volume's walls and floor: opaque\n";
       s += std::string("#declare ") + kWaterBodyTexture + " = texture {\n  Toon_bands(" + bands +
-           ", 0)\n  " + body_finish + "\n}\n";
+           ", 0, 0)\n  " + body_finish + "\n}\n";
       s += std::string("#declare ") + kWaterBodyTwoBandTexture + " = texture {\n  Toon_two_bands(" +
-           two_bands + ", 0)\n  " + body_finish + "\n}\n";
+           two_bands + ", 0, 0)\n  " + body_finish + "\n}\n";
     }
     s += "\n";
   }
@@ -388,7 +383,8 @@ std::string scene_pov(const SceneLayout& l) {
     if (flow_regions)
       painted.insert(painted.end(), kWaterOneBandTextures.begin(), kWaterOneBandTextures.end());
     for (const char* id : painted)
-      s += std::string("  #declare ") + id + " = Toon_foam_over(" + id + ", Foam_patches, Toon_foam)\n";
+      s += std::string("  #declare ") + id + " = Toon_foam_over(" + id +
+           ", Foam_patches, Toon_foam)\n";
     s += "#end\n\n";
   }
   if (l.spray) {
@@ -396,21 +392,20 @@ std::string scene_pov(const SceneLayout& l) {
     s += "// Spray droplets: the water's bands at the objects' thresholds, outlined\n";
     s += "#declare Toon_droplet_colors = array[3] { " + rgb(w.bright) + ", " + rgb(w.medium) +
          ", " + rgb(w.dark) + " }\n";
-    s += "#declare Toon_droplet_thresholds = <" + num(w.t_bright) + ", " + num(w.t_medium) +
-         ">;\n";
+    s += "#declare Toon_droplet_thresholds = <" + num(w.t_bright) + ", " + num(w.t_medium) + ">;\n";
     s += "#declare Toon_droplet_finish = " + finish(c, false) + "\n";
     s += "#declare Toon_droplet_line_color = " + rgb(c.outline.color) + ";\n\n";
   }
   if (l.bubbles) {
     // Read by Toon_bubble while the bubbles include is parsed. A bubble shows the water's
     // bright colour under calm water, outlined like an object under water.
-    const WaterSurfaceLook look = water_surface_look(c);
     s += "// Bubbles: discs in the water's bright colour and the line colour, as seen through "
          "its surface\n";
     s += "#declare Toon_bubble_color = " +
-         linear_rgb(seen_through_water(linear_from_srgb(w.bright), {1, 1, 1}, look.calm, look)) +
+         linear_rgb(seen_through_water(linear_from_srgb(w.bright), {1, 1, 1}, look.medium, look)) +
          ";\n";
-    s += "#declare Toon_bubble_line_color = " + linear_rgb(line_under_water(c, look)) + ";\n";
+    s += "#declare Toon_bubble_line_color = " +
+         linear_rgb(line_seen_through_water(linear_from_srgb(c.outline.color), look)) + ";\n";
     s += "#declare Toon_bubble_ior = " + num(w.ior) + ";\n\n";
   }
   s += "// Meshes of the current frame\n";
@@ -484,9 +479,8 @@ std::string scene_pov(const SceneLayout& l) {
   if (l.spray) s += "object { Spray_droplets }\n";
 
   // Under the water: colours that show through its surface as a cartoon draws them.
-  const WaterSurfaceLook look = water_surface_look(c);
   const Color& gain = look.gain;
-  const Color line_seen_through = line_under_water(c, look);
+  const Color line_seen_through = line_seen_through_water(linear_from_srgb(c.outline.color), look);
   if (l.bubbles) s += "object { Water_bubbles }\n";
   for (const ObjectPlacement& o : l.objects) {
     const ObjectConfig& oc = *o.config;
@@ -503,9 +497,9 @@ std::string scene_pov(const SceneLayout& l) {
       for (const double share : {1.0, 0.6, 0.3}) {
         const Color band{share * tint[0] * gain[0], share * tint[1] * gain[1],
                          share * tint[2] * gain[2]};
-        under += linear_rgb(seen_through_water(band, gain, look.calm, look)) + ", ";
+        under += linear_rgb(seen_through_water(band, gain, look.medium, look)) + ", ";
       }
-      under += num(w.t_bright) + ", " + num(w.t_medium) + ", 0)\n    " + finish(c, false);
+      under += num(w.t_bright) + ", " + num(w.t_medium) + ", 0, 0)\n    " + finish(c, false);
       s += "Toon_in_water(" + object_water_id(oc.name) + ", " + object_contact_id(oc.name) +
            ",\n    texture { " + in_air + " },\n    texture { " + under +
            " },\n    texture { pigment { color " + rgb(c.outline.color) + " } " + flat_finish() +

@@ -1,6 +1,7 @@
 // Colours under the water's surface; stated in seen_through_water.hpp.
 #include "scene/seen_through_water.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace toonwater {
@@ -15,31 +16,57 @@ Color linear_from_srgb(const Color& srgb) {
   return out;
 }
 
+double dark_band_transmit(double transmit, const Color& medium, const Color& dark,
+                          const Color& reflected) {
+  if (transmit <= 0.0) return 0.0;
+  // The dark pixel is (t/kt)·(the medium pixel) + a − t·b: the least leftover a − t·b.
+  double ab = 0.0, bb = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const double a = dark[c] + reflected[c];
+    const double b = dark[c] + (1.0 - transmit) / transmit * medium[c] + reflected[c] / transmit;
+    ab += a * b;
+    bb += b * b;
+  }
+  return bb > 0.0 ? std::clamp(ab / bb, 0.0, transmit) : transmit;
+}
+
 WaterSurfaceLook water_surface_look(const SceneConfig& config) {
   const WaterConfig& w = config.water;
-  WaterSurfaceLook look;
-  look.transmit = w.transmit;
-  // Toon_flat_shading's emission: ka·Ia + kd·Id, with a white ambient.
-  const Color medium = linear_from_srgb(w.medium), bright = linear_from_srgb(w.bright);
+  const Color bright = linear_from_srgb(w.bright), medium = linear_from_srgb(w.medium),
+              dark = linear_from_srgb(w.dark);
   const Color sky = linear_from_srgb(w.sky.value_or(w.bright));
+  WaterSurfaceLook look;
   for (int c = 0; c < 3; ++c) {
+    // Toon_flat_shading's emission: ka·Ia + kd·Id, with a white ambient.
     look.gain[c] = w.ka + w.kd * config.light.color[c];
-    look.calm[c] = look.gain[c] * medium[c];
-    look.brightest[c] = look.gain[c] * bright[c];
+    look.bright.shown[c] = look.gain[c] * bright[c];
+    look.medium.shown[c] = look.gain[c] * medium[c];
+    look.dark.shown[c] = look.gain[c] * dark[c];
     look.reflected[c] = w.reflection * sky[c];
   }
+  look.bright.transmit = look.medium.transmit = w.transmit;
+  look.dark.transmit =
+      dark_band_transmit(w.transmit, look.medium.shown, look.dark.shown, look.reflected);
   return look;
 }
 
-Color seen_through_water(const Color& wanted, const Color& gain, const Color& water,
+Color seen_through_water(const Color& wanted, const Color& gain, const BandLook& band,
                          const WaterSurfaceLook& look) {
   Color out{};
   for (int c = 0; c < 3; ++c) {
-    const double weight = look.transmit * gain[c];
+    const double weight = band.transmit * gain[c];
     out[c] = weight > 0.0
-                 ? (wanted[c] - (1.0 - look.transmit) * water[c] - look.reflected[c]) / weight
+                 ? (wanted[c] - (1.0 - band.transmit) * band.shown[c] - look.reflected[c]) / weight
                  : 0.0;
   }
+  return out;
+}
+
+Color line_seen_through_water(const Color& line, const WaterSurfaceLook& look) {
+  Color out = seen_through_water(line, {1, 1, 1}, look.bright, look);
+  if (look.dark.transmit <= 0.0) return out;  // nothing is seen through the dark band
+  const Color under_dark = seen_through_water(line, {1, 1, 1}, look.dark, look);
+  for (int c = 0; c < 3; ++c) out[c] = std::min(out[c], under_dark[c]);
   return out;
 }
 

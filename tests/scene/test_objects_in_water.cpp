@@ -184,6 +184,60 @@ TEST(ObjectsInWater, ASubmergedBallKeepsALegibleLineInATintOfItsOwnColour) {
   }
 }
 
+// The ball of the test above under still water whose surface shows the dark band (absolute
+// thresholds above its L.n), against the same under the medium band. Its colours are solved to
+// show its tint under the medium band; under the dark band it shows a darker shade of itself,
+// in about its hue and no more saturated, and keeps its line. Were the dark band as
+// see-through as the medium one, the difference of the two bands' colours would be taken from
+// every channel, and the ball would clip to pure red (103, 0, 0): the saturated shards seen
+// through the dark slopes of a violent simulation. Were it much less see-through, the ball
+// would take the dark water's blue (80, 68, 112).
+TEST(ObjectsInWater, ABallUnderTheDarkBandShowsADarkerShadeOfItselfAndItsLine) {
+  ScratchDir dir;
+  write_obj(dir / "ball.obj", make_sphere(Vec3(0.2, -0.55, 0.1), 0.3, 24, 48));
+  write_obj(dir / "tank.obj", make_tank(41, 1.5, 1.0, [](double, double) { return 0.0; }));
+  const std::vector<std::string> ball{"--object", (dir / "ball.obj").string(), "--set",
+                                      "object.0.color=[0.92, 0.45, 0.18]"};
+  const std::vector<std::string> dark{"--set", "water.t_bright=0.999", "--set",
+                                      "water.t_medium=0.998"};
+  auto args = [&](bool with_ball, bool lined, bool dark_band) {
+    std::vector<std::string> a{"--water", (dir / "tank.obj").string()};
+    if (with_ball) a.insert(a.end(), ball.begin(), ball.end());
+    if (with_ball && !lined) a.insert(a.end(), {"--set", "object.0.outline=false"});
+    if (dark_band) a.insert(a.end(), dark.begin(), dark.end());
+    return a;
+  };
+  const Outline under_dark = measure_outline(render(dir / "lined_dark", args(true, true, true)),
+                                             render(dir / "unlined_dark", args(true, false, true)),
+                                             render(dir / "empty_dark", args(false, false, true)));
+  const Outline under_medium = measure_outline(render(dir / "lined", args(true, true, false)),
+                                               render(dir / "unlined", args(true, false, false)),
+                                               render(dir / "empty", args(false, false, false)));
+  ASSERT_GT(under_dark.inside, 300);
+  ASSERT_GT(under_medium.inside, 300);
+  auto lum = [](const Outline& o) {
+    return luminance({static_cast<int>(std::lround(o.r)), static_cast<int>(std::lround(o.g)),
+                      static_cast<int>(std::lround(o.b))});
+  };
+  std::printf(
+      "dark band: mean %.1f,%.1f,%.1f (luminance %.4f); medium band: mean "
+      "%.1f,%.1f,%.1f (luminance %.4f); lined %d of %d\n",
+      under_dark.r, under_dark.g, under_dark.b, lum(under_dark), under_medium.r, under_medium.g,
+      under_medium.b, lum(under_medium), under_dark.lined, under_dark.outline_pixels);
+  auto saturation = [](const Outline& o) {
+    const double hi = std::max({o.r, o.g, o.b}), lo = std::min({o.r, o.g, o.b});
+    return hi > 0 ? (hi - lo) / hi : 0.0;
+  };
+  const double dark_hue = hue(under_dark.r, under_dark.g, under_dark.b);
+  const double medium_hue = hue(under_medium.r, under_medium.g, under_medium.b);
+  EXPECT_LT(lum(under_dark), 0.6 * lum(under_medium)) << "darkened with the band";
+  EXPECT_LT(hue_distance(dark_hue, medium_hue), 30.0)
+      << "in its own hue, not the dark water's blue: " << dark_hue << " against " << medium_hue;
+  EXPECT_LE(saturation(under_dark), saturation(under_medium) + 0.1) << "not clipped to a pure hue";
+  EXPECT_GE(under_dark.lined, 0.7 * under_dark.outline_pixels)
+      << under_dark.lined << " of " << under_dark.outline_pixels << " outline pixels lined";
+}
+
 // The largest 4-connected part of `mask` (an image's pixels, row by row).
 std::vector<bool> largest_part(const std::vector<bool>& mask, int width, int height) {
   std::vector<int> part(mask.size(), -1);
