@@ -90,17 +90,6 @@ double linear(int c) {
 double luminance(const Rgb8& c) {
   return 0.2126 * linear(c[0]) + 0.7152 * linear(c[1]) + 0.0722 * linear(c[2]);
 }
-// The hue of an sRGB colour in degrees, 0 to 360.
-double hue(double r, double g, double b) {
-  const double hi = std::max({r, g, b}), lo = std::min({r, g, b}), c = hi - lo;
-  if (c <= 0) return 0;
-  double h = hi == r ? std::fmod((g - b) / c, 6.0) : hi == g ? (b - r) / c + 2 : (r - g) / c + 4;
-  return std::fmod(60 * h + 360, 360);
-}
-double hue_distance(double a, double b) {
-  const double d = std::abs(a - b);
-  return std::min(d, 360 - d);
-}
 
 // Where the object is seen: pixels that differ between the scene with it and without it.
 std::vector<bool> seen_object(const Image& with, const Image& without) {

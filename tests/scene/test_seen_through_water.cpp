@@ -2,6 +2,8 @@
 // composes them, they give back the colour wanted.
 #include "scene/seen_through_water.hpp"
 
+#include "tests/support/test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -94,14 +96,7 @@ TEST(SeenThroughWater, TheDarkBandPassesFromNothingToAllWithTheWater) {
 TEST(SeenThroughWater, AnObjectUnderTheDarkBandKeepsItsHue) {
   SceneConfig config;
   const WaterSurfaceLook look = water_surface_look(config);
-  auto hue = [](const Color& linear) {
-    const double r = linear[0], g = linear[1], b = linear[2];
-    const double hi = std::max({r, g, b}), lo = std::min({r, g, b});
-    double h = hi == r   ? std::fmod((g - b) / (hi - lo), 6.0)
-               : hi == g ? (b - r) / (hi - lo) + 2
-                         : (r - g) / (hi - lo) + 4;
-    return std::fmod(60 * h + 360, 360);
-  };
+  auto hue_of = [](const Color& c) { return hue(c[0], c[1], c[2]); };
   auto clipped = [](Color c) {
     for (double& v : c) v = std::clamp(v, 0.0, 1.0);
     return c;
@@ -110,9 +105,8 @@ TEST(SeenThroughWater, AnObjectUnderTheDarkBandKeepsItsHue) {
   const Color x = seen_through_water(wanted, look.gain, look.medium, look);
   const Color under_medium = clipped(composed(x, look.gain, look.medium, look));
   const Color under_dark = clipped(composed(x, look.gain, look.dark, look));
-  const double distance = std::abs(hue(under_dark) - hue(under_medium));
-  EXPECT_LT(std::min(distance, 360 - distance), 10.0)
-      << hue(under_dark) << " against " << hue(under_medium);
+  EXPECT_LT(hue_distance(hue_of(under_dark), hue_of(under_medium)), 10.0)
+      << hue_of(under_dark) << " against " << hue_of(under_medium);
   EXPECT_GT(*std::min_element(under_dark.begin(), under_dark.end()), 0.0) << "not clipped";
   EXPECT_LT(under_dark[0], under_medium[0]) << "darker";
 }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <atomic>
 #include <cstdint>
 #include <fstream>
@@ -55,6 +56,20 @@ void write_text(const fs::path& path, const std::string& text) {
 fs::path shared_dir() {
   const fs::path dir = TOONWATER_SHARED_DIR;
   return fs::is_directory(dir / "data") ? dir : fs::path{};
+}
+
+double hue(double r, double g, double b) {
+  const double hi = std::max({r, g, b}), lo = std::min({r, g, b}), c = hi - lo;
+  if (c <= 0) return 0;
+  const double h = hi == r   ? std::fmod((g - b) / c, 6.0)
+                   : hi == g ? (b - r) / c + 2
+                             : (r - g) / c + 4;
+  return std::fmod(60 * h + 360, 360);
+}
+
+double hue_distance(double a, double b) {
+  const double d = std::abs(a - b);
+  return std::min(d, 360 - d);
 }
 
 std::string temporary_name_of_a_gone_process(const std::string& name) {

@@ -38,6 +38,11 @@ std::string wwp_bytes(const std::vector<std::pair<int, Vec3>>& particles);
 // ../shared beside the project root, or an empty path when it is absent.
 std::filesystem::path shared_dir();
 
+// The hue of a colour in degrees, 0 to 360 (0 for a grey), and the distance of two hues round
+// the colour wheel.
+double hue(double r, double g, double b);
+double hue_distance(double a, double b);
+
 // A temporary name of `name` (common/temporary_name.hpp) as a process that has since ended
 // made it: what a killed run leaves behind.
 std::string temporary_name_of_a_gone_process(const std::string& name);
