@@ -299,6 +299,7 @@ std::string scene_pov(const SceneLayout& l) {
   const SceneConfig& c = *l.config;
   const WaterConfig& w = c.water;
   const WaterSurfaceLook look = water_surface_look(c);
+  const Color line_seen_through = line_seen_through_water(linear_from_srgb(c.outline.color), look);
   // A curvature view is opaque and flat: it shows the curvature, not the water's optics.
   const bool curvature_view = w.shading != WaterShading::toon;
   const bool refracts = !curvature_view && w.transmit > 0;
@@ -332,7 +333,7 @@ std::string scene_pov(const SceneLayout& l) {
       rgb(w.bright) + ", " + rgb(w.dark) + ", " + num(t_bright) + ", " + num(t_medium);
   // What the bands pass of what lies behind them: kt, and less in the dark band
   // (seen_through_water.hpp).
-  const std::string transmits = num(w.transmit) + ", " + num(look.dark.transmit);
+  const std::string transmits = num(look.medium.transmit) + ", " + num(look.dark.transmit);
   // The bands (of three, or of two where dark meets bright: band_crossings.hpp) under the flow
   // regions, when they are drawn.
   auto water_pigment = [&](const std::string& band_pigment) {
@@ -352,7 +353,8 @@ std::string scene_pov(const SceneLayout& l) {
     if (flow_regions) {
       s += "// Faces across a flow region's edge whose other corners lie in one band: that band\n";
       const std::array<Color, 3> colours{w.dark, w.medium, w.bright};
-      const std::array<double, 3> passed{look.dark.transmit, w.transmit, w.transmit};
+      const std::array<double, 3> passed{look.dark.transmit, look.medium.transmit,
+                                         look.bright.transmit};
       for (std::size_t b = 0; b < colours.size(); ++b)
         s += std::string("#declare ") + kWaterOneBandTextures[b] + " = texture {\n  " +
              water_pigment("pigment { color " + rgb(colours[b]) + " transmit " + num(passed[b]) +
@@ -404,8 +406,7 @@ std::string scene_pov(const SceneLayout& l) {
     s += "#declare Toon_bubble_color = " +
          linear_rgb(seen_through_water(linear_from_srgb(w.bright), {1, 1, 1}, look.medium, look)) +
          ";\n";
-    s += "#declare Toon_bubble_line_color = " +
-         linear_rgb(line_seen_through_water(linear_from_srgb(c.outline.color), look)) + ";\n";
+    s += "#declare Toon_bubble_line_color = " + linear_rgb(line_seen_through) + ";\n";
     s += "#declare Toon_bubble_ior = " + num(w.ior) + ";\n\n";
   }
   s += "// Meshes of the current frame\n";
@@ -480,7 +481,6 @@ std::string scene_pov(const SceneLayout& l) {
 
   // Under the water: colours that show through its surface as a cartoon draws them.
   const Color& gain = look.gain;
-  const Color line_seen_through = line_seen_through_water(linear_from_srgb(c.outline.color), look);
   if (l.bubbles) s += "object { Water_bubbles }\n";
   for (const ObjectPlacement& o : l.objects) {
     const ObjectConfig& oc = *o.config;
