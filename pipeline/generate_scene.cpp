@@ -26,6 +26,7 @@
 #include "scene/foam_writer.hpp"
 #include "scene/bubble_writer.hpp"
 #include "scene/spray_droplets.hpp"
+#include "scene/water_body.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -467,16 +468,18 @@ void add_to_layout(SceneRun& run, const PreparedSurface& s) {
 // A see-through closed volume (WaterBody): an opaque body gives its walls and floor their own
 // textures (scene.pov); a clear one keeps the shell on the free surface only, as rays
 // refracted through the volume leave it through the floor and walls and would meet the
-// inside of a closed shell there, painting the water in the line colour.
+// inside of a closed shell there, painting the water in the line colour. The faces are first
+// cut where the free surface meets the body (water_body.hpp).
 struct WaterBodyFaces {
   std::optional<std::vector<bool>> body;         // an opaque body: its walls and floor
   std::optional<std::vector<bool>> shell_limit;  // a clear body: the faces its shell keeps to
 };
 
-WaterBodyFaces water_body_faces(const SceneRun& run, const SceneMesh& mesh) {
+WaterBodyFaces water_body_faces(const SceneRun& run, PreparedSurface& s,
+                                std::vector<TextureCoordinate>& uv) {
   WaterBodyFaces out;
-  if (!(mesh.closed && refracts(run))) return out;
-  std::vector<bool> upward = upward_faces(mesh);
+  if (!(s.mesh.closed && refracts(run))) return out;
+  std::vector<bool> upward = cut_free_surface_from_body(s, uv);
   if (run.config.water.body == WaterBody::opaque) {
     std::vector<bool> walls_and_floor = std::move(upward);
     walls_and_floor.flip();
@@ -669,14 +672,15 @@ struct WaterInclude {
   WaterShell shell;
 };
 
-WaterInclude water_include(SceneRun& run, const PreparedSurface& s,
-                           std::span<const TextureCoordinate> uv) {
+// A closed volume's surface and its coordinates `uv` are first cut where its body meets its free
+// surface (water_body_faces).
+WaterInclude water_include(SceneRun& run, PreparedSurface& s, std::vector<TextureCoordinate>& uv) {
+  const WaterBodyFaces body = water_body_faces(run, s, uv);
   const SceneConfig& config = run.config;
   const std::vector<double> offsets =
       config.outline.enabled
           ? shell_offsets(config.outline, s.mesh, run.layout.camera, config.render.width)
           : std::vector<double>{};
-  const WaterBodyFaces body = water_body_faces(run, s.mesh);
   if (body.body) run.layout.closed_water = true;
   const std::optional<FaceTextures> textures =
       water_face_textures(run, s.mesh, uv, body.body ? &*body.body : nullptr);
