@@ -1,4 +1,4 @@
-// Water-like test meshes: open height fields and closed tanks with a height field on top.
+// Water-like test meshes: open height fields, closed tanks with a height field on top, a box.
 #pragma once
 
 #include "corpus/analytic_surfaces.hpp"
@@ -41,6 +41,21 @@ inline TriangleMesh tank(int n, const HeightFunction& f) {
     m.triangles.push_back({a, b + top, b});
   }
   return m;
+}
+
+// A box of water of twelve faces, y up: x and z in [−1, 1], y in [−0.4, 0], wound outward.
+inline TriangleMesh water_box() {
+  TriangleMesh box;
+  for (int i = 0; i < 8; ++i)
+    box.positions.emplace_back(i & 1 ? 1.0 : -1.0, i & 2 ? 0.0 : -0.4, i & 4 ? 1.0 : -1.0);
+  // Outward-wound quads as two triangles each: -x, +x, -y, +y, -z, +z.
+  const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  for (const auto& q : quads) {
+    box.triangles.push_back({q[0], q[1], q[2]});
+    box.triangles.push_back({q[0], q[2], q[3]});
+  }
+  return box;
 }
 
 inline HeightFunction bump(double amplitude, double x0, double y0, double width) {

@@ -4,6 +4,7 @@
 
 #include "analyzer/colormap.hpp"
 #include "report/image.hpp"
+#include "tests/analyzer/water_meshes.hpp"
 #include "tests/support/run_toonwater.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -813,17 +814,7 @@ TEST(PovgenRender, SubmergedObjectMovesWhenTheIorChangesAndKeepsItsOutline) {
 // the line colour (rays refracted through the surface end on the floor and walls).
 TEST(PovgenRender, TransparentClosedWaterHasAnOpaqueBodyAndIsNotDarkenedByItsShell) {
   ScratchDir dir;
-  TriangleMesh box;
-  for (int i = 0; i < 8; ++i)
-    box.positions.emplace_back(i & 1 ? 1.0 : -1.0, i & 2 ? 0.0 : -0.4, i & 4 ? 1.0 : -1.0);
-  // Outward-wound quads as two triangles each: -x, +x, -y, +y, -z, +z.
-  const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                           {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-  for (const auto& q : quads) {
-    box.triangles.push_back({q[0], q[1], q[2]});
-    box.triangles.push_back({q[0], q[2], q[3]});
-  }
-  write_obj(dir / "tank.obj", box);
+  write_obj(dir / "tank.obj", water_box());
   const Image img = render_scene(
       dir, "tank",
       std::vector<std::string>{

@@ -175,15 +175,7 @@ TEST(WaterBody, ASharpStraightEdgeBetweenWallsAndWaterStaysWhereItIs) {
 // water meets two of wall (φ = 1/3), so the iso-line would leave nothing of the top. The top
 // stays water and the walls and floor stay body, none of them cut.
 TEST(WaterBody, ACoarseBoxKeepsItsTopAsWater) {
-  TriangleMesh box;
-  for (int i = 0; i < 8; ++i)
-    box.positions.emplace_back(i & 1 ? 1.0 : -1.0, i & 2 ? 0.0 : -0.4, i & 4 ? 1.0 : -1.0);
-  const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                           {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-  for (const auto& q : quads) {
-    box.triangles.push_back({q[0], q[1], q[2]});
-    box.triangles.push_back({q[0], q[2], q[3]});
-  }
+  const TriangleMesh box = water_box();
   std::vector<Vec3> normals;
   for (const Vec3& p : box.positions) normals.push_back(p - Vec3(0, -0.2, 0));
   PreparedSurface s;
