@@ -1,18 +1,14 @@
 // Contour tracing of the flow field; the method is stated in flow_lines.hpp.
 #include "analyzer/flow_lines.hpp"
 
+#include "analyzer/topology.hpp"
+
 #include <algorithm>
 #include <array>
 #include <unordered_map>
 
 namespace toonwater {
 namespace {
-
-std::uint64_t edge_key(std::int32_t a, std::int32_t b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
-}
 
 // The crossings of one level and the segments between them; each crossing (an edge) belongs to
 // at most two segments on a manifold surface, more only on non-manifold edges, where the chains

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace toonwater {
@@ -45,6 +46,13 @@ struct MeshTopology {
 // Inline: the passes over every face call it.
 inline bool has_repeated_corner(const Triangle& t) {
   return t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+}
+
+// One key per undirected edge {a, b} of non-negative vertex indices, the same either way round.
+inline std::uint64_t edge_key(std::int32_t a, std::int32_t b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
 }
 
 VertexFaces build_vertex_faces(std::size_t vertex_count, std::span<const Triangle> triangles);

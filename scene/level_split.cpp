@@ -1,5 +1,7 @@
 #include "scene/level_split.hpp"
 
+#include "analyzer/topology.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -48,9 +50,7 @@ std::vector<bool> split_at_level(PreparedSurface& surface, std::vector<TextureCo
   // The cut point of edge {a, b}, made once for both its faces.
   std::unordered_map<std::uint64_t, int> cut_points;
   const auto cut = [&](int a, int b) {
-    const std::uint64_t key = (static_cast<std::uint64_t>(std::min(a, b)) << 32) |
-                              static_cast<std::uint32_t>(std::max(a, b));
-    const auto [it, made] = cut_points.try_emplace(key, -1);
+    const auto [it, made] = cut_points.try_emplace(edge_key(a, b), -1);
     if (made) {
       // Parametrised from the lower index, so that both faces compute the same point.
       const int from = std::min(a, b), to = std::max(a, b);
@@ -67,7 +67,7 @@ std::vector<bool> split_at_level(PreparedSurface& surface, std::vector<TextureCo
   triangles.reserve(mesh.triangles.size());
   face_above.reserve(mesh.triangles.size());
   const auto add = [&](const Triangle& t, bool is_above) {
-    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return;  // a cut point snapped to a corner
+    if (has_repeated_corner(t)) return;  // a cut point snapped to a corner
     triangles.push_back(t);
     face_above.push_back(is_above);
   };
