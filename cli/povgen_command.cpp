@@ -107,8 +107,8 @@ void run_povgen(const PovgenArgs& args) {
                  "  spray: %zu particles -> %zu droplets; foam: %zu particles -> %zu patch "
                  "components; bubbles: %zu particles -> %zu bubbles; over the frames "
                  "(particles.*)\n",
-                 r.particles, r.droplets, r.foam_particles, r.foam_components,
-                 r.bubble_particles, r.bubbles);
+                 r.particles, r.droplets, r.foam_particles, r.foam_components, r.bubble_particles,
+                 r.bubbles);
   if (!args.maps.empty()) {
     std::fprintf(
         stderr, "  maps: %zu frame(s) -> %s, shared colour ranges K \u00b1%.6g, H \u00b1%.6g\n",

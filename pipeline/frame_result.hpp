@@ -28,9 +28,9 @@ struct FrameResult {
   std::size_t vertices = 0, faces = 0, faces_kept = 0;
   std::size_t degenerate_faces = 0, replaced_normals = 0;
   std::size_t ridge_vertices = 0, valley_vertices = 0;
-  std::size_t shell_faces = 0, shell_faces_kept = 0;  // the water's outline shell
-  bool maps = false;                                  // its curvature maps written
-  std::size_t particles = 0, droplets = 0;  // spray particles read, and droplets drawn
+  std::size_t shell_faces = 0, shell_faces_kept = 0;    // the water's outline shell
+  bool maps = false;                                    // its curvature maps written
+  std::size_t particles = 0, droplets = 0;              // spray particles read, and droplets drawn
   std::size_t foam_particles = 0, foam_components = 0;  // foam particles read, blob components
   std::size_t bubble_particles = 0, bubbles = 0;        // bubble particles read, bubbles drawn
   // The water file read, its analysis and preparation, the render mesh's simplification, the
@@ -59,7 +59,7 @@ struct PovgenReport {
   std::size_t shell_faces = 0,
               shell_faces_kept = 0;  // outline shells, water and objects, all frames
   std::size_t ridge_vertices = 0, valley_vertices = 0;
-  std::size_t particles = 0, droplets = 0;  // spray particles read, and droplets drawn
+  std::size_t particles = 0, droplets = 0;              // spray particles read, and droplets drawn
   std::size_t foam_particles = 0, foam_components = 0;  // foam particles read, blob components
   std::size_t bubble_particles = 0, bubbles = 0;        // bubble particles read, bubbles drawn
   std::vector<std::string> empty_frames;  // "PATH: why", frames left without water (no faces)

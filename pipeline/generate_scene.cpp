@@ -586,7 +586,8 @@ FrameParticles read_frame_particles(const SceneRun& run, long frame) {
       kind->push_back(to_povray(p, run.request.up));
       if (kind == &out.spray && !set.velocities.empty()) {
         Vec3 v = set.velocities[i];
-        if (const std::optional<AffineTransform>& t = run.request.water_transform) v = t->linear * v;
+        if (const std::optional<AffineTransform>& t = run.request.water_transform)
+          v = t->linear * v;
         out.spray_velocities.push_back(to_povray(v, run.request.up));
       }
     }
@@ -616,10 +617,10 @@ void write_particles(SceneRun& run, const SceneMesh* water, long frame, long wri
     DropletOptions options;
     options.size_pixels = c.particles.droplet_size;
     options.max_droplets = static_cast<std::size_t>(c.particles.max_droplets);
-    std::vector<Droplet> droplets = run.droplets.update(
-        spray_droplets(particles.spray, screen, options, water, run.droplets.predicted(),
-                       particles.spray_velocities),
-        screen, options);
+    std::vector<Droplet> droplets =
+        run.droplets.update(spray_droplets(particles.spray, screen, options, water,
+                                           run.droplets.predicted(), particles.spray_velocities),
+                            screen, options);
     result.particles = particles.spray.size();
     result.droplets = droplets.size();
     result.write_seconds += run.write(spray_include_name(written_frame),
@@ -645,11 +646,12 @@ void write_particles(SceneRun& run, const SceneMesh* water, long frame, long wri
     const FoamOptions options{c.particles.foam_reach, c.particles.foam_density};
     // Without water there is no surface to paint.
     const std::vector<FoamComponent> components =
-        water ? foam_components(particles.foam, *water, screen, options) : std::vector<FoamComponent>{};
+        water ? foam_components(particles.foam, *water, screen, options)
+              : std::vector<FoamComponent>{};
     result.foam_particles = particles.foam.size();
     result.foam_components = components.size();
-    result.write_seconds += run.write(foam_include_name(written_frame),
-                                      foam_include(components, options.density));
+    result.write_seconds +=
+        run.write(foam_include_name(written_frame), foam_include(components, options.density));
   }
 }
 
@@ -826,8 +828,8 @@ PovgenReport generate_scene(const SceneConfig& config, const PovgenRequest& requ
   run.layout.last_frame = run.layout.animation ? water.frames.rbegin()->first : 0;
   run.layout.spray =
       !run.particles.empty() && config.particles.spray && config.particles.max_droplets > 0;
-  run.layout.foam = !run.particles.empty() && config.particles.foam &&
-                    config.water.shading == WaterShading::toon;
+  run.layout.foam =
+      !run.particles.empty() && config.particles.foam && config.water.shading == WaterShading::toon;
   // Bubbles are seen through the water only.
   run.layout.bubbles = !run.particles.empty() && config.particles.bubbles &&
                        config.particles.max_bubbles > 0 &&

@@ -163,8 +163,8 @@ struct ParticlesConfig {
   double droplet_size = 8.0;  // pixels across, at the frame's median droplet
   int max_droplets = 40;      // a frame's most salient droplets
   bool foam = true;
-  double foam_reach = 6.0;     // pixels: how far from a foam particle its foam reaches
-  double foam_density = 6.0;   // particles' worth of foam, within a reach, that make a patch
+  double foam_reach = 6.0;    // pixels: how far from a foam particle its foam reaches
+  double foam_density = 6.0;  // particles' worth of foam, within a reach, that make a patch
   Color foam_color{1.0, 1.0, 1.0};
   bool bubbles = true;
   double bubble_size = 6.0;  // pixels across

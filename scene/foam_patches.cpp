@@ -33,10 +33,10 @@ std::vector<FoamComponent> summed_in_cells(std::span<const Reaching> particles, 
   std::vector<std::pair<Key, std::size_t>> keyed(particles.size());
   for (std::size_t i = 0; i < particles.size(); ++i) {
     const Vec3 q = particles[i].position / cell;
-    keyed[i] = {{static_cast<std::int64_t>(std::floor(q.x())),
-                 static_cast<std::int64_t>(std::floor(q.y())),
-                 static_cast<std::int64_t>(std::floor(q.z()))},
-                i};
+    keyed[i] = {
+        {static_cast<std::int64_t>(std::floor(q.x())), static_cast<std::int64_t>(std::floor(q.y())),
+         static_cast<std::int64_t>(std::floor(q.z()))},
+        i};
   }
   std::sort(keyed.begin(), keyed.end());
   std::vector<FoamComponent> components;
@@ -58,8 +58,7 @@ std::vector<FoamComponent> summed_in_cells(std::span<const Reaching> particles, 
     // The kernel's mean squared reach is R²/3: matching it and the foam's amount (∝ S·R³).
     const double radius2 = radius2_sum / count;
     const double merged2 = radius2 + 3.0 * spread2;
-    components.push_back(
-        {centre, std::sqrt(merged2), count * std::pow(radius2 / merged2, 1.5)});
+    components.push_back({centre, std::sqrt(merged2), count * std::pow(radius2 / merged2, 1.5)});
     begin = end;
   }
   return components;

@@ -52,8 +52,8 @@ struct SceneLayout {
   // median over the frames the survey saw, or the first frame's; 0 when unknown.
   double normal_noise = 0.0;
   long first_frame = 0, last_frame = 0;
-  bool spray = false;  // each frame's spray droplets, in spray_NNNN.inc (droplet_writer.hpp)
-  bool foam = false;   // each frame's foam patches, in foam_NNNN.inc (foam_writer.hpp)
+  bool spray = false;    // each frame's spray droplets, in spray_NNNN.inc (droplet_writer.hpp)
+  bool foam = false;     // each frame's foam patches, in foam_NNNN.inc (foam_writer.hpp)
   bool bubbles = false;  // each frame's bubbles, in bubbles_NNNN.inc (bubble_writer.hpp)
 };
 

@@ -14,8 +14,7 @@ namespace toonwater {
 // The camera as a pinhole on an image `width` × `height` pixels with square pixels (what
 // scene.pov's camera block makes of a CameraPlacement): pixel (0, 0) at the top left.
 struct ScreenProjection {
-  Vec3 location = Vec3::Zero(), right = Vec3::UnitX(), up = Vec3::UnitY(),
-       forward = Vec3::UnitZ();
+  Vec3 location = Vec3::Zero(), right = Vec3::UnitX(), up = Vec3::UnitY(), forward = Vec3::UnitZ();
   double focal_pixels = 1.0;  // the image's half-width over tan(angle / 2)
   int width = 1, height = 1;
 

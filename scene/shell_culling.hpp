@@ -8,7 +8,8 @@
 // shell mesh2 has no normal_vectors, so that normal is the face's own, (a−b)×(c−b) for
 // <a,b,c>. A ray meeting a face from the front goes through unchanged: transmit 1 and filter 0
 // let all of it pass, the finish adds nothing (no reflection, no highlight, diffuse and ambient
-// 0), and the shell's interior has the default ior 1, the air's, so the ray does not bend. A face matters only to rays that meet it from behind.
+// 0), and the shell's interior has the default ior 1, the air's, so the ray does not bend. A face
+// matters only to rays that meet it from behind.
 //
 // Camera rays all start at the camera's location E (a perspective camera). For a flat
 // triangle with normal N through its vertex a, every point p of its plane has

@@ -77,7 +77,8 @@ TEST(Particles, DamagedWhitewaterFilesAreOneLineErrors) {
   write_text(dir / "foam000003.wwp", decreasing);
   EXPECT_NE(error_of(dir / "foam000003.wwp").find("not a whitewater file"), std::string::npos);
 
-  write_text(dir / "foam000004.wwp", wwp_bytes({{0, {1, std::numeric_limits<double>::quiet_NaN(), 3}}}));
+  write_text(dir / "foam000004.wwp",
+             wwp_bytes({{0, {1, std::numeric_limits<double>::quiet_NaN(), 3}}}));
   EXPECT_NE(error_of(dir / "foam000004.wwp").find("NaN or infinite (particle 0)"),
             std::string::npos);
 

@@ -45,8 +45,10 @@ std::runtime_error unreadable(const openvdb::Exception& e) {
   std::string reason;
   for (const char c : std::string_view(e.what())) {
     const bool white = c == ' ' || c == '\n' || c == '\t' || c == '\r';
-    if (!white) reason += c;
-    else if (!reason.empty() && reason.back() != ' ') reason += ' ';
+    if (!white)
+      reason += c;
+    else if (!reason.empty() && reason.back() != ' ')
+      reason += ' ';
   }
   constexpr std::size_t longest_reason = 160;
   return std::runtime_error(unreadable_prefix + printable_text(reason, longest_reason));
