@@ -17,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* module_name = "toonwater-images.so";
+constexpr const char* image_module_name = "toonwater-images.so";
 
 void write_square(const fs::path& path) {
   write_text(path, "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nf 1 2 3\nf 1 3 4\n");
@@ -27,7 +27,7 @@ TEST(ImageModule, TheProgramLinksNoOpenImageIO) {
   const std::string listed = libraries_the_program_loads();
   ASSERT_NE(listed.find("libstdc++"), std::string::npos) << listed;
   EXPECT_EQ(listed.find("OpenImageIO"), std::string::npos) << listed;
-  EXPECT_TRUE(fs::exists(fs::path(TOONWATER_EXECUTABLE).parent_path() / module_name));
+  EXPECT_TRUE(fs::exists(fs::path(TOONWATER_EXECUTABLE).parent_path() / image_module_name));
 }
 
 TEST(ImageModule, WithoutItOnlyTheCommandsThatWriteImagesFail) {
@@ -46,7 +46,8 @@ TEST(ImageModule, WithoutItOnlyTheCommandsThatWriteImagesFail) {
   EXPECT_EQ(r.exit_code, cli::exit_code::incomplete_install) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_EQ(r.output.rfind("toonwater: error: ", 0), 0u) << r.output;
-  EXPECT_NE(r.output.find((dir.path() / module_name).string()), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find((dir.path() / image_module_name).string()), std::string::npos)
+      << r.output;
   EXPECT_FALSE(fs::exists(dir / "both.csv"));
   EXPECT_FALSE(fs::exists(dir / "maps"));
 
@@ -57,7 +58,8 @@ TEST(ImageModule, WithoutItOnlyTheCommandsThatWriteImagesFail) {
   EXPECT_FALSE(fs::exists(dir / "scene"));
 
   // With the module beside it, the same copy writes the maps.
-  fs::copy_file(fs::path(TOONWATER_EXECUTABLE).parent_path() / module_name, dir / module_name);
+  fs::copy_file(fs::path(TOONWATER_EXECUTABLE).parent_path() / image_module_name,
+                dir / image_module_name);
   r = run_program(dir / "toonwater",
                   {"analyze", (dir / "water.obj").string(), "--maps", (dir / "maps").string()});
   EXPECT_EQ(r.exit_code, cli::exit_code::success) << r.output;

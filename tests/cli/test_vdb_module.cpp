@@ -19,7 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* module_name = "toonwater-vdb.so";
+constexpr const char* vdb_module_name = "toonwater-vdb.so";
 
 void write_ball(const fs::path& path, float radius) {
   openvdb::initialize();
@@ -47,9 +47,10 @@ TEST(VdbModule, WithoutItOnlyVdbFilesFailAndWithItTheyBecomeScenes) {
   EXPECT_EQ(r.exit_code, cli::exit_code::success) << r.output;
   r = run_program(dir / "toonwater", {"analyze", (dir / "ball_0001.vdb").string()});
   EXPECT_EQ(r.exit_code, cli::exit_code::incomplete_install) << r.output;
-  EXPECT_NE(r.output.find((dir.path() / module_name).string()), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find((dir.path() / vdb_module_name).string()), std::string::npos) << r.output;
 
-  fs::copy_file(fs::path(TOONWATER_EXECUTABLE).parent_path() / module_name, dir / module_name);
+  fs::copy_file(fs::path(TOONWATER_EXECUTABLE).parent_path() / vdb_module_name,
+                dir / vdb_module_name);
   r = run_program(dir / "toonwater", {"analyze", (dir / "ball_0001.vdb").string()});
   EXPECT_EQ(r.exit_code, cli::exit_code::success) << r.output;
   EXPECT_NE(r.output.find("boundary 0, non-manifold 0"), std::string::npos)

@@ -1,6 +1,7 @@
 // Child processes (common/child_process.hpp): where their output goes, where they run, what
 // their standard input is, and the exit statuses of a child that cannot become its program.
 #include "common/child_process.hpp"
+#include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +15,6 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 namespace toonwater {
@@ -27,13 +27,6 @@ int wait_exit_status(pid_t pid) {
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   return exit_status(status);
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 class ChildProcess : public ::testing::Test {
@@ -61,7 +54,7 @@ TEST_F(ChildProcess, OutputAndErrorGoIntoTheFileInTheWorkingDirectoryAndInputIsE
       start_child_process({"sh", "-c", "pwd; echo to-error >&2; cat; echo end; exit 3"}, setup);
   ASSERT_GT(pid, 0);
   EXPECT_EQ(wait_exit_status(pid), 3);
-  EXPECT_EQ(read_text(log), fs::canonical(dir_ / "work").string() + "\nto-error\nend\n");
+  EXPECT_EQ(test::read_text(log), fs::canonical(dir_ / "work").string() + "\nto-error\nend\n");
 }
 
 TEST_F(ChildProcess, OutputAndErrorGoIntoTheDescriptorsGiven) {

@@ -19,7 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr long frame_count = 4;
+constexpr long sequence_frames = 4;
 constexpr long empty_frame = 2;
 
 // Frame f's water: a wavy grid, finer each frame (its vertices are its own).
@@ -34,7 +34,7 @@ std::string numbered(const std::string& stem, long f) {
 }
 
 void write_sequence(const fs::path& dir) {
-  for (long f = 1; f <= frame_count; ++f) {
+  for (long f = 1; f <= sequence_frames; ++f) {
     if (f == empty_frame)
       write_text(dir / numbered("water", f), "# the liquid has left the domain\n");
     else
@@ -77,8 +77,8 @@ TEST(PovgenFrameResults, EachFrameCountsItsOwnMesh) {
   for (const Case& c : cases) {
     const std::string& name = c.name;
     const PovgenReport r = generate(dir.path(), c);
-    ASSERT_EQ(r.per_frame.size(), static_cast<std::size_t>(frame_count)) << name;
-    for (long f = 1; f <= frame_count; ++f) {
+    ASSERT_EQ(r.per_frame.size(), static_cast<std::size_t>(sequence_frames)) << name;
+    for (long f = 1; f <= sequence_frames; ++f) {
       const FrameResult& result = r.per_frame[static_cast<std::size_t>(f - 1)];
       EXPECT_EQ(result.frame, f) << name;
       EXPECT_EQ(result.objects.reads, 1u) << name << " frame " << f << ": its buoy";
@@ -101,7 +101,7 @@ TEST(PovgenFrameResults, AFrameWithoutWaterCarriesItsReason) {
   for (const Case& c : cases) {
     const std::string& name = c.name;
     const PovgenReport r = generate(dir.path(), c);
-    ASSERT_EQ(r.per_frame.size(), static_cast<std::size_t>(frame_count)) << name;
+    ASSERT_EQ(r.per_frame.size(), static_cast<std::size_t>(sequence_frames)) << name;
     const FrameResult& empty = r.per_frame[empty_frame - 1];
     EXPECT_NE(empty.empty.find(numbered("water", empty_frame) + ": contains no faces"),
               std::string::npos)
@@ -146,8 +146,8 @@ TEST(PovgenFrameResults, TheReportIsTheSumOfItsFrames) {
     EXPECT_EQ(r.ridge_vertices, sum.ridge_vertices) << name;
     EXPECT_EQ(r.valley_vertices, sum.valley_vertices) << name;
     EXPECT_EQ(r.map_frames, map_frames) << name;
-    EXPECT_EQ(r.map_frames, c.maps ? static_cast<std::size_t>(frame_count - 1) : 0) << name;
-    EXPECT_EQ(r.cached_frames, c.maps ? static_cast<std::size_t>(frame_count) : 0) << name;
+    EXPECT_EQ(r.map_frames, c.maps ? static_cast<std::size_t>(sequence_frames - 1) : 0) << name;
+    EXPECT_EQ(r.cached_frames, c.maps ? static_cast<std::size_t>(sequence_frames) : 0) << name;
     EXPECT_DOUBLE_EQ(r.simplify_seconds, sum.simplify_seconds) << name;
     EXPECT_DOUBLE_EQ(r.maps_seconds, sum.maps_seconds) << name;
     // The static rock's include adds its one read and its whole shell to the frames'.
@@ -156,7 +156,7 @@ TEST(PovgenFrameResults, TheReportIsTheSumOfItsFrames) {
     EXPECT_EQ(r.shell_faces, sum.shell_faces + sum.objects.shell_faces + rock_faces) << name;
     EXPECT_EQ(r.shell_faces_kept, sum.shell_faces_kept + sum.objects.shell_faces + rock_faces)
         << name;
-    EXPECT_EQ(r.water_reads, static_cast<std::size_t>(frame_count)) << name;
+    EXPECT_EQ(r.water_reads, static_cast<std::size_t>(sequence_frames)) << name;
   }
 }
 

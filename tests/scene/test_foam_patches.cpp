@@ -15,7 +15,7 @@
 namespace toonwater {
 namespace {
 
-constexpr int kWidth = 320, kHeight = 180;
+constexpr int kScreenWidth = 320, kScreenHeight = 180;
 
 // A camera above and in front of the origin (POV-Ray's frame, y up), 40° wide.
 ScreenProjection camera() {
@@ -23,7 +23,7 @@ ScreenProjection camera() {
   c.location = Vec3(0, 2, -3);
   c.look_at = Vec3::Zero();
   c.angle = 40;
-  return screen_projection(c, kWidth, kHeight);
+  return screen_projection(c, kScreenWidth, kScreenHeight);
 }
 
 // Flat water at y = `height` over [−1.5, 1.5]², `n` × `n` vertices, normals up.

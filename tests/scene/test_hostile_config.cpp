@@ -68,8 +68,10 @@ TEST(HostileConfig, DeeplyNestedValuesGetAParseErrorWithTheLine) {
 TEST(HostileConfig, EnormousFilesAreReadOrRejectedNamingTheKey) {
   // 100k unknown keys: the first one is named.
   std::string toml = "[water]\nior = 1.2\n";
-  for (int i = 0; i < 100000; ++i)
-    toml += "k" + std::to_string(i) + " = " + std::to_string(i) + "\n";
+  for (int i = 0; i < 100000; ++i) {
+    const std::string number = std::to_string(i);
+    toml.append("k").append(number).append(" = ").append(number).append("\n");
+  }
   std::string error = config_error(toml);
   EXPECT_NE(error.find("'water.k0' is not a known key"), std::string::npos) << error;
 

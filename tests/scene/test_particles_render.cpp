@@ -23,17 +23,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kWidth = 320, kHeight = 180;
+constexpr int kPictureWidth = 320, kPictureHeight = 180;
 // The camera (y-up input): on +z, level with y = 0.5, looking along −z.
 const Vec3 kCamera(0, 0.5, 4), kLookAt(0, 0.5, 0);
 constexpr double kAngle = 40;
 
 // Where a point of the input lands in the picture (a right-handed pinhole: +x right, +y up).
 std::array<double, 2> project(const Vec3& p) {
-  const double focal = 0.5 * kWidth / std::tan(0.5 * kAngle * std::numbers::pi / 180.0);
+  const double focal = 0.5 * kPictureWidth / std::tan(0.5 * kAngle * std::numbers::pi / 180.0);
   const double depth = kCamera.z() - p.z();
-  return {0.5 * kWidth + focal * (p.x() - kCamera.x()) / depth,
-          0.5 * kHeight - focal * (p.y() - kCamera.y()) / depth};
+  return {0.5 * kPictureWidth + focal * (p.x() - kCamera.x()) / depth,
+          0.5 * kPictureHeight - focal * (p.y() - kCamera.y()) / depth};
 }
 
 std::vector<std::pair<int, Vec3>> cloud(const Vec3& centre, int count, unsigned seed) {
@@ -57,9 +57,9 @@ Image render_pool(const ScratchDir& dir, const std::vector<std::string>& extra) 
                                 "--set",
                                 "render.antialias=false",
                                 "--set",
-                                "render.width=" + std::to_string(kWidth),
+                                "render.width=" + std::to_string(kPictureWidth),
                                 "--set",
-                                "render.height=" + std::to_string(kHeight),
+                                "render.height=" + std::to_string(kPictureHeight),
                                 "--set",
                                 "camera.location=[0, 0.5, 4]",
                                 "--set",
@@ -95,8 +95,8 @@ TEST(SprayRender, DropletsInTheAirAreOutlinedAndSprayUnderTheWaterIsNot) {
   spray.insert(spray.end(), under.begin(), under.end());
   write_text(dir / "spray000001.wwp", wwp_bytes(spray));
   const Image image = render_pool(dir, {"--particles", (dir / "spray000001.wwp").string()});
-  ASSERT_EQ(image.width, kWidth);
-  ASSERT_EQ(image.height, kHeight);
+  ASSERT_EQ(image.width, kPictureWidth);
+  ASSERT_EQ(image.height, kPictureHeight);
   const std::string include = read_text(dir / "scene" / "spray_0000.inc");
   std::size_t drawn = 0;
   for (std::size_t at = include.find("Toon_droplet("); at != std::string::npos;
@@ -192,7 +192,7 @@ TEST(BubbleRender, BubblesUnderTheWaterAreOutlinedDiscsSeenThroughItAndNoneInThe
   camera.location = Vec3(0, 2.5, -2.5);
   camera.look_at = Vec3::Zero();
   camera.angle = 40;
-  const ScreenProjection screen = screen_projection(camera, kWidth, kHeight);
+  const ScreenProjection screen = screen_projection(camera, kPictureWidth, kPictureHeight);
   for (const Vec3& c : under) {
     const Eigen::Vector2d at = *screen.pixel(Vec3(c.x(), c.y(), -c.z()));
     EXPECT_EQ(line_pixels_near(plain, at.x(), at.y(), 12), 0);
@@ -228,7 +228,7 @@ TEST(FoamRender, FoamGatheredAtTheSurfaceIsAPatchOnItAndSparseOrDeepFoamIsNone) 
   std::vector<std::string> args{"--particles", (dir / "foam000001.wwp").string()};
   args.insert(args.end(), kMagentaFoam.begin(), kMagentaFoam.end());
   const Image image = render_pool(dir, args);
-  ASSERT_EQ(image.width, kWidth);
+  ASSERT_EQ(image.width, kPictureWidth);
   // The raft: a patch several pixels across, flat in the foam's colour, on the water.
   const auto [fx, fy] = project({-0.5, 0.0, 1.0});
   EXPECT_TRUE(is_foam(pixel(image, fx, fy))) << fx << ", " << fy;

@@ -20,21 +20,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kWidth = 480, kHeight = 270;
+constexpr int kLookWidth = 480, kLookHeight = 270;
 
 fs::path wake_dir() {
   const fs::path shared = shared_dir();
   return shared.empty() ? fs::path{} : shared / "data" / "mantaflow-wake";
 }
 
-std::vector<std::string> operator+(std::vector<std::string> a, const std::vector<std::string>& b) {
-  a.insert(a.end(), b.begin(), b.end());
-  return a;
-}
-
 std::vector<std::string> small_picture() {
-  return {"--set", "render.width=" + std::to_string(kWidth),
-          "--set", "render.height=" + std::to_string(kHeight),
+  return {"--set", "render.width=" + std::to_string(kLookWidth),
+          "--set", "render.height=" + std::to_string(kLookHeight),
           "--set", "render.antialias=false"};
 }
 
@@ -134,7 +129,7 @@ TEST(WakeDefaults, CartoonLookWithNothingConfigured) {
 
   // The camera frames the whole sequence and fills the picture.
   for (const auto& [frame, img] : frames) {
-    ASSERT_EQ(img.width, kWidth);
+    ASSERT_EQ(img.width, kLookWidth);
     const Look look = measure(img);
     std::printf("frame %d: scene covers %.1f %% of the picture, %d scene pixels on its edge\n",
                 frame, 100 * look.coverage, look.edge_pixels);
@@ -182,18 +177,19 @@ TEST(WakeDefaults, CartoonLookWithNothingConfigured) {
   const Image& look = frames.at(9);
   auto magenta = [](const Rgb8& c) { return c[1] < 40 && c[0] > 40 && std::abs(c[0] - c[2]) < 30; };
   auto sphere = [&](int x, int y) {
-    return x >= 0 && y >= 0 && x < kWidth && y < kHeight && magenta(alone.at(x, y));
+    return x >= 0 && y >= 0 && x < kLookWidth && y < kLookHeight && magenta(alone.at(x, y));
   };
   int silhouette = 0, lined = 0;
-  for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x) {
+  for (int y = 0; y < kLookHeight; ++y)
+    for (int x = 0; x < kLookWidth; ++x) {
       if (!sphere(x, y) || !magenta(opaque.at(x, y))) continue;
       if (sphere(x - 1, y) && sphere(x + 1, y) && sphere(x, y - 1) && sphere(x, y + 1)) continue;
       ++silhouette;
       bool line = false;
       for (int dy = -2; dy <= 2; ++dy)
         for (int dx = -2; dx <= 2; ++dx) {
-          const int u = std::clamp(x + dx, 0, kWidth - 1), v = std::clamp(y + dy, 0, kHeight - 1);
+          const int u = std::clamp(x + dx, 0, kLookWidth - 1),
+                    v = std::clamp(y + dy, 0, kLookHeight - 1);
           const Rgb8 c = look.at(u, v);
           line = line || (!sphere(u, v) && c[0] < 40 && c[1] < 40 && c[2] < 40);
         }

@@ -51,11 +51,6 @@ std::vector<std::string> opaque_flat_water() {
           "--set", "flow.enabled=false"};
 }
 
-std::vector<std::string> operator+(std::vector<std::string> a, const std::vector<std::string>& b) {
-  a.insert(a.end(), b.begin(), b.end());
-  return a;
-}
-
 bool orange(const Rgb8& c) { return c[0] > c[2] + 60 && c[0] > c[1] + 20; }
 
 // `light` is the config's light setting (input axes, y up); `to_light(p)` the unit vector from a

@@ -27,6 +27,9 @@ class ScratchDir {
 
 std::string read_text(const std::filesystem::path& path);
 
+// The arguments `a`, then `b` (command lines built from parts).
+std::vector<std::string> operator+(std::vector<std::string> a, const std::vector<std::string>& b);
+
 // The names of the entries of `directory` (hidden ones included), sorted.
 std::vector<std::string> entries(const std::filesystem::path& directory);
 void write_text(const std::filesystem::path& path, const std::string& text);
