@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <string>
 
 namespace toonwater::test {
 namespace {
@@ -52,7 +53,10 @@ TEST_P(MantaflowFrame, ClosedVolumeWallsAndFloorCarryNoFlowRegions) {
   EXPECT_LT(labelled, a.flow.free_surface_vertices / 5) << "flow regions are features, not the sea";
 }
 
-INSTANTIATE_TEST_SUITE_P(Frames, MantaflowFrame, testing::Values(1, 15, 25, 30));
+INSTANTIATE_TEST_SUITE_P(Frames, MantaflowFrame, testing::Values(1, 15, 25, 30),
+                         [](const testing::TestParamInfo<int>& frame) {
+                           return "frame_" + std::to_string(frame.param);
+                         });
 
 // An FFT ocean's chop runs down to its grid's spacing: at the scale of the cells it is noise,
 // so the threshold rises above it (flow_regions.hpp) and what was confetti of 200 regions over
