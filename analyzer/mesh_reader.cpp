@@ -34,7 +34,11 @@ void fail_at_line(const SourceFile& file, std::size_t line, std::string_view mes
 
 std::string quote(std::string_view field) {
   constexpr std::size_t longest_field_shown = 40;
-  return "'" + printable_text(field, longest_field_shown) + "'";
+  // Built with += only: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
+  std::string quoted = "'";
+  quoted += printable_text(field, longest_field_shown);
+  quoted += '\'';
+  return quoted;
 }
 
 bool LineReader::next(std::string_view& line) {
