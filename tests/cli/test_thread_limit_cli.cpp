@@ -19,21 +19,13 @@ namespace {
 namespace fs = std::filesystem;
 using test::read_text;
 using test::run_toonwater;
+using test::ScopedEnvironmentVariable;
 using test::ScratchDir;
-
-// TOONWATER_THREADS set for the programs this test runs, unset again when it ends.
-class ThreadsVariable {
- public:
-  explicit ThreadsVariable(const std::string& value) {
-    ::setenv("TOONWATER_THREADS", value.c_str(), 1);
-  }
-  ~ThreadsVariable() { ::unsetenv("TOONWATER_THREADS"); }
-};
 
 // The CSV `analyze` writes for `mesh` with TOONWATER_THREADS=threads.
 std::string csv_with_threads(const fs::path& mesh, const std::string& threads,
                              const fs::path& csv) {
-  ThreadsVariable variable(threads);
+  const ScopedEnvironmentVariable variable("TOONWATER_THREADS", threads);
   const test::CommandResult result =
       run_toonwater({"analyze", mesh.string(), "--up", "z", "--csv", csv.string()});
   EXPECT_EQ(result.exit_code, 0) << result.output;
@@ -57,7 +49,7 @@ TEST(ThreadLimitCli, ValueThatIsNotAThreadCountFailsWithOneLine) {
   write_obj(dir / "tank.obj", test::tank(10, [](double, double) { return 0.0; }));
   for (const std::string value : {"0", "-1", "1025", "two", "", "2x", "99999999999999999999"}) {
     SCOPED_TRACE("TOONWATER_THREADS='" + value + "'");
-    ThreadsVariable variable(value);
+    const ScopedEnvironmentVariable variable("TOONWATER_THREADS", value);
     const test::CommandResult result =
         run_toonwater({"analyze", (dir / "tank.obj").string(), "--csv", (dir / "c.csv").string()});
     EXPECT_EQ(result.exit_code, cli::exit_code::bad_input) << result.output;

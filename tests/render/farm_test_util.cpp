@@ -2,8 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-
 namespace toonwater::test {
 
 namespace fs = std::filesystem;
@@ -67,12 +65,6 @@ void write_killing_povray(const fs::path& bin, const fs::path& marker) {
   fs::permissions(bin / "povray", fs::perms::owner_all | fs::perms::group_read |
                                       fs::perms::group_exec | fs::perms::others_read |
                                       fs::perms::others_exec);
-}
-
-void prepend_to_path(const fs::path& bin) {
-  const char* path = std::getenv("PATH");
-  const std::string value = bin.string() + ":" + (path ? path : "/usr/bin:/bin");
-  ::setenv("PATH", value.c_str(), 1);
 }
 
 }  // namespace toonwater::test

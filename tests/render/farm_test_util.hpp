@@ -32,7 +32,4 @@ void expect_frames_like(const std::filesystem::path& scene, const std::filesyste
 // the process that started it (the farm task) and POV-Ray with SIGKILL. Later runs are POV-Ray.
 void write_killing_povray(const std::filesystem::path& bin, const std::filesystem::path& marker);
 
-// Prepends `bin` to PATH for the rest of the test process (and the processes it starts).
-void prepend_to_path(const std::filesystem::path& bin);
-
 }  // namespace toonwater::test

@@ -8,7 +8,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-
 #include <filesystem>
 
 namespace toonwater::test {
@@ -113,7 +112,7 @@ TEST_F(FarmScene, APovrayWhoseThreadsDidNotStartIsStartedAgain) {
     write_text(bin / "timeouts", std::to_string(timeouts) + "\n");
     fs::remove(tries);
   };
-  prepend_to_path(bin);
+  const ScopedEnvironmentVariable path_variable = path_with_first(bin);
 
   time_out_starts(2);
   const fs::path scene = copy_scene("slow_start");
@@ -142,7 +141,7 @@ TEST_F(FarmScene, LocalRenderRunsOneProcessPerRangeWithPovraysOwnImages) {
   const fs::path plain = copy_scene("plain");
   ASSERT_EQ(run_povray(plain).exit_code, 0);
   write_logging_povray(work_ / "bin", work_ / "runs.log");
-  prepend_to_path(work_ / "bin");
+  const ScopedEnvironmentVariable path_variable = path_with_first(work_ / "bin");
 
   const fs::path scene = copy_scene("ranges");
   CommandResult r = run_toonwater({"render", scene.string(), "--jobs", "3"});
@@ -194,7 +193,7 @@ TEST_F(FarmScene, ParallelRetriesATaskKilledMidFrameAndLeavesNoPartialImage) {
   write_text(work_ / "hosts", ":\n");
   reference();  // rendered before the faulty povray is on PATH
   write_killing_povray(work_ / "bin", work_ / "killed-once");
-  prepend_to_path(work_ / "bin");
+  const ScopedEnvironmentVariable path_variable = path_with_first(work_ / "bin");
   const CommandResult r = run_toonwater({"render", scene.string(), "--on", "parallel", "--hosts",
                                          (work_ / "hosts").string(), "--frames-per-task", "3"});
   ASSERT_TRUE(fs::exists(work_ / "killed-once"));  // the fault happened
@@ -240,7 +239,7 @@ TEST_F(FarmScene, LocalRenderSkipsFramesWithAnImageUnlessForced) {
   write_text(scene / frame_name(6), "");
   const auto before = fs::last_write_time(scene / frame_name(1));
   write_logging_povray(work_ / "bin", work_ / "runs.log");
-  prepend_to_path(work_ / "bin");
+  const ScopedEnvironmentVariable path_variable = path_with_first(work_ / "bin");
   const CommandResult r = run_toonwater({"render", scene.string(), "--jobs", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("2 frame(s) rendered, 4 skipped (already rendered), 0 failed"),
@@ -294,9 +293,7 @@ TEST_F(FarmScene, ImagesOfAnEarlierSceneAreRenderedAgain) {
 TEST_F(FarmScene, MissingOrFailingSbatchIsAClearErrorWithTheCommand) {
   const fs::path scene = copy_scene("nosbatch");
   fs::create_directories(work_ / "empty");
-  const char* path = std::getenv("PATH");
-  const std::string saved = path ? path : "";
-  ::setenv("PATH", (work_ / "empty").c_str(), 1);
+  const ScopedEnvironmentVariable path_variable("PATH", (work_ / "empty").string());
   const CommandResult missing = run_toonwater({"render", scene.string(), "--on", "slurm"});
   EXPECT_NE(missing.exit_code, 0);
   EXPECT_NE(missing.output.find("cannot run 'sbatch --parsable"), std::string::npos)
@@ -310,7 +307,6 @@ TEST_F(FarmScene, MissingOrFailingSbatchIsAClearErrorWithTheCommand) {
   fs::permissions(work_ / "empty/sbatch", fs::perms::owner_all);
   const CommandResult failing =
       run_toonwater({"render", scene.string(), "--on", "slurm", "--partition", "gpu"});
-  ::setenv("PATH", saved.c_str(), 1);
   EXPECT_NE(failing.exit_code, 0);
   EXPECT_NE(failing.output.find("Unable to contact slurm controller"), std::string::npos)
       << failing.output;

@@ -157,7 +157,8 @@ TEST_F(SlurmFarm, ATaskKilledMidFrameLeavesNoPartialImageAndIsResubmitted) {
   const fs::path scene = copy_scene("killed");
   reference();  // rendered before the faulty povray is on PATH
   write_killing_povray(work_ / "bin", work_ / "killed-once");
-  prepend_to_path(work_ / "bin");  // sbatch passes the environment to the tasks
+  // sbatch passes the environment to the tasks.
+  const ScopedEnvironmentVariable path_variable = path_with_first(work_ / "bin");
   const CommandResult r =
       run_toonwater({"render", scene.string(), "--on", "slurm", "--frames-per-task", "3"});
   ASSERT_TRUE(fs::exists(work_ / "killed-once"));  // the fault happened

@@ -36,13 +36,17 @@ using namespace std::chrono_literals;
 // A toonwater process running in the background, its output in a log file.
 class Background {
  public:
-  Background(const std::vector<std::string>& args, fs::path log) : log_(std::move(log)) {
+  // toonwater with `args`, and with `environment` added to the test's own.
+  Background(const std::vector<std::string>& args, fs::path log,
+             const std::map<std::string, std::string>& environment = {})
+      : log_(std::move(log)) {
     pid_ = ::fork();
     if (pid_ == 0) {
       const int fd = ::open(log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
       if (fd < 0) ::_exit(126);
       ::dup2(fd, STDOUT_FILENO);
       ::dup2(fd, STDERR_FILENO);
+      for (const auto& [name, value] : environment) ::setenv(name.c_str(), value.c_str(), 1);
       std::string exe = TOONWATER_EXECUTABLE;
       std::vector<std::string> copies = args;
       std::vector<char*> argv{exe.data()};
@@ -286,10 +290,9 @@ TEST(InterruptOutright, ARenderKilledBySigkillLeavesNoPovrayRunningAndTheNextRun
   const fs::path povray = dir / "slow-povray", pid_file = dir / "povray.pid";
   write_text(povray, "#!/bin/sh\necho $$ > '" + pid_file.string() + "'\nexec sleep 60\n");
   fs::permissions(povray, fs::perms::owner_all);
-  ::setenv("TOONWATER_POVRAY", povray.c_str(), 1);
   {
-    Background run({"render", out.string(), "--jobs", "1"}, dir / "killed.log");
-    ::unsetenv("TOONWATER_POVRAY");
+    Background run({"render", out.string(), "--jobs", "1"}, dir / "killed.log",
+                   {{"TOONWATER_POVRAY", povray.string()}});
     for (int i = 0; i < 1000 && !(fs::exists(pid_file) && fs::file_size(pid_file) > 1); ++i)
       std::this_thread::sleep_for(10ms);
     ASSERT_TRUE(fs::exists(pid_file)) << run.output();
@@ -328,14 +331,12 @@ TEST(InterruptOutright, ARenderOnGnuParallelStopsItsTasksOnSigterm) {
   fs::permissions(bin / "povray", fs::perms::owner_all);
   write_text(dir / "hosts", ":\n");
   const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
-  ::setenv("PATH", (bin.string() + ":" + path).c_str(), 1);
   int code = 0;
   std::string output;
   {
     Background run({"render", out.string(), "--on", "parallel", "--hosts", (dir / "hosts").string(),
                     "--frames-per-task", "5"},
-                   dir / "farm.log");
-    ::setenv("PATH", path.c_str(), 1);
+                   dir / "farm.log", {{"PATH", bin.string() + ":" + path}});
     for (int i = 0; i < 3000 && fs::is_empty(pids); ++i) std::this_thread::sleep_for(10ms);
     ASSERT_FALSE(fs::is_empty(pids)) << run.output();
     run.signal(SIGTERM);

@@ -196,7 +196,7 @@ TEST_F(Video, WithoutFfmpegAVideoIsExitSixBeforeAnyFrameAndARenderNeedsNoFfmpeg)
   const fs::path bin = work_ / "bin";
   fs::create_directories(bin);
   fs::create_symlink(on_path("povray"), bin / "povray");
-  ::setenv("PATH", bin.c_str(), 1);
+  const ScopedEnvironmentVariable path_variable("PATH", bin.string());
   CommandResult r = run_toonwater({"render", scene.string(), "--video", "mp4"});
   EXPECT_EQ(r.exit_code, 6) << r.output;  // incomplete installation (README, "Exit codes")
   EXPECT_EQ(r.output,
@@ -266,7 +266,7 @@ TEST_F(Video, FfmpegFailingLeavesNoPartialOrMixedVideos) {
              "case \" $* \" in *\" -f gif \"*) echo 'gif: encoder exploded' >&2; exit 1;; esac\n"
              "exit 0\n");
   fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
-  prepend_to_path(bin);
+  const ScopedEnvironmentVariable path_variable = path_with_first(bin);
   write_text(scene / "video.mp4", "earlier");
   const CommandResult r = run_toonwater({"render", scene.string(), "--video", "mp4,gif"});
   EXPECT_EQ(r.exit_code, 3) << r.output;  // output failure: nothing was replaced
@@ -289,7 +289,7 @@ TEST_F(Video, AStopWhileFfmpegRunsLeavesNoVideoAndNoFfmpeg) {
                  started.string() + ".new'\nmv '" + started.string() + ".new' '" +
                  started.string() + "'\nexec sleep 60\n");
   fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
-  prepend_to_path(bin);
+  const ScopedEnvironmentVariable path_variable = path_with_first(bin);
   ChildSetup setup;
   setup.output_file = (work_ / "render.log").string();
   const pid_t render = start_child_process(

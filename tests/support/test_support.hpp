@@ -5,6 +5,7 @@
 #include "analyzer/mesh.hpp"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +25,24 @@ class ScratchDir {
  private:
   std::filesystem::path path_;
 };
+
+// An environment variable set to `value` for the programs a test starts, until the object dies;
+// then it is what it was before (unset, if it was). Keeps a test's PATH from the tests after it
+// in the same process.
+class ScopedEnvironmentVariable {
+ public:
+  ScopedEnvironmentVariable(std::string name, const std::string& value);
+  ~ScopedEnvironmentVariable();
+  ScopedEnvironmentVariable(const ScopedEnvironmentVariable&) = delete;
+  ScopedEnvironmentVariable& operator=(const ScopedEnvironmentVariable&) = delete;
+
+ private:
+  std::string name_;
+  std::optional<std::string> before_;
+};
+
+// PATH with `directory` first, until the object dies.
+[[nodiscard]] ScopedEnvironmentVariable path_with_first(const std::filesystem::path& directory);
 
 std::string read_text(const std::filesystem::path& path);
 
