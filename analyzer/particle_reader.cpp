@@ -6,29 +6,30 @@
 #include "analyzer/readers/vdb/vdb_module.hpp"
 
 #include <algorithm>
-#include <regex>
+#include <cctype>
+#include <string>
 
 namespace toonwater {
 namespace {
 
 using readers::SourceFile;
 
-// FLIP Fluids names a whitewater file by its kind and frame: "foam000012.wwp".
+// FLIP Fluids names a whitewater file by its kind and frame: "foam000012.wwp" (any case).
 ParticleKind whitewater_kind(const SourceFile& file, const std::filesystem::path& path) {
-  static const std::regex name("(foam|bubble|spray|dust)[0-9]+", std::regex::icase);
-  std::smatch match;
-  const std::string stem = path.stem().string();
-  if (!std::regex_match(stem, match, name))
-    readers::fail(file,
-                  "a whitewater file's name says its kind (foam, bubble, spray or dust, then the "
-                  "frame: foam000012.wwp)");
-  std::string kind = match[1].str();
-  std::transform(kind.begin(), kind.end(), kind.begin(),
+  std::string stem = path.stem().string();
+  std::transform(stem.begin(), stem.end(), stem.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (kind == "foam") return ParticleKind::foam;
-  if (kind == "bubble") return ParticleKind::bubble;
-  if (kind == "spray") return ParticleKind::spray;
-  return ParticleKind::dust;
+  const std::size_t digits = stem.find_first_of("0123456789");
+  const std::string kind = stem.substr(0, digits);
+  const bool frame = digits != std::string::npos &&
+                     stem.find_first_not_of("0123456789", digits) == std::string::npos;
+  if (frame && kind == "foam") return ParticleKind::foam;
+  if (frame && kind == "bubble") return ParticleKind::bubble;
+  if (frame && kind == "spray") return ParticleKind::spray;
+  if (frame && kind == "dust") return ParticleKind::dust;
+  readers::fail(file,
+                "a whitewater file's name says its kind (foam, bubble, spray or dust, then the "
+                "frame: foam000012.wwp)");
 }
 
 ParticleSet read_point_grid(const SourceFile& file) {

@@ -82,8 +82,11 @@ TEST(Particles, DamagedWhitewaterFilesAreOneLineErrors) {
   EXPECT_NE(error_of(dir / "foam000004.wwp").find("NaN or infinite (particle 0)"),
             std::string::npos);
 
-  write_text(dir / "whitewater.wwp", whole);
-  EXPECT_NE(error_of(dir / "whitewater.wwp").find("name says its kind"), std::string::npos);
+  for (const std::string name :
+       {"whitewater.wwp", "foam.wwp", "foam12a.wwp", "seafoam000001.wwp", "000001.wwp"}) {
+    write_text(dir / name, whole);
+    EXPECT_NE(error_of(dir / name).find("name says its kind"), std::string::npos) << name;
+  }
   write_text(dir / "foam000005.xyz", whole);
   EXPECT_NE(error_of(dir / "foam000005.xyz").find("unknown particle format"), std::string::npos);
   error_of(dir / "missing000001.wwp");
