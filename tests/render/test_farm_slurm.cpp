@@ -117,11 +117,11 @@ TEST_F(SlurmFarm, SigtermCancelsTheJobAndExitsInterrupted) {
   fs::create_directories(bin);
   write_text(bin / "povray", "#!/bin/sh\ntouch '" + started.string() + "'\nexec sleep 60\n");
   fs::permissions(bin / "povray", fs::perms::owner_all);
-  const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  const std::string path = path_value_with_first(bin);
   const fs::path log = work_ / "render.log";
   const pid_t pid = ::fork();
   if (pid == 0) {
-    ::setenv("PATH", (bin.string() + ":" + path).c_str(), 1);
+    ::setenv("PATH", path.c_str(), 1);
     const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     ::dup2(fd, STDERR_FILENO);
     ::dup2(fd, STDOUT_FILENO);

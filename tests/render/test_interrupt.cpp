@@ -330,13 +330,12 @@ TEST(InterruptOutright, ARenderOnGnuParallelStopsItsTasksOnSigterm) {
   write_text(bin / "povray", "#!/bin/sh\necho $$ > '" + pids.string() + "/'$$\nexec sleep 60\n");
   fs::permissions(bin / "povray", fs::perms::owner_all);
   write_text(dir / "hosts", ":\n");
-  const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
   int code = 0;
   std::string output;
   {
     Background run({"render", out.string(), "--on", "parallel", "--hosts", (dir / "hosts").string(),
                     "--frames-per-task", "5"},
-                   dir / "farm.log", {{"PATH", bin.string() + ":" + path}});
+                   dir / "farm.log", {{"PATH", path_value_with_first(bin)}});
     for (int i = 0; i < 3000 && fs::is_empty(pids); ++i) std::this_thread::sleep_for(10ms);
     ASSERT_FALSE(fs::is_empty(pids)) << run.output();
     run.signal(SIGTERM);

@@ -45,10 +45,13 @@ ScopedEnvironmentVariable::~ScopedEnvironmentVariable() {
     ::unsetenv(name_.c_str());
 }
 
-ScopedEnvironmentVariable path_with_first(const fs::path& directory) {
+std::string path_value_with_first(const fs::path& directory) {
   const char* path = std::getenv("PATH");
-  return ScopedEnvironmentVariable("PATH",
-                                   directory.string() + ":" + (path ? path : "/usr/bin:/bin"));
+  return directory.string() + ":" + (path ? path : "/usr/bin:/bin");
+}
+
+ScopedEnvironmentVariable path_with_first(const fs::path& directory) {
+  return ScopedEnvironmentVariable("PATH", path_value_with_first(directory));
 }
 
 std::string read_text(const fs::path& path) {

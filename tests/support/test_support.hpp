@@ -41,6 +41,8 @@ class ScopedEnvironmentVariable {
   std::optional<std::string> before_;
 };
 
+// The value of PATH with `directory` before the test's own PATH.
+std::string path_value_with_first(const std::filesystem::path& directory);
 // PATH with `directory` first, until the object dies.
 [[nodiscard]] ScopedEnvironmentVariable path_with_first(const std::filesystem::path& directory);
 
